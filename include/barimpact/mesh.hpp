@@ -1,0 +1,59 @@
+// The uniform P1 mesh of (0, L) and its matrices: consistent mass, stiffness,
+// and the load vector (f, phi_i).
+//
+// Owns geometry and assembly; does not know time stepping or obstacles. All
+// matrices are symmetric tridiagonal and, on a uniform mesh, Toeplitz but for
+// the two end rows, which the solvers exploit.
+#pragma once
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace barimpact {
+
+class Expression;
+
+/// A symmetric tridiagonal matrix: `diag` has n entries, `off` n - 1.
+struct Tridiagonal {
+  std::vector<double> diag;
+  std::vector<double> off;
+
+  [[nodiscard]] std::size_t size() const { return diag.size(); }
+  /// y = A x.
+  void multiply(std::span<const double> x, std::span<double> y) const;
+  /// x^T A x.
+  [[nodiscard]] double quadratic_form(std::span<const double> x) const;
+  /// c1 A + c2 B (same size).
+  [[nodiscard]] static Tridiagonal combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b);
+};
+
+class Mesh {
+ public:
+  /// M uniform elements on (0, L). Preconditions: L > 0, M >= 1.
+  Mesh(double length, int elements);
+
+  [[nodiscard]] int elements() const { return elements_; }
+  [[nodiscard]] std::size_t nodes() const { return static_cast<std::size_t>(elements_) + 1; }
+  [[nodiscard]] double length() const { return length_; }
+  [[nodiscard]] double h() const { return h_; }
+  /// x_j = j h.
+  [[nodiscard]] double x(std::size_t j) const { return static_cast<double>(j) * h_; }
+
+  /// (phi_j, phi_i) rho: diag rho h/3 at the ends, 2 rho h/3 inside, off rho h/6.
+  [[nodiscard]] Tridiagonal mass(double density) const;
+  /// int c phi_j' phi_i': the stiffness (c = a) and viscous (c = b) matrices.
+  [[nodiscard]] Tridiagonal stiffness(double coefficient) const;
+  /// F_i = int f(x, t) phi_i dx by 3-point Gauss per element: exact when f is
+  /// a polynomial of degree <= 3 on each element.
+  void load(const Expression& f, double t, std::span<double> out) const;
+  /// Nodal interpolant of g(x, 0).
+  void interpolate(const Expression& g, std::span<double> out) const;
+
+ private:
+  double length_;
+  int elements_;
+  double h_;
+};
+
+}  // namespace barimpact

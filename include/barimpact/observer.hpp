@@ -1,0 +1,103 @@
+// Observers see the scheme after every step and record what a user keeps:
+// the history rows, field snapshots and contact episodes. They allocate in
+// `begin`, never in `observe`, and never do I/O (files are written after the
+// run, see output.hpp).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "barimpact/case.hpp"
+#include "barimpact/obstacle.hpp"
+#include "barimpact/scheme.hpp"
+
+namespace barimpact {
+
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  /// Called once before step 0 with the scheme and the number of steps N:
+  /// the place to allocate.
+  virtual void begin(const Scheme& /*scheme*/, long long /*steps*/) {}
+  /// Called at steps 0, 1, ..., N. Returning false stops the run.
+  virtual bool observe(const Scheme& scheme) = 0;
+};
+
+/// One row of history.csv, at t_n.
+struct HistoryRow {
+  double t, U, V, R, E_kin, E_strain, E_obstacle, W_ext, D_visc;
+};
+
+/// Rows at steps 0, every, 2 every, ... and always at the last step.
+class HistoryRecorder final : public Observer {
+ public:
+  explicit HistoryRecorder(int every) : every_(every) {}
+  void begin(const Scheme& scheme, long long steps) override;
+  bool observe(const Scheme& scheme) override;
+  [[nodiscard]] const std::vector<HistoryRow>& rows() const { return rows_; }
+
+ private:
+  long long every_;
+  long long last_ = 0;
+  std::vector<HistoryRow> rows_;
+};
+
+/// u, v and sigma = a u_x + b v_x at every node, at the steps nearest the
+/// requested times (each step once). Nodal sigma: the mean of the two
+/// adjacent elements' constant values, the end element's at x = 0 and L.
+class FieldRecorder final : public Observer {
+ public:
+  struct Snapshot {
+    double t;
+    std::vector<double> u, v, sigma;
+  };
+  FieldRecorder(const Case& c, std::vector<double> times);
+  void begin(const Scheme& scheme, long long steps) override;
+  bool observe(const Scheme& scheme) override;
+  /// The snapshots planned; the first `taken()` of them were recorded.
+  [[nodiscard]] const std::vector<Snapshot>& snapshots() const { return snapshots_; }
+  [[nodiscard]] std::size_t taken() const { return taken_; }
+  [[nodiscard]] const std::vector<double>& x() const { return x_; }
+
+ private:
+  double dt_, h_, a_, b_;
+  std::vector<double> times_;
+  std::vector<long long> steps_;  // sorted, unique
+  std::size_t taken_ = 0;
+  std::vector<double> x_;
+  std::vector<Snapshot> snapshots_;
+};
+
+/// A contact episode: U + g < 0 from `start` to `end` (crossing times
+/// interpolated linearly between steps).
+struct ContactInterval {
+  double start = 0.0;
+  double end = 0.0;
+  bool closed = false;          ///< false: still in contact at the last step
+  double exit_velocity = 0.0;     ///< V, the end's velocity, at the first step after separation
+  double rebound_velocity = 0.0;  ///< the bar's mean velocity (momentum / mass) then
+  double max_reaction = 0.0;
+};
+
+/// Watches every step: contact episodes, largest penetration and reaction.
+class ContactMonitor final : public Observer {
+ public:
+  explicit ContactMonitor(const ObstacleData& obstacle) : law_(obstacle) {}
+  void begin(const Scheme& scheme, long long steps) override;
+  /// Allocates only when an episode begins beyond the 64 reserved.
+  bool observe(const Scheme& scheme) override;
+  [[nodiscard]] const std::vector<ContactInterval>& intervals() const { return intervals_; }
+  [[nodiscard]] double max_penetration() const { return max_penetration_; }
+  [[nodiscard]] double max_reaction() const { return max_reaction_; }
+
+ private:
+  ObstacleLaw law_;
+  std::vector<ContactInterval> intervals_;
+  bool in_contact_ = false;
+  bool have_previous_ = false;
+  double previous_t_ = 0.0, previous_d_ = 0.0;
+  double max_penetration_ = 0.0, max_reaction_ = 0.0;
+  std::vector<double> velocity_;
+};
+
+}  // namespace barimpact

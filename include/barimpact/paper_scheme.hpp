@@ -1,0 +1,96 @@
+// The alpha-scheme of Do, Raupp & Feijoo, eq. (6.3), in the matrix form of
+// THE-PAPER.md (errata fixed). With z = exp(-lambda t) u and the split
+// k U^- = (k/2)|U| - (k/2) U (linear half implicit, |.| explicit):
+//
+//   M (z^{n+1} - 2 z^n + z^{n-1}) / dt^2 + S z^{n,alpha} + D (z^{n+1} - z^{n-1}) / (2 dt)
+//       = F^{n,alpha} + (k/2) |z^n_0| e_0,
+//   S = lambda^2 M + K_a + lambda K_b + (k/2) e_0 e_0^T,   D = 2 lambda M + K_b,
+//
+// so that A z^{n+1} = B1 z^n + B0 z^{n-1} + (load and contact), with
+// A = M/dt^2 + alpha S + D/(2 dt) factored once (it is symmetric positive
+// definite) and B1 = 2M/dt^2 - (1 - 2 alpha) S, B0 = -M/dt^2 - alpha S + D/(2 dt).
+// A gap g shifts the contact variable: z_0 + g exp(-lambda t) replaces z_0 in
+// the obstacle terms, its constant part treated as a load.
+//
+// Velocity and energies at t_n (docs/methods.md): V^n = (u^{n+1} - u^{n-1}) / (2 dt);
+// E_kin, E_strain are the means of the scheme's half-step energies at
+// n -/+ 1/2, E_obstacle = k ((U^n + g)^-)^2 / 2.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "barimpact/case.hpp"
+#include "barimpact/expression.hpp"
+#include "barimpact/mesh.hpp"
+#include "barimpact/obstacle.hpp"
+#include "barimpact/scheme.hpp"
+
+namespace barimpact {
+
+class PaperScheme final : public Scheme {
+ public:
+  /// Preconditions: `c` validated, obstacle kind none or elastic.
+  explicit PaperScheme(const Case& c);
+
+  void start() override;
+  void advance() override;
+
+  [[nodiscard]] long long step() const override { return n_; }
+  [[nodiscard]] double time() const override { return static_cast<double>(n_) * dt_; }
+  [[nodiscard]] std::size_t nodes() const override { return mesh_.nodes(); }
+  [[nodiscard]] double end_displacement() const override;
+  [[nodiscard]] double end_velocity() const override;
+  [[nodiscard]] double reaction() const override { return law_.reaction(end_displacement()); }
+  void displacement(std::span<double> out) const override;
+  void velocity(std::span<double> out) const override;
+  [[nodiscard]] Energies energies() const override;
+  [[nodiscard]] bool finite() const override;
+
+  /// The level z^{n+1} (exposed for tests of the scheme itself).
+  [[nodiscard]] std::span<const double> next_level() const { return {next_, mesh_.nodes()}; }
+  [[nodiscard]] std::span<const double> current_level() const { return {cur_, mesh_.nodes()}; }
+
+ private:
+  enum class LoadMode { zero, steady, unsteady };
+
+  template <LoadMode mode>
+  void solve_level(long long m);
+  /// exp(lambda t_m): u^m = scale(m) z^m (Remark 6.2).
+  [[nodiscard]] double scale(long long m) const;
+  /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
+  /// (1/2)|w|_M^2 + (1/2)|m|_Ka^2 + (alpha - 1/4)(dt^2/2)|w|_Ka^2, w = (u^b - u^a)/dt,
+  /// m = (u^b + u^a)/2; the identity (7.1) makes it telescope when lambda = 0.
+  void half_step_energy(const double* za, double sa, const double* zb, double sb, double& kinetic,
+                        double& strain) const;
+  void accumulate_budget(long long m);
+
+  Mesh mesh_;
+  ObstacleLaw law_;
+  double dt_, alpha_, lambda_, density_, a_, b_;
+  Tridiagonal mass_, stiffness_a_, stiffness_b_;
+
+  // Constant coefficients of A, B1, B0 on the uniform mesh: the off-diagonal
+  // (identical for every element) and the first, inner and last diagonal.
+  double a_off_, b1_off_, b0_off_;
+  std::array<double, 3> b1_diag_{}, b0_diag_{};
+  std::vector<double> inv_;        // 1 / pivot of A's LU factorisation
+  std::vector<double> upper_;      // a_off / pivot: the U factor's off-diagonal
+
+  std::array<std::vector<double>, 3> levels_;
+  double* prev_ = nullptr;  // z^{n-1}
+  double* cur_ = nullptr;   // z^n
+  double* next_ = nullptr;  // z^{n+1}
+
+  LoadMode load_mode_ = LoadMode::zero;
+  std::unique_ptr<Expression> body_force_, initial_displacement_, initial_velocity_;
+  std::array<std::vector<double>, 3> loads_;  // F(t_{m-1}), F(t_m), F(t_{m+1}), unscaled
+  std::vector<double> u0_, v0_;
+
+  long long n_ = 0;
+  double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
+  double work_last_ = 0.0, dissipation_last_ = 0.0;  // increments of level n
+};
+
+}  // namespace barimpact

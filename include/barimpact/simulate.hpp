@@ -1,0 +1,57 @@
+// The time loop, and a convenience that runs a case with the standard
+// observers. `simulate` is the only loop in barimpact.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "barimpact/case.hpp"
+#include "barimpact/observer.hpp"
+#include "barimpact/scheme.hpp"
+
+namespace barimpact {
+
+enum class RunStatus { complete, non_finite, stopped };
+
+struct LoopResult {
+  RunStatus status = RunStatus::complete;
+  long long steps_done = 0;  ///< the last step observed
+  std::string message;       ///< why it did not complete
+};
+
+/// Starts `scheme`, then advances it `steps` times; every observer sees steps
+/// 0..steps. Stops early, with the observers' data so far, when the state
+/// turns non-finite or an observer returns false.
+LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers);
+
+struct Summary {
+  bool complete = true;
+  RunStatus status = RunStatus::complete;
+  std::string message;
+  long long steps = 0;       ///< N requested
+  long long steps_done = 0;
+  double t_end = 0.0;        ///< t of the last step observed
+  std::vector<ContactInterval> contacts;
+  double max_penetration = 0.0;
+  double max_reaction = 0.0;
+  double energy_initial = 0.0;      ///< E_total at t = 0
+  double energy_final = 0.0;        ///< E_total at the last history row
+  double energy_error_max = 0.0;    ///< max over rows of |E_total - E_total(0)|
+  double run_seconds = 0.0;
+};
+
+struct RunResult {
+  Summary summary;
+  std::vector<HistoryRow> history;
+  std::vector<double> x;
+  std::vector<FieldRecorder::Snapshot> fields;
+};
+
+/// Runs `c` with its scheme and the history, field and contact observers.
+/// Throws InputError when the case does not fit its scheme.
+[[nodiscard]] RunResult run(const Case& c);
+
+[[nodiscard]] std::string_view to_string(RunStatus status);
+
+}  // namespace barimpact

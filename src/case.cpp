@@ -1,0 +1,390 @@
+#include "barimpact/case.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "barimpact/expression.hpp"
+#include "barimpact/scheme.hpp"
+#include <memory>
+
+namespace barimpact {
+
+namespace {
+
+struct SectionKeys {
+  std::string_view section;
+  std::vector<std::string_view> keys;
+};
+
+// The case-file contract: sections and keys, in file order.
+const std::array<SectionKeys, 6>& contract() {
+  static const std::array<SectionKeys, 6> c{{
+      {"bar", {"length", "density", "stiffness", "viscosity", "elements"}},
+      {"load", {"body_force"}},
+      {"initial", {"displacement", "velocity"}},
+      {"obstacle", {"kind", "stiffness", "gap"}},
+      {"time", {"end", "step", "scheme", "alpha", "lambda"}},
+      {"output", {"every", "fields_at"}},
+  }};
+  return c;
+}
+
+const SectionKeys* find_section(std::string_view name) {
+  for (const auto& s : contract())
+    if (s.section == name) return &s;
+  return nullptr;
+}
+
+bool has_key(const SectionKeys& s, std::string_view key) {
+  for (auto k : s.keys)
+    if (k == key) return true;
+  return false;
+}
+
+// Reads the table, remembering where each key came from so that every error
+// names the file and line, or the --set option, that set it.
+class Reader {
+ public:
+  Reader(toml::table root, std::string origin, std::map<std::string, std::string> overridden)
+      : root_(std::move(root)), origin_(std::move(origin)), overridden_(std::move(overridden)) {}
+
+  [[noreturn]] void fail(std::string_view section, std::string_view key, std::string_view rule) const {
+    throw InputError(fmt::format("{}: {}.{} {}", where(section, key), section, key, rule));
+  }
+
+  std::string where(std::string_view section, std::string_view key) const {
+    const std::string dotted = fmt::format("{}.{}", section, key);
+    if (auto it = overridden_.find(dotted); it != overridden_.end()) return it->second;
+    if (const auto* n = node(section, key)) return located(*n);
+    if (const auto* t = root_.get(section)) return located(*t);
+    return origin_;
+  }
+
+  std::string located(const toml::node& n) const {
+    const auto& src = n.source();
+    if (src.begin.line == 0) return origin_;
+    return fmt::format("{}:{}", origin_, src.begin.line);
+  }
+
+  void check_layout() const {
+    for (auto&& [name, value] : root_) {
+      const std::string_view sname = name.str();
+      const auto* section = find_section(sname);
+      std::vector<std::string_view> names;
+      for (const auto& s : contract()) names.push_back(s.section);
+      const std::string loc = overridden_.count(std::string(sname) + ".") ? overridden_.at(std::string(sname) + ".")
+                                                                           : located(value);
+      if (section == nullptr || !value.is_table()) {
+        if (section == nullptr)
+          throw InputError(fmt::format("{}: unknown section [{}] (known: {})", loc, sname, fmt::join(names, ", ")));
+        throw InputError(fmt::format("{}: {} must be a section [{}], not a value", loc, sname, sname));
+      }
+      for (auto&& [key, v] : *value.as_table()) {
+        if (!has_key(*section, key.str())) {
+          const std::string dotted = fmt::format("{}.{}", sname, key.str());
+          auto it = overridden_.find(dotted);
+          throw InputError(fmt::format("{}: unknown key {} (known in [{}]: {})",
+                                       it != overridden_.end() ? it->second : located(v), dotted, sname,
+                                       fmt::join(section->keys, ", ")));
+        }
+      }
+    }
+  }
+
+  const toml::node* node(std::string_view section, std::string_view key) const {
+    const auto* t = root_.get_as<toml::table>(section);
+    return t ? t->get(key) : nullptr;
+  }
+
+  double number(std::string_view section, std::string_view key, double fallback) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return fallback;
+    double v = 0.0;
+    if (const auto* i = n->as_integer())
+      v = static_cast<double>(i->get());
+    else if (const auto* f = n->as_floating_point())
+      v = f->get();
+    else
+      fail(section, key, fmt::format("must be a number (got {})", type_name(*n)));
+    if (!std::isfinite(v)) fail(section, key, fmt::format("must be a finite number (got {})", v));
+    return v;
+  }
+
+  long long integer(std::string_view section, std::string_view key, long long fallback) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return fallback;
+    if (const auto* i = n->as_integer()) return i->get();
+    fail(section, key, fmt::format("must be an integer (got {})", type_name(*n)));
+  }
+
+  std::string word(std::string_view section, std::string_view key, std::string_view fallback) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return std::string(fallback);
+    if (const auto* s = n->as_string()) return s->get();
+    fail(section, key, fmt::format("must be a string (got {})", type_name(*n)));
+  }
+
+  // An expression: a string, or a number written without quotes.
+  std::string expression(std::string_view section, std::string_view key, std::string_view fallback) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return std::string(fallback);
+    if (const auto* s = n->as_string()) return s->get();
+    if (const auto* i = n->as_integer()) return fmt::format("{}", i->get());
+    if (const auto* f = n->as_floating_point()) {
+      if (!std::isfinite(f->get())) fail(section, key, "must be finite");
+      return fmt::format("{}", f->get());
+    }
+    fail(section, key, fmt::format("must be an expression in x and t (got {})", type_name(*n)));
+  }
+
+  std::vector<double> numbers(std::string_view section, std::string_view key) const {
+    const auto* n = node(section, key);
+    std::vector<double> out;
+    if (n == nullptr) return out;
+    auto one = [&](const toml::node& e) {
+      if (const auto* i = e.as_integer()) return static_cast<double>(i->get());
+      if (const auto* f = e.as_floating_point()) {
+        if (!std::isfinite(f->get())) fail(section, key, "must hold finite numbers");
+        return f->get();
+      }
+      fail(section, key, fmt::format("must be an array of numbers (found {})", type_name(e)));
+    };
+    if (const auto* a = n->as_array()) {
+      for (const auto& e : *a) out.push_back(one(e));
+    } else {
+      out.push_back(one(*n));
+    }
+    return out;
+  }
+
+ private:
+  static std::string_view type_name(const toml::node& n) {
+    switch (n.type()) {
+      case toml::node_type::string: return "a string";
+      case toml::node_type::integer: return "an integer";
+      case toml::node_type::floating_point: return "a float";
+      case toml::node_type::boolean: return "a boolean";
+      case toml::node_type::array: return "an array";
+      case toml::node_type::table: return "a table";
+      default: return "a date or time";
+    }
+  }
+
+  toml::table root_;
+  std::string origin_;
+  std::map<std::string, std::string> overridden_;
+};
+
+toml::table parse_toml(std::string_view text, std::string_view origin) {
+  try {
+    return toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", origin, e.source().begin.line,
+                                 e.source().begin.column, e.description()));
+  }
+}
+
+// Applies one `section.key=value` override; returns the dotted key.
+std::string apply_override(toml::table& root, const std::string& text) {
+  const auto where = fmt::format("--set {}", text);
+  const auto eq = text.find('=');
+  if (eq == std::string::npos) throw InputError(fmt::format("{}: expected section.key=value", where));
+  const std::string path = text.substr(0, eq);
+  const std::string value = text.substr(eq + 1);
+  const auto dot = path.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == path.size() || path.find('.', dot + 1) != std::string::npos)
+    throw InputError(fmt::format("{}: expected section.key=value, with one dot in section.key", where));
+  const std::string section = path.substr(0, dot);
+  const std::string key = path.substr(dot + 1);
+  if (value.empty()) throw InputError(fmt::format("{}: the value is empty", where));
+
+  toml::table holder;
+  try {
+    holder = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    holder = toml::table{{"v", value}};  // a bare word is a string
+  }
+  if (holder.size() != 1 || !holder.contains("v")) holder = toml::table{{"v", value}};
+
+  auto* sec = root.get(section);
+  if (sec == nullptr) {
+    root.insert(section, toml::table{});
+    sec = root.get(section);
+  }
+  if (!sec->is_table()) throw InputError(fmt::format("{}: {} is not a section", where, section));
+  sec->as_table()->insert_or_assign(key, std::move(*holder.get("v")));
+  return path;
+}
+
+// Compiles the expression and evaluates it at every node at t = 0 (and, for
+// the body force, at t = end): a value that is NaN or infinite there is bad
+// input, not a failed run.
+void check_expression(const Reader& r, std::string_view section, std::string_view key, const std::string& text,
+                      const BarData& bar, std::initializer_list<double> times) {
+  std::unique_ptr<Expression> e;
+  try {
+    e = std::make_unique<Expression>(text);
+  } catch (const InputError& err) {
+    r.fail(section, key, fmt::format("= \"{}\" is not a valid expression in x and t: {}", text, err.what()));
+  }
+  const double h = bar.length / bar.elements;
+  for (double t : times) {
+    for (int j = 0; j <= bar.elements; ++j) {
+      const double x = j * h;
+      const double v = (*e)(x, t);
+      if (!std::isfinite(v))
+        r.fail(section, key, fmt::format("= \"{}\" must evaluate to a finite number (got {} at x = {}, t = {})", text,
+                                         v, x, t));
+    }
+  }
+}
+
+Case read_case(const Reader& r) {
+  r.check_layout();
+  Case c;
+  BarData& bar = c.bar;
+  bar.length = r.number("bar", "length", bar.length);
+  bar.density = r.number("bar", "density", bar.density);
+  bar.stiffness = r.number("bar", "stiffness", bar.stiffness);
+  bar.viscosity = r.number("bar", "viscosity", bar.viscosity);
+  const long long elements = r.integer("bar", "elements", bar.elements);
+  if (bar.length <= 0) r.fail("bar", "length", fmt::format("must be > 0 (got {})", bar.length));
+  if (bar.density <= 0) r.fail("bar", "density", fmt::format("must be > 0 (got {})", bar.density));
+  if (bar.stiffness <= 0) r.fail("bar", "stiffness", fmt::format("must be > 0 (got {})", bar.stiffness));
+  if (bar.viscosity < 0) r.fail("bar", "viscosity", fmt::format("must be >= 0 (got {})", bar.viscosity));
+  if (elements < 1) r.fail("bar", "elements", fmt::format("must be >= 1 (got {})", elements));
+  if (elements > 100'000'000) r.fail("bar", "elements", fmt::format("must be <= 100000000 (got {})", elements));
+  bar.elements = static_cast<int>(elements);
+
+  c.load.body_force = r.expression("load", "body_force", c.load.body_force);
+  c.initial.displacement = r.expression("initial", "displacement", c.initial.displacement);
+  c.initial.velocity = r.expression("initial", "velocity", c.initial.velocity);
+
+  const std::string kind = r.word("obstacle", "kind", "elastic");
+  if (kind == "none")
+    c.obstacle.kind = ObstacleKind::none;
+  else if (kind == "elastic")
+    c.obstacle.kind = ObstacleKind::elastic;
+  else
+    r.fail("obstacle", "kind", fmt::format("must be one of none, elastic (got \"{}\")", kind));
+  c.obstacle.stiffness = r.number("obstacle", "stiffness", c.obstacle.stiffness);
+  c.obstacle.gap = r.number("obstacle", "gap", c.obstacle.gap);
+  if (c.obstacle.stiffness < 0)
+    r.fail("obstacle", "stiffness", fmt::format("must be >= 0 (got {})", c.obstacle.stiffness));
+
+  TimeData& time = c.time;
+  time.end = r.number("time", "end", time.end);
+  time.step = r.number("time", "step", time.step);
+  time.scheme = r.word("time", "scheme", time.scheme);
+  time.alpha = r.number("time", "alpha", time.alpha);
+  time.lambda = r.number("time", "lambda", time.lambda);
+  if (time.step <= 0) r.fail("time", "step", fmt::format("must be > 0 (got {})", time.step));
+  if (time.end < time.step)
+    r.fail("time", "end", fmt::format("must be >= time.step = {} (got {})", time.step, time.end));
+  if (time.end / time.step > 1e10)
+    r.fail("time", "step", fmt::format("gives {:.3g} steps to time.end; at most 1e10", time.end / time.step));
+  const auto names = scheme_names();
+  if (std::find(names.begin(), names.end(), time.scheme) == names.end())
+    r.fail("time", "scheme", fmt::format("must be one of {} (got \"{}\")", fmt::join(names, ", "), time.scheme));
+  if (time.alpha < 0 || time.alpha > 0.5)
+    r.fail("time", "alpha", fmt::format("must be in [0, 1/2] (got {})", time.alpha));
+  if (time.lambda < 0) r.fail("time", "lambda", fmt::format("must be >= 0 (got {})", time.lambda));
+
+  const long long every = r.integer("output", "every", c.output.every);
+  if (every < 1) r.fail("output", "every", fmt::format("must be >= 1 (got {})", every));
+  if (every > 2'000'000'000) r.fail("output", "every", fmt::format("must be <= 2000000000 (got {})", every));
+  c.output.every = static_cast<int>(every);
+  c.output.fields_at = r.numbers("output", "fields_at");
+  const double t_last = static_cast<double>(c.step_count()) * time.step;
+  for (double t : c.output.fields_at)
+    if (t < 0 || t > t_last)
+      r.fail("output", "fields_at", fmt::format("times must lie in [0, {}] (got {})", t_last, t));
+  if (c.step_count() / every > 100'000'000)
+    r.fail("output", "every",
+           fmt::format("gives {} history rows; at most 1e8 (raise output.every)", c.step_count() / every));
+
+  check_expression(r, "initial", "displacement", c.initial.displacement, bar, {0.0});
+  check_expression(r, "initial", "velocity", c.initial.velocity, bar, {0.0});
+  check_expression(r, "load", "body_force", c.load.body_force, bar, {0.0, t_last});
+  return c;
+}
+
+Case make_case(toml::table root, const std::vector<Case::Override>& overrides, std::string_view origin) {
+  std::map<std::string, std::string> overridden;
+  for (const auto& o : overrides) {
+    const auto dotted = apply_override(root, o.text);
+    overridden[dotted] = fmt::format("--set {}", o.text);
+    overridden[dotted.substr(0, dotted.find('.') + 1)] = fmt::format("--set {}", o.text);
+  }
+  return read_case(Reader(std::move(root), std::string(origin), std::move(overridden)));
+}
+
+}  // namespace
+
+Case Case::from_string(std::string_view text, const std::vector<Override>& overrides, std::string_view origin) {
+  return make_case(parse_toml(text, origin), overrides, origin);
+}
+
+Case Case::from_file(const std::filesystem::path& path, const std::vector<Override>& overrides) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such case file", path.string()));
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format("{}: is a directory, not a case file", path.string()));
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  if (!in || !(text << in.rdbuf()))
+    throw InputError(fmt::format("{}: cannot read the case file", path.string()));
+  return from_string(text.str(), overrides, path.string());
+}
+
+long long Case::step_count() const {
+  const double r = time.end / time.step;
+  const double nearest = std::round(r);
+  if (std::abs(r - nearest) <= 1e-9 * std::max(1.0, r)) return static_cast<long long>(nearest);
+  return static_cast<long long>(std::ceil(r));
+}
+
+std::string_view to_string(ObstacleKind kind) {
+  switch (kind) {
+    case ObstacleKind::none: return "none";
+    case ObstacleKind::elastic: return "elastic";
+  }
+  return "?";
+}
+
+std::string Case::to_toml() const {
+  toml::array fields;
+  for (double t : output.fields_at) fields.push_back(t);
+  const toml::table root{
+      {"bar", toml::table{{"length", bar.length},
+                          {"density", bar.density},
+                          {"stiffness", bar.stiffness},
+                          {"viscosity", bar.viscosity},
+                          {"elements", bar.elements}}},
+      {"load", toml::table{{"body_force", load.body_force}}},
+      {"initial", toml::table{{"displacement", initial.displacement}, {"velocity", initial.velocity}}},
+      {"obstacle", toml::table{{"kind", std::string(to_string(obstacle.kind))},
+                               {"stiffness", obstacle.stiffness},
+                               {"gap", obstacle.gap}}},
+      {"time", toml::table{{"end", time.end},
+                           {"step", time.step},
+                           {"scheme", time.scheme},
+                           {"alpha", time.alpha},
+                           {"lambda", time.lambda}}},
+      {"output", toml::table{{"every", output.every}, {"fields_at", fields}}},
+  };
+  std::ostringstream out;
+  out << "# barimpact resolved case: every key, defaults filled in\n";
+  out << toml::toml_formatter(root) << "\n";
+  return out.str();
+}
+
+}  // namespace barimpact

@@ -1,0 +1,81 @@
+#include "barimpact/mesh.hpp"
+
+#include <array>
+#include <cassert>
+#include <cmath>
+
+#include "barimpact/expression.hpp"
+
+namespace barimpact {
+
+void Tridiagonal::multiply(std::span<const double> x, std::span<double> y) const {
+  const std::size_t n = size();
+  assert(x.size() == n && y.size() == n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = diag[i] * x[i];
+    if (i > 0) s += off[i - 1] * x[i - 1];
+    if (i + 1 < n) s += off[i] * x[i + 1];
+    y[i] = s;
+  }
+}
+
+double Tridiagonal::quadratic_form(std::span<const double> x) const {
+  double s = 0.0;
+  for (std::size_t i = 0; i < size(); ++i) s += diag[i] * x[i] * x[i];
+  for (std::size_t i = 0; i + 1 < size(); ++i) s += 2.0 * off[i] * x[i] * x[i + 1];
+  return s;
+}
+
+Tridiagonal Tridiagonal::combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b) {
+  assert(a.size() == b.size());
+  Tridiagonal r{a.diag, a.off};
+  for (std::size_t i = 0; i < r.diag.size(); ++i) r.diag[i] = c1 * a.diag[i] + c2 * b.diag[i];
+  for (std::size_t i = 0; i < r.off.size(); ++i) r.off[i] = c1 * a.off[i] + c2 * b.off[i];
+  return r;
+}
+
+Mesh::Mesh(double length, int elements)
+    : length_(length), elements_(elements), h_(length / static_cast<double>(elements)) {}
+
+namespace {
+// Assembles the element matrix [[p, q], [q, p]] on every element.
+Tridiagonal assemble(std::size_t nodes, double p, double q) {
+  Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes - 1, q)};
+  for (std::size_t e = 0; e + 1 < nodes; ++e) {
+    t.diag[e] += p;
+    t.diag[e + 1] += p;
+  }
+  return t;
+}
+}  // namespace
+
+Tridiagonal Mesh::mass(double density) const {
+  return assemble(nodes(), density * h_ / 3.0, density * h_ / 6.0);
+}
+
+Tridiagonal Mesh::stiffness(double coefficient) const {
+  return assemble(nodes(), coefficient / h_, -coefficient / h_);
+}
+
+void Mesh::load(const Expression& f, double t, std::span<double> out) const {
+  // 3-point Gauss-Legendre on [-1, 1]: exact for f phi_i of degree <= 5.
+  static const double r = std::sqrt(0.6);
+  static constexpr std::array<double, 3> weight{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const std::array<double, 3> xi{-r, 0.0, r};
+  for (auto& v : out) v = 0.0;
+  for (std::size_t e = 0; e + 1 < nodes(); ++e) {
+    const double left = x(e);
+    for (std::size_t q = 0; q < 3; ++q) {
+      const double s = 0.5 * (1.0 + xi[q]);  // local coordinate in [0, 1]
+      const double fw = f(left + s * h_, t) * weight[q] * 0.5 * h_;
+      out[e] += fw * (1.0 - s);
+      out[e + 1] += fw * s;
+    }
+  }
+}
+
+void Mesh::interpolate(const Expression& g, std::span<double> out) const {
+  for (std::size_t j = 0; j < nodes(); ++j) out[j] = g(x(j), 0.0);
+}
+
+}  // namespace barimpact

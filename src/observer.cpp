@@ -1,0 +1,105 @@
+#include "barimpact/observer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace barimpact {
+
+void HistoryRecorder::begin(const Scheme& /*scheme*/, long long steps) {
+  last_ = steps;
+  rows_.clear();
+  rows_.reserve(static_cast<std::size_t>(steps / every_ + 2));
+}
+
+bool HistoryRecorder::observe(const Scheme& s) {
+  const long long n = s.step();
+  if (n % every_ != 0 && n != last_) return true;
+  const Energies e = s.energies();
+  rows_.push_back({s.time(), s.end_displacement(), s.end_velocity(), s.reaction(), e.kinetic, e.strain, e.obstacle,
+                   e.work, e.dissipation});
+  return true;
+}
+
+FieldRecorder::FieldRecorder(const Case& c, std::vector<double> times)
+    : dt_(c.time.step),
+      h_(c.bar.length / c.bar.elements),
+      a_(c.bar.stiffness),
+      b_(c.bar.viscosity),
+      times_(std::move(times)) {
+  const std::size_t n = static_cast<std::size_t>(c.bar.elements) + 1;
+  x_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) x_[j] = static_cast<double>(j) * h_;
+}
+
+void FieldRecorder::begin(const Scheme& /*scheme*/, long long steps) {
+  steps_.clear();
+  for (double t : times_) steps_.push_back(std::clamp(std::llround(t / dt_), 0LL, steps));
+  std::sort(steps_.begin(), steps_.end());
+  steps_.erase(std::unique(steps_.begin(), steps_.end()), steps_.end());
+  snapshots_.assign(steps_.size(), Snapshot{0.0, std::vector<double>(x_.size()), std::vector<double>(x_.size()),
+                                            std::vector<double>(x_.size())});
+  taken_ = 0;
+}
+
+bool FieldRecorder::observe(const Scheme& s) {
+  if (taken_ == steps_.size() || s.step() != steps_[taken_]) return true;
+  Snapshot& snap = snapshots_[taken_++];
+  snap.t = s.time();
+  s.displacement(snap.u);
+  s.velocity(snap.v);
+  // sigma = a u_x + b v_x, constant per element; nodes take the mean of
+  // their elements (one element at the ends).
+  const std::size_t n = x_.size();
+  double left = 0.0;
+  for (std::size_t e = 0; e + 1 < n; ++e) {
+    const double sig = (a_ * (snap.u[e + 1] - snap.u[e]) + b_ * (snap.v[e + 1] - snap.v[e])) / h_;
+    snap.sigma[e] = e == 0 ? sig : 0.5 * (left + sig);
+    left = sig;
+  }
+  snap.sigma[n - 1] = left;
+  return true;
+}
+
+void ContactMonitor::begin(const Scheme& scheme, long long /*steps*/) {
+  velocity_.assign(scheme.nodes(), 0.0);
+  intervals_.clear();
+  intervals_.reserve(64);
+  in_contact_ = have_previous_ = false;
+  max_penetration_ = max_reaction_ = 0.0;
+}
+
+bool ContactMonitor::observe(const Scheme& s) {
+  const double t = s.time();
+  const double d = s.end_displacement() + law_.gap();  // < 0 in contact
+  const double R = s.reaction();
+  const bool contact = law_.kind() != ObstacleKind::none && d < 0.0;
+  // Linear interpolation of the crossing of U + g = 0 between two steps.
+  auto crossing = [&] { return have_previous_ ? previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d) : t; };
+  if (contact && !in_contact_) {
+    intervals_.push_back({crossing(), t, false, 0.0, 0.0});
+  } else if (!contact && in_contact_) {
+    auto& last = intervals_.back();
+    last.end = crossing();
+    last.closed = true;
+    last.exit_velocity = s.end_velocity();
+    // Mean velocity: the consistent P1 mass gives momentum rho h sum (v_j + v_{j+1}) / 2.
+    s.velocity(velocity_);
+    double sum = 0.0;
+    for (std::size_t j = 0; j + 1 < velocity_.size(); ++j) sum += 0.5 * (velocity_[j] + velocity_[j + 1]);
+    last.rebound_velocity = sum / static_cast<double>(velocity_.size() - 1);
+  }
+  if (contact) {
+    auto& last = intervals_.back();
+    last.end = t;
+    last.max_reaction = std::max(last.max_reaction, R);
+    max_penetration_ = std::max(max_penetration_, -d);
+    max_reaction_ = std::max(max_reaction_, R);
+  }
+  in_contact_ = contact;
+  have_previous_ = true;
+  previous_t_ = t;
+  previous_d_ = d;
+  return true;
+}
+
+}  // namespace barimpact

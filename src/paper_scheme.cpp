@@ -1,0 +1,292 @@
+#include "barimpact/paper_scheme.hpp"
+
+#include <cmath>
+
+namespace barimpact {
+
+PaperScheme::PaperScheme(const Case& c)
+    : mesh_(c.bar.length, c.bar.elements),
+      law_(c.obstacle),
+      dt_(c.time.step),
+      alpha_(c.time.alpha),
+      lambda_(c.time.lambda),
+      density_(c.bar.density),
+      a_(c.bar.stiffness),
+      b_(c.bar.viscosity),
+      mass_(mesh_.mass(density_)),
+      stiffness_a_(mesh_.stiffness(a_)),
+      stiffness_b_(mesh_.stiffness(b_)) {
+  const std::size_t n = mesh_.nodes();
+  const double k = law_.stiffness();
+
+  // S = lambda^2 M + K_a + lambda K_b + (k/2) e0 e0^T and D = 2 lambda M + K_b, (6.1)(i).
+  Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiffness_a_);
+  S = Tridiagonal::combine(1.0, S, lambda_, stiffness_b_);
+  S.diag[0] += 0.5 * k;
+  const Tridiagonal D = Tridiagonal::combine(2.0 * lambda_, mass_, 1.0, stiffness_b_);
+
+  const double inv_dt2 = 1.0 / (dt_ * dt_);
+  const double half_inv_dt = 0.5 / dt_;
+  const Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(inv_dt2, mass_, alpha_, S), half_inv_dt, D);
+  const Tridiagonal B1 = Tridiagonal::combine(2.0 * inv_dt2, mass_, -(1.0 - 2.0 * alpha_), S);
+  const Tridiagonal B0 =
+      Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
+
+  // Every element contributes the same off-diagonal entry on a uniform mesh.
+  a_off_ = A.off[0];
+  b1_off_ = B1.off[0];
+  b0_off_ = B0.off[0];
+  const std::size_t inner = std::min<std::size_t>(1, n - 1);
+  b1_diag_ = {B1.diag[0], B1.diag[inner], B1.diag[n - 1]};
+  b0_diag_ = {B0.diag[0], B0.diag[inner], B0.diag[n - 1]};
+
+  // LU of the symmetric positive definite A, once: pivots p_j and the upper
+  // factor's off-diagonal a_off / p_j, which is also the lower factor's.
+  inv_.resize(n);
+  upper_.resize(n);
+  double pivot = A.diag[0];
+  for (std::size_t j = 0; j < n; ++j) {
+    if (j > 0) pivot = A.diag[j] - a_off_ * upper_[j - 1];
+    inv_[j] = 1.0 / pivot;
+    upper_[j] = a_off_ * inv_[j];
+  }
+
+  for (auto& level : levels_) level.assign(n, 0.0);
+  u0_.assign(n, 0.0);
+  v0_.assign(n, 0.0);
+
+  body_force_ = std::make_unique<Expression>(c.load.body_force);
+  if (body_force_->is_zero()) {
+    load_mode_ = LoadMode::zero;
+  } else {
+    load_mode_ = body_force_->depends_on_t() ? LoadMode::unsteady : LoadMode::steady;
+    for (auto& l : loads_) l.assign(n, 0.0);
+  }
+
+  initial_displacement_ = std::make_unique<Expression>(c.initial.displacement);
+  initial_velocity_ = std::make_unique<Expression>(c.initial.velocity);
+}
+
+double PaperScheme::scale(long long m) const {
+  return lambda_ == 0.0 ? 1.0 : std::exp(lambda_ * static_cast<double>(m) * dt_);
+}
+
+void PaperScheme::start() {
+  const std::size_t n = mesh_.nodes();
+  mesh_.interpolate(*initial_displacement_, u0_);
+  mesh_.interpolate(*initial_velocity_, v0_);
+  prev_ = levels_[2].data();
+  cur_ = levels_[0].data();
+  next_ = levels_[1].data();
+  // (6.3)(ii)-(iii) with erratum 2: z^1 = u0 + dt (v0 - lambda u0) at the nodes.
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j] = u0_[j];
+    next_[j] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]);
+    prev_[j] = u0_[j];
+  }
+  if (load_mode_ == LoadMode::steady) mesh_.load(*body_force_, 0.0, loads_[0]);
+  if (load_mode_ == LoadMode::unsteady) {
+    mesh_.load(*body_force_, 0.0, loads_[0]);
+    mesh_.load(*body_force_, dt_, loads_[1]);
+  }
+  n_ = 0;
+  work_half_ = dissipation_half_ = work_last_ = dissipation_last_ = 0.0;
+}
+
+// One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}
+// (cur_), written over z^{m-2} (prev_). The right-hand side
+// B1 z^m + B0 z^{m-1} + F^{m,alpha} + contact is formed row by row inside
+// the forward sweep of the prefactored Thomas solve, then one backward sweep:
+// two passes over memory, no allocation.
+template <PaperScheme::LoadMode mode>
+void PaperScheme::solve_level(long long m) {
+  const std::size_t n = mesh_.nodes();
+  const double* __restrict zc = next_;
+  const double* __restrict zo = cur_;
+  double* __restrict zn = prev_;
+  const double* __restrict inv = inv_.data();
+  const double* __restrict up = upper_.data();
+
+  // exp(-lambda t) at t_{m-1}, t_m, t_{m+1}, and its alpha-mean.
+  const double em1 = 1.0 / scale(m - 1), e0 = 1.0 / scale(m), ep1 = 1.0 / scale(m + 1);
+  const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
+
+  // Load weights: F^{m,alpha} = cp F(t_{m+1}) + c0 F(t_m) + cm F(t_{m-1}), all scaled by exp(-lambda t).
+  const double* __restrict fp = nullptr;
+  const double* __restrict f0 = nullptr;
+  const double* __restrict fm = nullptr;
+  double cp = 0.0, c0 = 0.0, cm = 0.0;
+  if constexpr (mode == LoadMode::steady) {
+    f0 = loads_[0].data();
+    c0 = ebar;
+  } else if constexpr (mode == LoadMode::unsteady) {
+    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
+    mesh_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    fp = newest.data();
+    f0 = loads_[static_cast<std::size_t>(m % 3)].data();
+    fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
+    cp = alpha_ * ep1;
+    c0 = (1.0 - 2.0 * alpha_) * e0;
+    cm = alpha_ * em1;
+  }
+  auto load = [&](std::size_t j) {
+    if constexpr (mode == LoadMode::zero) {
+      (void)j;
+      return 0.0;
+    } else if constexpr (mode == LoadMode::steady) {
+      return c0 * f0[j];
+    } else {
+      return cp * fp[j] + c0 * f0[j] + cm * fm[j];
+    }
+  };
+
+  // The explicit half of the penalty, (k/2)|z_0 + g e^{-lambda t_m}|, and the
+  // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
+  const double k = law_.stiffness(), g = law_.gap();
+  const double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
+
+  const double b1o = b1_off_, b0o = b0_off_;
+  const double b1d = b1_diag_[1], b0d = b0_diag_[1];
+  const std::size_t last = n - 1;
+
+  double y = (b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1] + load(0) + contact) * inv[0];
+  zn[0] = y;
+  for (std::size_t j = 1; j < last; ++j) {
+    const double r = b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]) + load(j);
+    y = r * inv[j] - up[j] * y;
+    zn[j] = y;
+  }
+  const double r_last = b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1] + load(last);
+  y = r_last * inv[last] - up[last] * y;
+  zn[last] = y;
+  for (std::size_t j = last; j-- > 0;) {
+    y = zn[j] - up[j] * y;
+    zn[j] = y;
+  }
+}
+
+void PaperScheme::advance() {
+  const long long m = n_ + 1;
+  switch (load_mode_) {
+    case LoadMode::zero: solve_level<LoadMode::zero>(m); break;
+    case LoadMode::steady: solve_level<LoadMode::steady>(m); break;
+    case LoadMode::unsteady: solve_level<LoadMode::unsteady>(m); break;
+  }
+  double* oldest = prev_;
+  prev_ = cur_;
+  cur_ = next_;
+  next_ = oldest;
+  n_ = m;
+  if (load_mode_ != LoadMode::zero || b_ > 0.0) accumulate_budget(m);
+}
+
+// The work and dissipation of level m, from testing (6.3)(iv) with
+// (u^{m+1} - u^{m-1}) / 2: dW = F^{m,alpha} . (u^{m+1} - u^{m-1}) / 2 and
+// dD = dt |(u^{m+1} - u^{m-1}) / (2 dt)|^2_{K_b}.
+void PaperScheme::accumulate_budget(long long m) {
+  const std::size_t n = mesh_.nodes();
+  const double sm = scale(m - 1), sp = scale(m + 1);
+  double dw = 0.0;
+  if (load_mode_ != LoadMode::zero) {
+    const double em1 = 1.0 / sm, e0 = 1.0 / scale(m), ep1 = 1.0 / sp;
+    const double back = scale(m);  // F^{m,alpha} is in z-units: times exp(lambda t_m)
+    if (load_mode_ == LoadMode::steady) {
+      const double w = back * (alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1);
+      const auto& f = loads_[0];
+      for (std::size_t j = 0; j < n; ++j) dw += w * f[j] * 0.5 * (sp * next_[j] - sm * prev_[j]);
+    } else {
+      const auto& fp = loads_[static_cast<std::size_t>((m + 1) % 3)];
+      const auto& f0 = loads_[static_cast<std::size_t>(m % 3)];
+      const auto& fm = loads_[static_cast<std::size_t>((m - 1) % 3)];
+      for (std::size_t j = 0; j < n; ++j) {
+        const double f = back * (alpha_ * ep1 * fp[j] + (1.0 - 2.0 * alpha_) * e0 * f0[j] + alpha_ * em1 * fm[j]);
+        dw += f * 0.5 * (sp * next_[j] - sm * prev_[j]);
+      }
+    }
+  }
+  double dd = 0.0;
+  if (b_ > 0.0) {
+    const double c = 0.5 / dt_;
+    double left = c * (sp * next_[0] - sm * prev_[0]);
+    for (std::size_t j = 1; j < n; ++j) {
+      const double right = c * (sp * next_[j] - sm * prev_[j]);
+      dd += (right - left) * (right - left);
+      left = right;
+    }
+    dd *= dt_ * b_ / mesh_.h();
+  }
+  work_last_ = dw;
+  dissipation_last_ = dd;
+  work_half_ += dw;
+  dissipation_half_ += dd;
+}
+
+double PaperScheme::end_displacement() const { return scale(n_) * cur_[0]; }
+
+double PaperScheme::end_velocity() const {
+  if (n_ == 0) return v0_[0];
+  return (scale(n_ + 1) * next_[0] - scale(n_ - 1) * prev_[0]) / (2.0 * dt_);
+}
+
+void PaperScheme::displacement(std::span<double> out) const {
+  const double s = scale(n_);
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = s * cur_[j];
+}
+
+void PaperScheme::velocity(std::span<double> out) const {
+  if (n_ == 0) {
+    std::copy(v0_.begin(), v0_.end(), out.begin());
+    return;
+  }
+  const double sp = scale(n_ + 1), sm = scale(n_ - 1);
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = (sp * next_[j] - sm * prev_[j]) / (2.0 * dt_);
+}
+
+void PaperScheme::half_step_energy(const double* za, double sa, const double* zb, double sb, double& kinetic,
+                                   double& strain) const {
+  // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
+  const double h = mesh_.h();
+  const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
+  const double extra = (alpha_ - 0.25) * dt_ * dt_;
+  double wm = 0.0, wk = 0.0, mk = 0.0;
+  double w_left = (sb * zb[0] - sa * za[0]) / dt_;
+  double m_left = 0.5 * (sb * zb[0] + sa * za[0]);
+  for (std::size_t j = 1; j < mesh_.nodes(); ++j) {
+    const double w_right = (sb * zb[j] - sa * za[j]) / dt_;
+    const double m_right = 0.5 * (sb * zb[j] + sa * za[j]);
+    wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
+    wk += (w_right - w_left) * (w_right - w_left);
+    mk += (m_right - m_left) * (m_right - m_left);
+    w_left = w_right;
+    m_left = m_right;
+  }
+  kinetic = 0.5 * mass_c * wm;
+  strain = 0.5 * stiff_c * (mk + extra * wk);
+}
+
+Energies PaperScheme::energies() const {
+  Energies e;
+  e.obstacle = law_.energy(end_displacement());
+  if (n_ == 0) {
+    e.kinetic = 0.5 * mass_.quadratic_form(v0_);
+    e.strain = 0.5 * stiffness_a_.quadratic_form(u0_);
+    return e;
+  }
+  double k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
+  half_step_energy(prev_, scale(n_ - 1), cur_, scale(n_), k1, s1);
+  half_step_energy(cur_, scale(n_), next_, scale(n_ + 1), k2, s2);
+  e.kinetic = 0.5 * (k1 + k2);
+  e.strain = 0.5 * (s1 + s2);
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  return e;
+}
+
+bool PaperScheme::finite() const {
+  const std::size_t last = mesh_.nodes() - 1;
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) &&
+         std::isfinite(next_[last]) && std::isfinite(work_half_) && std::isfinite(dissipation_half_) &&
+         std::isfinite(scale(n_ + 1));
+}
+
+}  // namespace barimpact
