@@ -10,6 +10,7 @@
 
 #include <cstdio>
 #include <new>
+#include <string_view>
 
 #include "barimpact/case.hpp"
 #include "barimpact/output.hpp"
@@ -52,6 +53,10 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
+  if (argc > 1 && argv[1][0] != '-' && std::string_view(argv[1]) != "run") {
+    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run; see barimpact --help)\n", argv[1]);
+    return exit_bad_input;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,98 @@
+#!/usr/bin/env bash
+# The command line's contract: files and columns, exit codes, one-line errors,
+# nothing written on bad input. Usage: cli_test.sh BARIMPACT EXAMPLES_DIR
+set -u
+bin=$1
+examples=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
+
+# A run writes the four files; history.csv starts with the contract's columns.
+if "$bin" run "$examples/paper-example1.toml" --out "$work/ex1" > "$work/stdout" 2> "$work/stderr"; then ok; else bad "example 1 exit $?"; fi
+for f in history.csv fields.csv case.toml summary.json; do
+  [ -s "$work/ex1/$f" ] && ok || bad "missing $f"
+done
+[ "$(head -1 "$work/ex1/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc" ] && ok || bad "history columns"
+[ "$(head -1 "$work/ex1/fields.csv")" = "t,x,u,v,sigma" ] && ok || bad "fields columns"
+[ "$(wc -l < "$work/ex1/history.csv")" -eq 402 ] && ok || bad "history rows: $(wc -l < "$work/ex1/history.csv")"
+[ "$(wc -l < "$work/ex1/fields.csv")" -eq $((5 * 101 + 1)) ] && ok || bad "fields rows"
+grep -q '"complete": true' "$work/ex1/summary.json" && ok || bad "summary complete"
+grep -q "contact 1" "$work/stdout" && ok || bad "stdout summary"
+ls -a "$work" | grep -q partial && bad "staging left behind" || ok
+
+# The resolved case.toml repeats the run exactly.
+"$bin" run "$work/ex1/case.toml" --out "$work/again" > /dev/null && ok || bad "rerun from case.toml"
+cmp -s "$work/ex1/history.csv" "$work/again/history.csv" && ok || bad "rerun differs"
+
+# Rows at 0, N, 2N, ... and always the last step.
+"$bin" run "$examples/paper-example1.toml" --out "$work/every" --set output.every=7 > /dev/null && ok || bad "every"
+[ "$(tail -1 "$work/every/history.csv" | cut -d, -f1)" = "4" ] && ok || bad "last row at t = 4"
+[ "$(wc -l < "$work/every/history.csv")" -eq $((400 / 7 + 1 + 1 + 1)) ] && ok || bad "every rows"
+
+# Rerunning into an existing directory replaces it.
+"$bin" run "$examples/paper-example2.toml" --out "$work/ex1" > /dev/null && ok || bad "replace"
+grep -q 'body_force = .-1.' "$work/ex1/case.toml" && ok || bad "replaced case"
+
+# Bad input: exit 2, one line on stderr naming the key or option, nothing written.
+expect_refused() {  # expected-substring, then the arguments
+  local want=$1
+  shift
+  "$bin" "$@" > "$work/out" 2> "$work/err"
+  local code=$?
+  if [ $code -ne 2 ]; then bad "exit $code, not 2, for: $*"; return; fi
+  if [ "$(wc -l < "$work/err")" -ne 1 ]; then bad "not one line for: $*: $(cat "$work/err")"; return; fi
+  grep -qF -- "$want" "$work/err" || { bad "'$want' not in: $(cat "$work/err")"; return; }
+  [ -e "$work/refused" ] && { bad "output written for: $*"; return; }
+  ls -a "$work" | grep -q partial && { bad "staging left for: $*"; return; }
+  ok
+}
+ex1="$examples/paper-example1.toml"
+expect_refused "bar.stiffness" run "$ex1" --out "$work/refused" --set bar.stiffness=0
+expect_refused "bar.density" run "$ex1" --out "$work/refused" --set bar.density=-1
+expect_refused "bar.viscosity" run "$ex1" --out "$work/refused" --set bar.viscosity=-1
+expect_refused "bar.length" run "$ex1" --out "$work/refused" --set bar.length=0
+expect_refused "bar.elements" run "$ex1" --out "$work/refused" --set bar.elements=0
+expect_refused "obstacle.stiffness" run "$ex1" --out "$work/refused" --set obstacle.stiffness=-1
+expect_refused "time.step" run "$ex1" --out "$work/refused" --set time.step=0
+expect_refused "time.end" run "$ex1" --out "$work/refused" --set time.end=0.001
+expect_refused "time.alpha" run "$ex1" --out "$work/refused" --set time.alpha=0.75
+expect_refused "time.lambda" run "$ex1" --out "$work/refused" --set time.lambda=-0.5
+expect_refused "output.every" run "$ex1" --out "$work/refused" --set output.every=0
+expect_refused "unknown key bar.mass" run "$ex1" --out "$work/refused" --set bar.mass=1
+expect_refused "must be a number" run "$ex1" --out "$work/refused" --set bar.length=long
+expect_refused "initial.velocity" run "$ex1" --out "$work/refused" --set 'initial.velocity=-1 +* x'
+expect_refused 'unknown name "z"' run "$ex1" --out "$work/refused" --set 'load.body_force=z'
+expect_refused "finite" run "$ex1" --out "$work/refused" --set 'initial.displacement=log(x)'
+expect_refused "no such case file" run "$work/nope.toml" --out "$work/refused"
+expect_refused "--out" run "$ex1" --out "$work/no/such/dir"
+expect_refused "--out" run "$ex1" --out "$ex1"
+expect_refused "--set" run "$ex1" --out "$work/refused" --set nodot
+expect_refused "--out" run "$ex1"
+expect_refused "run" bogus
+printf '[bar]\nlength = 1\n[time]\nstep = "0.1"\n' > "$work/typed.toml"
+expect_refused "typed.toml:4" run "$work/typed.toml" --out "$work/refused"
+printf '[bar]\nlength = 1\n[extra]\n' > "$work/section.toml"
+expect_refused "unknown section [extra]" run "$work/section.toml" --out "$work/refused"
+printf '[bar\n' > "$work/broken.toml"
+expect_refused "broken.toml:1" run "$work/broken.toml" --out "$work/refused"
+chmod 000 "$work/typed.toml"
+if [ "$(id -u)" -ne 0 ]; then expect_refused "cannot read" run "$work/typed.toml" --out "$work/refused"; fi
+ro="$work/readonly"
+mkdir "$ro" && chmod 555 "$ro"
+if [ "$(id -u)" -ne 0 ]; then expect_refused "--out" run "$ex1" --out "$ro/x"; fi
+
+# A run that blows up: exit 3, the step named, rows so far kept, marked incomplete.
+"$bin" run "$ex1" --out "$work/blow" --set time.alpha=0 --set time.step=0.1 --set time.end=400 \
+  > /dev/null 2> "$work/err"
+code=$?
+[ $code -eq 3 ] && ok || bad "non-finite exit $code"
+grep -q "step" "$work/err" && ok || bad "non-finite message: $(cat "$work/err")"
+grep -q '"complete": false' "$work/blow/summary.json" && ok || bad "incomplete mark"
+[ "$(wc -l < "$work/blow/history.csv")" -gt 2 ] && ok || bad "rows kept"
+
+echo "$passed passed, $failed failed"
+[ $failed -eq 0 ]

@@ -1,0 +1,181 @@
+#include "barimpact/case.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "../support/run_case.hpp"
+
+namespace barimpact {
+namespace {
+
+using testing::case_from;
+
+// The error message of a case that must be refused.
+std::string refusal(const std::string& toml, const std::vector<std::string>& sets = {}) {
+  try {
+    (void)case_from(toml, sets);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    return what;
+  }
+  ADD_FAILURE() << "accepted: " << toml;
+  return {};
+}
+
+#define EXPECT_REFUSED(toml, ...)                                                        \
+  do {                                                                                    \
+    const std::string msg = refusal(toml);                                                \
+    for (const char* part : {__VA_ARGS__}) EXPECT_NE(msg.find(part), std::string::npos) << msg; \
+  } while (0)
+
+TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
+  const Case c = case_from("");
+  EXPECT_EQ(c.bar.length, 1.0);
+  EXPECT_EQ(c.bar.density, 1.0);
+  EXPECT_EQ(c.bar.stiffness, 1.0);
+  EXPECT_EQ(c.bar.viscosity, 0.0);
+  EXPECT_EQ(c.bar.elements, 100);
+  EXPECT_EQ(c.load.body_force, "0");
+  EXPECT_EQ(c.initial.displacement, "0");
+  EXPECT_EQ(c.initial.velocity, "0");
+  EXPECT_EQ(c.obstacle.kind, ObstacleKind::elastic);
+  EXPECT_EQ(c.obstacle.stiffness, 100.0);
+  EXPECT_EQ(c.obstacle.gap, 0.0);
+  EXPECT_EQ(c.time.end, 1.0);
+  EXPECT_EQ(c.time.step, 0.01);
+  EXPECT_EQ(c.time.scheme, "paper");
+  EXPECT_EQ(c.time.alpha, 0.25);
+  EXPECT_EQ(c.time.lambda, 0.0);
+  EXPECT_EQ(c.output.every, 1);
+  EXPECT_TRUE(c.output.fields_at.empty());
+  EXPECT_EQ(c.step_count(), 100);
+}
+
+TEST(Case, StepCountIsTheFirstStepTimeAtOrAfterTheEnd) {
+  EXPECT_EQ(case_from("[time]\nend = 4\nstep = 0.01").step_count(), 400);
+  EXPECT_EQ(case_from("[time]\nend = 6.0\nstep = 0.01").step_count(), 600);
+  EXPECT_EQ(case_from("[time]\nend = 1.05\nstep = 0.1").step_count(), 11);
+}
+
+TEST(Case, IntegersAreAcceptedWhereNumbersAreExpected) {
+  const Case c = case_from("[bar]\nlength = 2\n[load]\nbody_force = -1\n");
+  EXPECT_EQ(c.bar.length, 2.0);
+  EXPECT_EQ(c.load.body_force, "-1");
+}
+
+TEST(Case, ResolvedTomlRunsTheSameCase) {
+  const Case c = case_from(R"toml([bar]
+length = 0.30000000000000004
+elements = 7
+viscosity = 0.125
+[load]
+body_force = "sin(x) * t"
+[initial]
+velocity = "-1 + x/2"
+[obstacle]
+kind = "none"
+gap = 1e-5
+[time]
+end = 2
+step = 0.1
+lambda = 0.25
+alpha = 0.5
+[output]
+every = 3
+fields_at = [0.5, 1]
+)toml",
+                             {});
+  const Case again = case_from(c.to_toml());
+  EXPECT_EQ(again.to_toml(), c.to_toml());
+  EXPECT_EQ(again.bar.length, 0.30000000000000004);
+  EXPECT_EQ(again.initial.velocity, "-1 + x/2");
+  EXPECT_EQ(again.obstacle.kind, ObstacleKind::none);
+  EXPECT_EQ(again.output.fields_at, (std::vector<double>{0.5, 1.0}));
+}
+
+TEST(Case, OverridesReadTomlValuesAndBareWords) {
+  const Case c = case_from("", {"bar.elements=7", "obstacle.kind=none", "load.body_force=-x*t",
+                                "output.fields_at=[0.25, 0.5]", "time.scheme=\"paper\""});
+  EXPECT_EQ(c.bar.elements, 7);
+  EXPECT_EQ(c.obstacle.kind, ObstacleKind::none);
+  EXPECT_EQ(c.load.body_force, "-x*t");
+  EXPECT_EQ(c.output.fields_at, (std::vector<double>{0.25, 0.5}));
+}
+
+TEST(Case, RefusesUnknownSectionsAndKeys) {
+  EXPECT_REFUSED("[bars]\nlength = 1", "test.toml:1", "unknown section [bars]");
+  EXPECT_REFUSED("[bar]\nlenght = 1", "test.toml:2", "unknown key bar.lenght", "length");
+  EXPECT_REFUSED("length = 1", "length", "section");
+}
+
+TEST(Case, RefusesWrongTypes) {
+  EXPECT_REFUSED("[bar]\nlength = \"one\"", "test.toml:2", "bar.length", "must be a number");
+  EXPECT_REFUSED("[bar]\nelements = 10.5", "bar.elements", "must be an integer");
+  EXPECT_REFUSED("[time]\nscheme = 3", "time.scheme", "must be a string");
+  EXPECT_REFUSED("[output]\nfields_at = [\"a\"]", "output.fields_at", "numbers");
+  EXPECT_REFUSED("[initial]\nvelocity = true", "initial.velocity", "expression");
+}
+
+TEST(Case, RefusesValuesOutsideTheirRange) {
+  EXPECT_REFUSED("[bar]\nstiffness = 0", "test.toml:2", "bar.stiffness", "> 0");
+  EXPECT_REFUSED("[bar]\ndensity = -1", "bar.density", "> 0");
+  EXPECT_REFUSED("[bar]\nviscosity = -0.1", "bar.viscosity", ">= 0");
+  EXPECT_REFUSED("[bar]\nlength = 0", "bar.length", "> 0");
+  EXPECT_REFUSED("[bar]\nelements = 0", "bar.elements", ">= 1");
+  EXPECT_REFUSED("[obstacle]\nstiffness = -5", "obstacle.stiffness", ">= 0");
+  EXPECT_REFUSED("[time]\nstep = 0", "time.step", "> 0");
+  EXPECT_REFUSED("[time]\nstep = -0.1", "time.step", "> 0");
+  EXPECT_REFUSED("[time]\nend = 0.001", "time.end", ">= time.step");
+  EXPECT_REFUSED("[time]\nalpha = 0.51", "time.alpha", "[0, 1/2]");
+  EXPECT_REFUSED("[time]\nalpha = -0.01", "time.alpha", "[0, 1/2]");
+  EXPECT_REFUSED("[time]\nlambda = -1", "time.lambda", ">= 0");
+  EXPECT_REFUSED("[output]\nevery = 0", "output.every", ">= 1");
+  EXPECT_REFUSED("[output]\nfields_at = [2.0]", "output.fields_at", "[0, 1]");
+  EXPECT_REFUSED("[obstacle]\nkind = \"glass\"", "obstacle.kind", "none, elastic");
+  EXPECT_REFUSED("[time]\nscheme = \"euler\"", "time.scheme", "paper");
+  EXPECT_REFUSED("[bar]\nlength = nan", "bar.length", "finite");
+}
+
+TEST(Case, RefusesExpressionsThatDoNotParseOrAreNotFinite) {
+  EXPECT_REFUSED("[initial]\nvelocity = \"-1 +\"", "test.toml:2", "initial.velocity", "not a valid expression");
+  EXPECT_REFUSED("[initial]\ndisplacement = \"y * 2\"", "initial.displacement", "unknown name \"y\"");
+  EXPECT_REFUSED("[load]\nbody_force = \"sqrt(-1)\"", "load.body_force", "finite");
+  EXPECT_REFUSED("[load]\nbody_force = \"1 / x\"", "load.body_force", "finite", "x = 0");
+  EXPECT_REFUSED("[initial]\nvelocity = \"\"", "initial.velocity", "empty");
+}
+
+TEST(Case, RefusesBadTomlWithItsLine) {
+  EXPECT_REFUSED("[bar]\nlength = 1\nlength = 2", "test.toml:3", "not valid TOML");
+  EXPECT_REFUSED("[bar\n", "test.toml:1", "not valid TOML");
+}
+
+TEST(Case, RefusesBadOverridesNamingTheOption) {
+  const auto bad = [](const std::string& set, const char* part) {
+    const std::string msg = refusal("", {set});
+    EXPECT_NE(msg.find("--set " + set), std::string::npos) << msg;
+    EXPECT_NE(msg.find(part), std::string::npos) << msg;
+  };
+  bad("bar.stiffness=-1", "> 0");
+  bad("bar.elements", "section.key=value");
+  bad("elements=3", "one dot");
+  bad("bar.lenght=2", "unknown key");
+  bad("nosuch.key=2", "unknown section");
+  bad("bar.elements=many", "integer");
+  bad("bar.length=", "empty");
+}
+
+TEST(Case, RefusesMissingAndUnreadableFiles) {
+  EXPECT_THROW((void)Case::from_file("/nonexistent/case.toml"), InputError);
+  EXPECT_THROW((void)Case::from_file(std::filesystem::temp_directory_path()), InputError);
+  try {
+    (void)Case::from_file("/nonexistent/case.toml");
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/case.toml"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace barimpact
