@@ -1,0 +1,48 @@
+# Quick start on a fresh Debian machine (as root, or with sudo):
+#   make demo   installs what is missing, builds in Release, runs both paper examples into out/
+#   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan)
+PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
+            nlohmann-json3-dev libgtest-dev libbenchmark-dev python3
+JOBS ?= $(shell nproc)
+EXAMPLES := paper-example1 paper-example2
+
+.PHONY: deps build demo test bench format clean
+
+deps:
+	@missing=""; for p in $(PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "Installing Debian packages:$$missing"; \
+	  if [ "$$(id -u)" -ne 0 ]; then sudo=sudo; else sudo=; fi; \
+	  $$sudo apt-get update -qq && \
+	  DEBIAN_FRONTEND=noninteractive $$sudo apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+build: deps
+	cmake --preset release
+	cmake --build --preset release -j $(JOBS)
+
+demo: build
+	@mkdir -p out
+	@for ex in $(EXAMPLES); do \
+	  echo "== $$ex"; \
+	  ./build/release/barimpact run examples/$$ex.toml --out out/$$ex || exit $$?; \
+	done
+
+test: deps
+	cmake --preset ci
+	cmake --build --preset ci -j $(JOBS)
+	ctest --preset ci -j $(JOBS)
+	cmake --preset dev
+	cmake --build --preset dev -j $(JOBS)
+	ctest --preset dev -j $(JOBS)
+
+bench: build
+	python3 bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
+
+format:
+	clang-format -i $$(git ls-files '*.cpp' '*.hpp')
+
+clean:
+	rm -rf build out

@@ -1,0 +1,96 @@
+// One time step of the paper's scheme against the bare loop it must match:
+// the same fused stencil right-hand side + prefactored tridiagonal solve,
+// written flat with no scheme object, no contact term, no checks.
+// Reported: seconds per node-step (the `per_node_step` counter).
+//
+//   build/release/bench/barimpact_bench --benchmark_repetitions=5
+//       --benchmark_enable_random_interleaving=true   (or: make bench)
+#include <benchmark/benchmark.h>
+
+#include <fmt/format.h>
+
+#include <utility>
+#include <vector>
+
+#include "barimpact/case.hpp"
+#include "barimpact/paper_scheme.hpp"
+
+namespace {
+
+barimpact::Case bench_case(long long elements) {
+  // Example 1's data at M elements, dt tied to h as in the paper (dt = h).
+  return barimpact::Case::from_string(fmt::format(R"toml([bar]
+elements = {}
+[initial]
+velocity = "-1"
+[time]
+step = {}
+end = 1
+)toml",
+                                                  elements, 1.0 / static_cast<double>(elements)));
+}
+
+void per_node_step(benchmark::State& state, std::size_t nodes) {
+  state.counters["per_node_step"] = benchmark::Counter(
+      static_cast<double>(nodes), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_PaperStep(benchmark::State& state) {
+  barimpact::PaperScheme scheme(bench_case(state.range(0)));
+  scheme.start();
+  for (auto _ : state) {
+    scheme.advance();
+    benchmark::DoNotOptimize(scheme.next_level().data());
+  }
+  per_node_step(state, scheme.nodes());
+}
+
+// The bare loop: the right-hand side B1 z^n + B0 z^{n-1} formed inside the
+// forward sweep, then the backward sweep; constants as for Example 1.
+void BM_BareLoop(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1;
+  const double h = 1.0 / static_cast<double>(n - 1), dt = h, alpha = 0.25;
+  const double m_d = 2.0 * h / 3.0, m_o = h / 6.0, k_d = 2.0 / h, k_o = -1.0 / h;
+  const double a_o = m_o / (dt * dt) + alpha * k_o, a_d = m_d / (dt * dt) + alpha * k_d;
+  const double b1d = 2.0 * m_d / (dt * dt) - 0.5 * k_d, b1o = 2.0 * m_o / (dt * dt) - 0.5 * k_o;
+  const double b0d = -m_d / (dt * dt) - alpha * k_d, b0o = -m_o / (dt * dt) - alpha * k_o;
+  std::vector<double> inv(n), up(n), z0(n, 0.0), z1(n, -dt), z2(n, 0.0);
+  double pivot = 0.5 * a_d + 50.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (j > 0) pivot = (j + 1 == n ? 0.5 * a_d : a_d) - a_o * up[j - 1];
+    inv[j] = 1.0 / pivot;
+    up[j] = a_o * inv[j];
+  }
+  double* zo = z0.data();
+  double* zc = z1.data();
+  double* zn = z2.data();
+  for (auto _ : state) {
+    const double* __restrict c = zc;
+    const double* __restrict o = zo;
+    double* __restrict w = zn;
+    double y = (0.5 * b1d * c[0] + b1o * c[1] + 0.5 * b0d * o[0] + b0o * o[1]) * inv[0];
+    w[0] = y;
+    for (std::size_t j = 1; j + 1 < n; ++j) {
+      const double r = b1d * c[j] + b1o * (c[j - 1] + c[j + 1]) + b0d * o[j] + b0o * (o[j - 1] + o[j + 1]);
+      y = r * inv[j] - up[j] * y;
+      w[j] = y;
+    }
+    const std::size_t l = n - 1;
+    y = (0.5 * b1d * c[l] + b1o * c[l - 1] + 0.5 * b0d * o[l] + b0o * o[l - 1]) * inv[l] - up[l] * y;
+    w[l] = y;
+    for (std::size_t j = l; j-- > 0;) {
+      y = w[j] - up[j] * y;
+      w[j] = y;
+    }
+    std::swap(zo, zc);
+    std::swap(zc, zn);
+    benchmark::DoNotOptimize(zc);
+  }
+  per_node_step(state, n);
+}
+
+}  // namespace
+
+BENCHMARK(BM_PaperStep)->RangeMultiplier(10)->Range(100, 1'000'000);
+BENCHMARK(BM_BareLoop)->RangeMultiplier(10)->Range(100, 1'000'000);
+BENCHMARK_MAIN();
