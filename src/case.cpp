@@ -3,17 +3,17 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <toml++/toml.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <toml++/toml.h>
 
+#include <memory>
 #include "barimpact/expression.hpp"
 #include "barimpact/scheme.hpp"
-#include <memory>
 
 namespace barimpact {
 
@@ -80,8 +80,8 @@ class Reader {
       const auto* section = find_section(sname);
       std::vector<std::string_view> names;
       for (const auto& s : contract()) names.push_back(s.section);
-      const std::string loc = overridden_.count(std::string(sname) + ".") ? overridden_.at(std::string(sname) + ".")
-                                                                           : located(value);
+      const std::string loc =
+          overridden_.count(std::string(sname) + ".") ? overridden_.at(std::string(sname) + ".") : located(value);
       if (section == nullptr || !value.is_table()) {
         if (section == nullptr)
           throw InputError(fmt::format("{}: unknown section [{}] (known: {})", loc, sname, fmt::join(names, ", ")));
@@ -168,13 +168,20 @@ class Reader {
  private:
   static std::string_view type_name(const toml::node& n) {
     switch (n.type()) {
-      case toml::node_type::string: return "a string";
-      case toml::node_type::integer: return "an integer";
-      case toml::node_type::floating_point: return "a float";
-      case toml::node_type::boolean: return "a boolean";
-      case toml::node_type::array: return "an array";
-      case toml::node_type::table: return "a table";
-      default: return "a date or time";
+      case toml::node_type::string:
+        return "a string";
+      case toml::node_type::integer:
+        return "an integer";
+      case toml::node_type::floating_point:
+        return "a float";
+      case toml::node_type::boolean:
+        return "a boolean";
+      case toml::node_type::array:
+        return "an array";
+      case toml::node_type::table:
+        return "a table";
+      default:
+        return "a date or time";
     }
   }
 
@@ -187,8 +194,8 @@ toml::table parse_toml(std::string_view text, std::string_view origin) {
   try {
     return toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", origin, e.source().begin.line,
-                                 e.source().begin.column, e.description()));
+    throw InputError(fmt::format("{}:{}:{}: not valid TOML: {}", origin, e.source().begin.line, e.source().begin.column,
+                                 e.description()));
   }
 }
 
@@ -241,8 +248,8 @@ void check_expression(const Reader& r, std::string_view section, std::string_vie
       const double x = j * h;
       const double v = (*e)(x, t);
       if (!std::isfinite(v))
-        r.fail(section, key, fmt::format("= \"{}\" must evaluate to a finite number (got {} at x = {}, t = {})", text,
-                                         v, x, t));
+        r.fail(section, key,
+               fmt::format("= \"{}\" must evaluate to a finite number (got {} at x = {}, t = {})", text, v, x, t));
     }
   }
 }
@@ -340,8 +347,7 @@ Case Case::from_file(const std::filesystem::path& path, const std::vector<Overri
     throw InputError(fmt::format("{}: is a directory, not a case file", path.string()));
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
-  if (!in || !(text << in.rdbuf()))
-    throw InputError(fmt::format("{}: cannot read the case file", path.string()));
+  if (!in || !(text << in.rdbuf())) throw InputError(fmt::format("{}: cannot read the case file", path.string()));
   return from_string(text.str(), overrides, path.string());
 }
 
@@ -354,8 +360,10 @@ long long Case::step_count() const {
 
 std::string_view to_string(ObstacleKind kind) {
   switch (kind) {
-    case ObstacleKind::none: return "none";
-    case ObstacleKind::elastic: return "elastic";
+    case ObstacleKind::none:
+      return "none";
+    case ObstacleKind::elastic:
+      return "elastic";
   }
   return "?";
 }
@@ -371,9 +379,9 @@ std::string Case::to_toml() const {
                           {"elements", bar.elements}}},
       {"load", toml::table{{"body_force", load.body_force}}},
       {"initial", toml::table{{"displacement", initial.displacement}, {"velocity", initial.velocity}}},
-      {"obstacle", toml::table{{"kind", std::string(to_string(obstacle.kind))},
-                               {"stiffness", obstacle.stiffness},
-                               {"gap", obstacle.gap}}},
+      {"obstacle",
+       toml::table{
+           {"kind", std::string(to_string(obstacle.kind))}, {"stiffness", obstacle.stiffness}, {"gap", obstacle.gap}}},
       {"time", toml::table{{"end", time.end},
                            {"step", time.step},
                            {"scheme", time.scheme},

@@ -25,7 +25,9 @@ double triangle_slope(double s) {
 Example1::Example1(double length, double stiffness, double density, double v0)
     : L_(length), a_(stiffness), rho_(density), v0_(v0), c_(std::sqrt(stiffness / density)) {}
 
-double Example1::contact_end() const { return v0_ < 0.0 ? 2.0 * L_ / c_ : 0.0; }
+double Example1::contact_end() const {
+  return v0_ < 0.0 ? 2.0 * L_ / c_ : 0.0;
+}
 
 double Example1::u(double x, double t) const {
   if (v0_ >= 0.0) return v0_ * t;

@@ -42,6 +42,8 @@ double Expression::operator()(double x, double t) const {
   return impl_->parser.Eval();
 }
 
-bool Expression::is_zero() const { return !uses_x_ && !uses_t_ && (*this)(0.0, 0.0) == 0.0; }
+bool Expression::is_zero() const {
+  return !uses_x_ && !uses_t_ && (*this)(0.0, 0.0) == 0.0;
+}
 
 }  // namespace barimpact

@@ -74,7 +74,9 @@ bool ContactMonitor::observe(const Scheme& s) {
   const double R = s.reaction();
   const bool contact = law_.kind() != ObstacleKind::none && d < 0.0;
   // Linear interpolation of the crossing of U + g = 0 between two steps.
-  auto crossing = [&] { return have_previous_ ? previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d) : t; };
+  auto crossing = [&] {
+    return have_previous_ ? previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d) : t;
+  };
   if (contact && !in_contact_) {
     intervals_.push_back({crossing(), t, false, 0.0, 0.0});
   } else if (!contact && in_contact_) {

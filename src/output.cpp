@@ -18,7 +18,8 @@ RunDirectory::RunDirectory(fs::path target) : target_(std::move(target)) {
   if (!target_.has_filename()) target_ = target_.parent_path();
   const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
   if (!fs::is_directory(parent, ec))
-    throw InputError(fmt::format("--out {}: the parent directory {} does not exist", target_.string(), parent.string()));
+    throw InputError(
+        fmt::format("--out {}: the parent directory {} does not exist", target_.string(), parent.string()));
   if (fs::exists(target_, ec) && !fs::is_directory(target_, ec))
     throw InputError(fmt::format("--out {}: exists and is not a directory", target_.string()));
   staging_ = parent / fmt::format(".{}.partial-{}", target_.filename().string(), ::getpid());
@@ -48,8 +49,7 @@ void write_history(const fs::path& path, const std::vector<HistoryRow>& rows) {
   auto out = fmt::output_file(path.string());
   out.print("t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc\n");
   for (const auto& r : rows)
-    out.print("{},{},{},{},{},{},{},{},{}\n", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext,
-              r.D_visc);
+    out.print("{},{},{},{},{},{},{},{},{}\n", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext, r.D_visc);
   out.close();
 }
 
@@ -62,7 +62,9 @@ void write_fields(const fs::path& path, const RunResult& result) {
   out.close();
 }
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
 
 }  // namespace
 
@@ -81,11 +83,12 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
     old = staging_.parent_path() / fmt::format(".{}.old-{}", target_.filename().string(), ::getpid());
     fs::rename(target_, old, ec);
     if (ec)
-      throw InputError(fmt::format("--out {}: cannot replace the existing directory: {}", target_.string(),
-                                   ec.message()));
+      throw InputError(
+          fmt::format("--out {}: cannot replace the existing directory: {}", target_.string(), ec.message()));
   }
   fs::rename(staging_, target_, ec);
-  if (ec) throw InputError(fmt::format("--out {}: cannot move the results into place: {}", target_.string(), ec.message()));
+  if (ec)
+    throw InputError(fmt::format("--out {}: cannot move the results into place: {}", target_.string(), ec.message()));
   committed_ = true;
   if (!old.empty()) fs::remove_all(old, ec);
 }
@@ -131,11 +134,12 @@ std::string summary_text(const Case& c, const Summary& s) {
   for (std::size_t i = 0; i < std::min(shown, s.contacts.size()); ++i) {
     const auto& ci = s.contacts[i];
     if (ci.closed)
-      out += fmt::format("  contact {}: t = {:.4f} .. {:.4f}, max R = {:.4g}, leaves with mean velocity {:+.4g} (end {:+.4g})\n",
-                         i + 1, ci.start, ci.end, ci.max_reaction, ci.rebound_velocity, ci.exit_velocity);
+      out += fmt::format(
+          "  contact {}: t = {:.4f} .. {:.4f}, max R = {:.4g}, leaves with mean velocity {:+.4g} (end {:+.4g})\n",
+          i + 1, ci.start, ci.end, ci.max_reaction, ci.rebound_velocity, ci.exit_velocity);
     else
-      out += fmt::format("  contact {}: t = {:.4f} .. (still in contact at the end), max R = {:.4g}\n", i + 1,
-                         ci.start, ci.max_reaction);
+      out += fmt::format("  contact {}: t = {:.4f} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
+                         ci.max_reaction);
   }
   if (s.contacts.size() > shown)
     out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);

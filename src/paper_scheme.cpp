@@ -29,8 +29,7 @@ PaperScheme::PaperScheme(const Case& c)
   const double half_inv_dt = 0.5 / dt_;
   const Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(inv_dt2, mass_, alpha_, S), half_inv_dt, D);
   const Tridiagonal B1 = Tridiagonal::combine(2.0 * inv_dt2, mass_, -(1.0 - 2.0 * alpha_), S);
-  const Tridiagonal B0 =
-      Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
+  const Tridiagonal B0 = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
 
   // Every element contributes the same off-diagonal entry on a uniform mesh.
   a_off_ = A.off[0];
@@ -90,6 +89,7 @@ void PaperScheme::start() {
     mesh_.load(*body_force_, dt_, loads_[1]);
   }
   n_ = 0;
+  cached_ = {};
   work_half_ = dissipation_half_ = work_last_ = dissipation_last_ = 0.0;
 }
 
@@ -152,11 +152,13 @@ void PaperScheme::solve_level(long long m) {
   double y = (b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1] + load(0) + contact) * inv[0];
   zn[0] = y;
   for (std::size_t j = 1; j < last; ++j) {
-    const double r = b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]) + load(j);
+    const double r =
+        b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]) + load(j);
     y = r * inv[j] - up[j] * y;
     zn[j] = y;
   }
-  const double r_last = b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1] + load(last);
+  const double r_last =
+      b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1] + load(last);
   y = r_last * inv[last] - up[last] * y;
   zn[last] = y;
   for (std::size_t j = last; j-- > 0;) {
@@ -168,9 +170,15 @@ void PaperScheme::solve_level(long long m) {
 void PaperScheme::advance() {
   const long long m = n_ + 1;
   switch (load_mode_) {
-    case LoadMode::zero: solve_level<LoadMode::zero>(m); break;
-    case LoadMode::steady: solve_level<LoadMode::steady>(m); break;
-    case LoadMode::unsteady: solve_level<LoadMode::unsteady>(m); break;
+    case LoadMode::zero:
+      solve_level<LoadMode::zero>(m);
+      break;
+    case LoadMode::steady:
+      solve_level<LoadMode::steady>(m);
+      break;
+    case LoadMode::unsteady:
+      solve_level<LoadMode::unsteady>(m);
+      break;
   }
   double* oldest = prev_;
   prev_ = cur_;
@@ -221,7 +229,9 @@ void PaperScheme::accumulate_budget(long long m) {
   dissipation_half_ += dd;
 }
 
-double PaperScheme::end_displacement() const { return scale(n_) * cur_[0]; }
+double PaperScheme::end_displacement() const {
+  return scale(n_) * cur_[0];
+}
 
 double PaperScheme::end_velocity() const {
   if (n_ == 0) return v0_[0];
@@ -273,8 +283,14 @@ Energies PaperScheme::energies() const {
     return e;
   }
   double k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
-  half_step_energy(prev_, scale(n_ - 1), cur_, scale(n_), k1, s1);
+  if (cached_.n == n_ - 1) {  // the previous row's n + 1/2 is this row's n - 1/2
+    k1 = cached_.kinetic;
+    s1 = cached_.strain;
+  } else {
+    half_step_energy(prev_, scale(n_ - 1), cur_, scale(n_), k1, s1);
+  }
   half_step_energy(cur_, scale(n_), next_, scale(n_ + 1), k2, s2);
+  cached_ = {n_, k2, s2};
   e.kinetic = 0.5 * (k1 + k2);
   e.strain = 0.5 * (s1 + s2);
   e.work = work_half_ - 0.5 * work_last_;
@@ -284,9 +300,8 @@ Energies PaperScheme::energies() const {
 
 bool PaperScheme::finite() const {
   const std::size_t last = mesh_.nodes() - 1;
-  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) &&
-         std::isfinite(next_[last]) && std::isfinite(work_half_) && std::isfinite(dissipation_half_) &&
-         std::isfinite(scale(n_ + 1));
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
+         std::isfinite(work_half_) && std::isfinite(dissipation_half_) && std::isfinite(scale(n_ + 1));
 }
 
 }  // namespace barimpact

@@ -6,7 +6,9 @@
 
 namespace barimpact {
 
-std::vector<std::string_view> scheme_names() { return {"paper"}; }
+std::vector<std::string_view> scheme_names() {
+  return {"paper"};
+}
 
 std::unique_ptr<Scheme> make_scheme(const Case& c) {
   if (c.time.scheme == "paper") return std::make_unique<PaperScheme>(c);

@@ -69,7 +69,8 @@ RunResult run(const Case& c) {
     auto total = [](const HistoryRow& h) { return h.E_kin + h.E_strain + h.E_obstacle - h.W_ext + h.D_visc; };
     s.energy_initial = total(r.history.front());
     s.energy_final = total(r.history.back());
-    for (const auto& h : r.history) s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
+    for (const auto& h : r.history)
+      s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
   }
   r.x = fields.x();
   r.fields.assign(fields.snapshots().begin(), fields.snapshots().begin() + static_cast<long>(fields.taken()));
@@ -79,9 +80,12 @@ RunResult run(const Case& c) {
 
 std::string_view to_string(RunStatus status) {
   switch (status) {
-    case RunStatus::complete: return "complete";
-    case RunStatus::non_finite: return "non-finite";
-    case RunStatus::stopped: return "stopped";
+    case RunStatus::complete:
+      return "complete";
+    case RunStatus::non_finite:
+      return "non-finite";
+    case RunStatus::stopped:
+      return "stopped";
   }
   return "?";
 }

@@ -5,8 +5,8 @@
 // Exit status: 0 done, 2 bad input (one line on stderr, nothing written),
 // 3 the state became non-finite (rows so far kept, summary.json marks them
 // incomplete), 1 anything else.
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <new>

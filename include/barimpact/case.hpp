@@ -51,8 +51,8 @@ struct TimeData {
   double end = 1.0;
   double step = 0.01;  ///< dt
   std::string scheme = "paper";
-  double alpha = 0.25;   ///< alpha of (6.3)
-  double lambda = 0.0;   ///< lambda_shift: z = exp(-lambda t) u, (6.1)
+  double alpha = 0.25;  ///< alpha of (6.3)
+  double lambda = 0.0;  ///< lambda_shift: z = exp(-lambda t) u, (6.1)
 };
 
 struct OutputData {

@@ -73,7 +73,7 @@ class FieldRecorder final : public Observer {
 struct ContactInterval {
   double start = 0.0;
   double end = 0.0;
-  bool closed = false;          ///< false: still in contact at the last step
+  bool closed = false;            ///< false: still in contact at the last step
   double exit_velocity = 0.0;     ///< V, the end's velocity, at the first step after separation
   double rebound_velocity = 0.0;  ///< the bar's mean velocity (momentum / mass) then
   double max_reaction = 0.0;

@@ -75,8 +75,8 @@ class PaperScheme final : public Scheme {
   // (identical for every element) and the first, inner and last diagonal.
   double a_off_, b1_off_, b0_off_;
   std::array<double, 3> b1_diag_{}, b0_diag_{};
-  std::vector<double> inv_;        // 1 / pivot of A's LU factorisation
-  std::vector<double> upper_;      // a_off / pivot: the U factor's off-diagonal
+  std::vector<double> inv_;    // 1 / pivot of A's LU factorisation
+  std::vector<double> upper_;  // a_off / pivot: the U factor's off-diagonal
 
   std::array<std::vector<double>, 3> levels_;
   double* prev_ = nullptr;  // z^{n-1}
@@ -87,6 +87,13 @@ class PaperScheme final : public Scheme {
   std::unique_ptr<Expression> body_force_, initial_displacement_, initial_velocity_;
   std::array<std::vector<double>, 3> loads_;  // F(t_{m-1}), F(t_m), F(t_{m+1}), unscaled
   std::vector<double> u0_, v0_;
+
+  // The half-step energy at n + 1/2, kept for the row at n + 1.
+  struct HalfStep {
+    long long n = -1;
+    double kinetic = 0.0, strain = 0.0;
+  };
+  mutable HalfStep cached_;
 
   long long n_ = 0;
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}

@@ -29,15 +29,15 @@ struct Summary {
   bool complete = true;
   RunStatus status = RunStatus::complete;
   std::string message;
-  long long steps = 0;       ///< N requested
+  long long steps = 0;  ///< N requested
   long long steps_done = 0;
-  double t_end = 0.0;        ///< t of the last step observed
+  double t_end = 0.0;  ///< t of the last step observed
   std::vector<ContactInterval> contacts;
   double max_penetration = 0.0;
   double max_reaction = 0.0;
-  double energy_initial = 0.0;      ///< E_total at t = 0
-  double energy_final = 0.0;        ///< E_total at the last history row
-  double energy_error_max = 0.0;    ///< max over rows of |E_total - E_total(0)|
+  double energy_initial = 0.0;    ///< E_total at t = 0
+  double energy_final = 0.0;      ///< E_total at the last history row
+  double energy_error_max = 0.0;  ///< max over rows of |E_total - E_total(0)|
   double run_seconds = 0.0;
 };
 

@@ -70,6 +70,7 @@ expect_refused "finite" run "$ex1" --out "$work/refused" --set 'initial.displace
 expect_refused "no such case file" run "$work/nope.toml" --out "$work/refused"
 expect_refused "--out" run "$ex1" --out "$work/no/such/dir"
 expect_refused "--out" run "$ex1" --out "$ex1"
+expect_refused "--out" run "$ex1" --out /proc/barimpact-cannot-write-here
 expect_refused "--set" run "$ex1" --out "$work/refused" --set nodot
 expect_refused "--out" run "$ex1"
 expect_refused "run" bogus

@@ -22,6 +22,8 @@ inline Case example(const std::string& name, const std::vector<std::string>& set
   return Case::from_file(std::string(BARIMPACT_EXAMPLES_DIR) + "/" + name, overrides);
 }
 
-inline double total_energy(const HistoryRow& r) { return r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc; }
+inline double total_energy(const HistoryRow& r) {
+  return r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc;
+}
 
 }  // namespace barimpact::testing

@@ -25,9 +25,9 @@ std::string refusal(const std::string& toml, const std::vector<std::string>& set
   return {};
 }
 
-#define EXPECT_REFUSED(toml, ...)                                                        \
-  do {                                                                                    \
-    const std::string msg = refusal(toml);                                                \
+#define EXPECT_REFUSED(toml, ...)                                                               \
+  do {                                                                                          \
+    const std::string msg = refusal(toml);                                                      \
     for (const char* part : {__VA_ARGS__}) EXPECT_NE(msg.find(part), std::string::npos) << msg; \
   } while (0)
 
@@ -87,7 +87,7 @@ alpha = 0.5
 every = 3
 fields_at = [0.5, 1]
 )toml",
-                             {});
+                           {});
   const Case again = case_from(c.to_toml());
   EXPECT_EQ(again.to_toml(), c.to_toml());
   EXPECT_EQ(again.bar.length, 0.30000000000000004);

@@ -33,8 +33,8 @@ TEST(Mesh, LoadVectorIsExactForCubics) {
     s0 += F[j];
     s1 += mesh.x(j) * F[j];
   }
-  EXPECT_NEAR(s0, 2.0 + 4.0 - 8.0 + 16.0, 1e-13);                    // int_0^2 f
-  EXPECT_NEAR(s1, 2.0 + 16.0 / 3.0 - 12.0 + 128.0 / 5.0, 1e-13);     // int_0^2 x f
+  EXPECT_NEAR(s0, 2.0 + 4.0 - 8.0 + 16.0, 1e-13);                 // int_0^2 f
+  EXPECT_NEAR(s1, 2.0 + 16.0 / 3.0 - 12.0 + 128.0 / 5.0, 1e-13);  // int_0^2 x f
 }
 
 TEST(Mesh, LoadVectorOfXOnTheHats) {

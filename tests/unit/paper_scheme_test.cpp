@@ -18,7 +18,9 @@ using testing::case_from;
 //   z^0 = 0, z^1 = -(1,1,1),  A = M + S/4,
 //   rhs = M (2 z^1 - z^0) - S (z^1/2 + z^0/4) + (k/2)|z^1_0| e0 = (-3, -12, -6),
 // and 4A z^2 = 4 rhs, i.e. [[11,3,0],[3,18,3],[0,3,9]] z^2 = (-12,-48,-24), solved by
-// elimination: z^2 = (-42, -202, -170) / 89.
+// elimination: z^2 = (-42, -202, -170) / 89. Second step, the same way (in exact
+// fractions): rhs = M (2 z^2 - z^1) - S (z^2/2 + z^1/4) + 2 |z^2_0| e0
+// = (-429/178, -1410/89, -833/89), z^3 = (-499/7921, -70873/23763, -25075/7921).
 constexpr const char* two_elements = R"toml([bar]
 length = 2
 density = 6
@@ -34,7 +36,7 @@ end = 2
 alpha = 0.25
 )toml";
 
-TEST(PaperScheme, FirstStepOfTwoElementsMatchesTheHandComputation) {
+TEST(PaperScheme, FirstStepsOfTwoElementsMatchTheHandComputation) {
   PaperScheme s(case_from(two_elements));
   s.start();
   ASSERT_EQ(s.step(), 0);
@@ -52,6 +54,12 @@ TEST(PaperScheme, FirstStepOfTwoElementsMatchesTheHandComputation) {
   EXPECT_DOUBLE_EQ(s.end_displacement(), -1.0);
   EXPECT_DOUBLE_EQ(s.reaction(), 4.0);
   EXPECT_NEAR(s.end_velocity(), -21.0 / 89.0, 1e-15);
+  s.advance();
+  const auto z3 = s.next_level();
+  EXPECT_NEAR(z3[0], -499.0 / 7921.0, 1e-14);
+  EXPECT_NEAR(z3[1], -70873.0 / 23763.0, 1e-14);
+  EXPECT_NEAR(z3[2], -25075.0 / 7921.0, 1e-14);
+  EXPECT_NEAR(s.reaction(), 4.0 * 42.0 / 89.0, 1e-14);  // R^2 = k (z^2_0)^-
 }
 
 // A dense, independent transcription of THE-PAPER.md's matrix form: full
@@ -151,7 +159,8 @@ lambda = 0.4
     const double t = m * dt;
     const auto Fp = load(t + dt), F0 = load(t), Fm = load(t - dt);
     const double e = std::exp(-lambda * t);
-    const double ebar = alpha * std::exp(-lambda * (t + dt)) + (1 - 2 * alpha) * e + alpha * std::exp(-lambda * (t - dt));
+    const double ebar =
+        alpha * std::exp(-lambda * (t + dt)) + (1 - 2 * alpha) * e + alpha * std::exp(-lambda * (t - dt));
     std::vector<double> r(n);
     for (std::size_t i = 0; i < n; ++i) {
       for (std::size_t j = 0; j < n; ++j) r[i] += ref.B1[i][j] * z[j] + ref.B0[i][j] * zm[j];
@@ -190,8 +199,8 @@ TEST(PaperScheme, ShiftedAndUnshiftedRunsAgreeAtPlotScale) {
 TEST(PaperScheme, NonFiniteStateStopsTheRunAndNamesTheStep) {
   // alpha = 0 is explicit in the stiffness: dt = 0.1 on h = 0.01 is far above
   // its stability limit, the state grows until it overflows.
-  auto c = testing::example("paper-example1.toml",
-                            {"time.alpha=0", "time.step=0.1", "time.end=400", "output.every=1000"});
+  auto c =
+      testing::example("paper-example1.toml", {"time.alpha=0", "time.step=0.1", "time.end=400", "output.every=1000"});
   const auto r = run(c);
   EXPECT_FALSE(r.summary.complete);
   EXPECT_EQ(r.summary.status, RunStatus::non_finite);

@@ -53,9 +53,9 @@ Errors errors_at(int level) {
   const int M = 50 << level;
   const double dt = 0.02 / (1 << level);
   const double k = 50.0 * (1 << level);
-  const auto r = run(example("paper-example1.toml", {"bar.elements=" + std::to_string(M),
-                                                     "time.step=" + std::to_string(dt),
-                                                     "obstacle.stiffness=" + std::to_string(k), "output.fields_at=[]"}));
+  const auto r =
+      run(example("paper-example1.toml", {"bar.elements=" + std::to_string(M), "time.step=" + std::to_string(dt),
+                                          "obstacle.stiffness=" + std::to_string(k), "output.fields_at=[]"}));
   const exact::Example1 e(1.0, 1.0, 1.0, -1.0);
   Errors err;
   for (const auto& row : r.history) {
