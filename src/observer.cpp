@@ -27,8 +27,8 @@ FieldRecorder::FieldRecorder(const Case& c, std::vector<double> times)
       b_(c.bar.viscosity),
       times_(std::move(times)) {
   const std::size_t n = static_cast<std::size_t>(c.bar.elements) + 1;
-  x_.resize(n);
-  for (std::size_t j = 0; j < n; ++j) x_[j] = static_cast<double>(j) * h_;
+  fields_.x.resize(n);
+  for (std::size_t j = 0; j < n; ++j) fields_.x[j] = static_cast<double>(j) * h_;
 }
 
 void FieldRecorder::begin(const Scheme& /*scheme*/, long long steps) {
@@ -36,28 +36,40 @@ void FieldRecorder::begin(const Scheme& /*scheme*/, long long steps) {
   for (double t : times_) steps_.push_back(std::clamp(std::llround(t / dt_), 0LL, steps));
   std::sort(steps_.begin(), steps_.end());
   steps_.erase(std::unique(steps_.begin(), steps_.end()), steps_.end());
-  snapshots_.assign(steps_.size(), Snapshot{0.0, std::vector<double>(x_.size()), std::vector<double>(x_.size()),
-                                            std::vector<double>(x_.size())});
+  const std::size_t n = fields_.nodes();
+  fields_.t.assign(steps_.size(), 0.0);
+  fields_.u.assign(steps_.size() * n, 0.0);
+  fields_.v.assign(steps_.size() * n, 0.0);
+  fields_.sigma.assign(steps_.size() * n, 0.0);
   taken_ = 0;
 }
 
 bool FieldRecorder::observe(const Scheme& s) {
   if (taken_ == steps_.size() || s.step() != steps_[taken_]) return true;
-  Snapshot& snap = snapshots_[taken_++];
-  snap.t = s.time();
-  s.displacement(snap.u);
-  s.velocity(snap.v);
+  const std::size_t n = fields_.nodes(), at = taken_ * n;
+  fields_.t[taken_++] = s.time();
+  const std::span<double> u(fields_.u.data() + at, n), v(fields_.v.data() + at, n), sigma(fields_.sigma.data() + at, n);
+  s.displacement(u);
+  s.velocity(v);
   // sigma = a u_x + b v_x, constant per element; nodes take the mean of
   // their elements (one element at the ends).
-  const std::size_t n = x_.size();
   double left = 0.0;
   for (std::size_t e = 0; e + 1 < n; ++e) {
-    const double sig = (a_ * (snap.u[e + 1] - snap.u[e]) + b_ * (snap.v[e + 1] - snap.v[e])) / h_;
-    snap.sigma[e] = e == 0 ? sig : 0.5 * (left + sig);
+    const double sig = (a_ * (u[e + 1] - u[e]) + b_ * (v[e + 1] - v[e])) / h_;
+    sigma[e] = e == 0 ? sig : 0.5 * (left + sig);
     left = sig;
   }
-  snap.sigma[n - 1] = left;
+  sigma[n - 1] = left;
   return true;
+}
+
+Fields FieldRecorder::take() {
+  const std::size_t n = fields_.nodes();
+  fields_.t.resize(taken_);
+  fields_.u.resize(taken_ * n);
+  fields_.v.resize(taken_ * n);
+  fields_.sigma.resize(taken_ * n);
+  return std::move(fields_);
 }
 
 void ContactMonitor::begin(const Scheme& scheme, long long /*steps*/) {

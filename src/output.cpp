@@ -56,9 +56,10 @@ void write_history(const fs::path& path, const std::vector<HistoryRow>& rows) {
 void write_fields(const fs::path& path, const RunResult& result) {
   auto out = fmt::output_file(path.string());
   out.print("t,x,u,v,sigma\n");
-  for (const auto& s : result.fields)
-    for (std::size_t j = 0; j < result.x.size(); ++j)
-      out.print("{},{},{},{},{}\n", s.t, result.x[j], s.u[j], s.v[j], s.sigma[j]);
+  const Fields& f = result.fields;
+  for (std::size_t s = 0; s < f.count(); ++s)
+    for (std::size_t j = 0, i = s * f.nodes(); j < f.nodes(); ++j, ++i)
+      out.print("{},{},{},{},{}\n", f.t[s], f.x[j], f.u[i], f.v[i], f.sigma[i]);
   out.close();
 }
 

@@ -72,8 +72,7 @@ RunResult run(const Case& c) {
     for (const auto& h : r.history)
       s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
   }
-  r.x = fields.x();
-  r.fields.assign(fields.snapshots().begin(), fields.snapshots().begin() + static_cast<long>(fields.taken()));
+  r.fields = fields.take();
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "barimpact/case.hpp"
@@ -42,30 +43,35 @@ class HistoryRecorder final : public Observer {
   std::vector<HistoryRow> rows_;
 };
 
+/// Field snapshots, snapshot-major: u[s * x.size() + j] is u(x_j, t_s).
+struct Fields {
+  std::vector<double> x;
+  std::vector<double> t;
+  std::vector<double> u, v, sigma;
+
+  [[nodiscard]] std::size_t count() const { return t.size(); }
+  [[nodiscard]] std::size_t nodes() const { return x.size(); }
+};
+
 /// u, v and sigma = a u_x + b v_x at every node, at the steps nearest the
 /// requested times (each step once). Nodal sigma: the mean of the two
 /// adjacent elements' constant values, the end element's at x = 0 and L.
 class FieldRecorder final : public Observer {
  public:
-  struct Snapshot {
-    double t;
-    std::vector<double> u, v, sigma;
-  };
   FieldRecorder(const Case& c, std::vector<double> times);
   void begin(const Scheme& scheme, long long steps) override;
   bool observe(const Scheme& scheme) override;
-  /// The snapshots planned; the first `taken()` of them were recorded.
-  [[nodiscard]] const std::vector<Snapshot>& snapshots() const { return snapshots_; }
+  /// How many snapshots were recorded so far.
   [[nodiscard]] std::size_t taken() const { return taken_; }
-  [[nodiscard]] const std::vector<double>& x() const { return x_; }
+  /// The recorded snapshots (moved out: call once, after the run).
+  [[nodiscard]] Fields take();
 
  private:
   double dt_, h_, a_, b_;
   std::vector<double> times_;
   std::vector<long long> steps_;  // sorted, unique
   std::size_t taken_ = 0;
-  std::vector<double> x_;
-  std::vector<Snapshot> snapshots_;
+  Fields fields_;
 };
 
 /// A contact episode: U + g < 0 from `start` to `end` (crossing times

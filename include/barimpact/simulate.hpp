@@ -44,8 +44,7 @@ struct Summary {
 struct RunResult {
   Summary summary;
   std::vector<HistoryRow> history;
-  std::vector<double> x;
-  std::vector<FieldRecorder::Snapshot> fields;
+  Fields fields;
 };
 
 /// Runs `c` with its scheme and the history, field and contact observers.
