@@ -53,8 +53,11 @@ bool has_key(const SectionKeys& s, std::string_view key) {
 // names the file and line, or the --set option, that set it.
 class Reader {
  public:
-  Reader(toml::table root, std::string origin, std::map<std::string, std::string> overridden)
-      : root_(std::move(root)), origin_(std::move(origin)), overridden_(std::move(overridden)) {}
+  Reader(toml::table root, std::string origin, std::map<std::string, std::string> overridden, bool cite_lines)
+      : root_(std::move(root)),
+        origin_(std::move(origin)),
+        overridden_(std::move(overridden)),
+        cite_lines_(cite_lines) {}
 
   [[noreturn]] void fail(std::string_view section, std::string_view key, std::string_view rule) const {
     throw InputError(fmt::format("{}: {}.{} {}", where(section, key), section, key, rule));
@@ -70,7 +73,7 @@ class Reader {
 
   std::string located(const toml::node& n) const {
     const auto& src = n.source();
-    if (src.begin.line == 0) return origin_;
+    if (src.begin.line == 0 || !cite_lines_) return origin_;
     return fmt::format("{}:{}", origin_, src.begin.line);
   }
 
@@ -188,6 +191,7 @@ class Reader {
   toml::table root_;
   std::string origin_;
   std::map<std::string, std::string> overridden_;
+  bool cite_lines_;
 };
 
 toml::table parse_toml(std::string_view text, std::string_view origin) {
@@ -324,20 +328,22 @@ Case read_case(const Reader& r) {
   return c;
 }
 
-Case make_case(toml::table root, const std::vector<Case::Override>& overrides, std::string_view origin) {
+Case make_case(toml::table root, const std::vector<Case::Override>& overrides, std::string_view origin,
+               bool cite_lines) {
   std::map<std::string, std::string> overridden;
   for (const auto& o : overrides) {
     const auto dotted = apply_override(root, o.text);
     overridden[dotted] = fmt::format("--set {}", o.text);
     overridden[dotted.substr(0, dotted.find('.') + 1)] = fmt::format("--set {}", o.text);
   }
-  return read_case(Reader(std::move(root), std::string(origin), std::move(overridden)));
+  return read_case(Reader(std::move(root), std::string(origin), std::move(overridden), cite_lines));
 }
 
 }  // namespace
 
-Case Case::from_string(std::string_view text, const std::vector<Override>& overrides, std::string_view origin) {
-  return make_case(parse_toml(text, origin), overrides, origin);
+Case Case::from_string(std::string_view text, const std::vector<Override>& overrides, std::string_view origin,
+                       bool cite_lines) {
+  return make_case(parse_toml(text, origin), overrides, origin, cite_lines);
 }
 
 Case Case::from_file(const std::filesystem::path& path, const std::vector<Override>& overrides) {

@@ -116,4 +116,27 @@ bool ContactMonitor::observe(const Scheme& s) {
   return true;
 }
 
+ProgressMonitor::ProgressMonitor(Report report, double t_end, double interval_seconds, double delay_seconds)
+    : report_(std::move(report)), t_end_(t_end), interval_(interval_seconds), delay_(delay_seconds) {}
+
+void ProgressMonitor::begin(const Scheme& /*scheme*/, long long steps) {
+  steps_ = steps;
+  stride_ = countdown_ = 1;
+  started_ = last_read_ = Clock::now();
+  last_report_ = started_ - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(interval_));
+}
+
+bool ProgressMonitor::observe(const Scheme& s) {
+  if (--countdown_ > 0) return true;
+  const auto now = Clock::now();
+  const double since_read = std::chrono::duration<double>(now - last_read_).count();
+  if (since_read < interval_ / 16 && stride_ < (1LL << 30)) stride_ *= 2;
+  countdown_ = stride_;
+  last_read_ = now;
+  const double elapsed = std::chrono::duration<double>(now - started_).count();
+  if (elapsed < delay_ || std::chrono::duration<double>(now - last_report_).count() < interval_) return true;
+  last_report_ = now;
+  return report_(Progress{s.step(), steps_, s.time(), t_end_, elapsed});
+}
+
 }  // namespace barimpact

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include <array>
+#include <vector>
 #include <chrono>
 #include <cmath>
 
@@ -43,14 +43,17 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
   return result;
 }
 
-RunResult run(const Case& c) {
+RunResult run(const Case& c, const RunOptions& options) {
   const auto started = std::chrono::steady_clock::now();
   auto scheme = make_scheme(c);
   HistoryRecorder history(c.output.every);
   FieldRecorder fields(c, c.output.fields_at);
   ContactMonitor contact(c.obstacle);
-  const std::array<Observer*, 3> observers{&history, &fields, &contact};
   const long long steps = c.step_count();
+  ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
+                           options.progress_delay);
+  std::vector<Observer*> observers{&history, &fields, &contact};
+  if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(*scheme, steps, observers);
 
   RunResult r;

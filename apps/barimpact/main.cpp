@@ -1,6 +1,7 @@
 // barimpact: the command line, thin over the library.
 //
 //   barimpact run CASE.toml --out DIR [--set section.key=value]...
+//   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
 //
 // Exit status: 0 done, 2 bad input (one line on stderr, nothing written),
 // 3 the state became non-finite (rows so far kept, summary.json marks them
@@ -8,7 +9,12 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <new>
 #include <string_view>
 
@@ -26,7 +32,23 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   for (const auto& s : sets) overrides.push_back({s});
   const auto c = barimpact::Case::from_file(case_path, overrides);
   barimpact::RunDirectory dir(out_dir);
-  const auto result = barimpact::run(c);
+  barimpact::RunOptions options;
+  bool reported = false;
+  if (isatty(STDERR_FILENO)) {
+    // A run longer than about two seconds shows where it stands on a terminal.
+    options.progress_delay = 2.0;
+    options.progress = [&reported](const barimpact::Progress& p) {
+      const double rate = static_cast<double>(p.step) / p.elapsed_seconds;
+      const double left = rate > 0 ? static_cast<double>(p.steps - p.step) / rate : 0.0;
+      fmt::print(stderr, "\r\033[K  step {}/{}  t = {:.4g} of {:.4g}  {:.3g} steps/s  {:.0f} s left", p.step, p.steps,
+                 p.t, p.t_end, rate, left);
+      std::fflush(stderr);
+      reported = true;
+      return true;
+    };
+  }
+  const auto result = barimpact::run(c, options);
+  if (reported) fmt::print(stderr, "\r\033[K");
   dir.commit(c, result);
   fmt::print("{}", barimpact::summary_text(c, result.summary));
   fmt::print("  results in {}\n", dir.target().string());
@@ -35,6 +57,24 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
     return exit_non_finite;
   }
   return 0;
+}
+
+// The figures are drawn by the Python package (matplotlib): hand over to it.
+int plot_command(const std::string& run_dir, const std::string& figures) {
+  std::string path = BARIMPACT_PYTHON_DIR;
+  if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0') path += std::string(":") + old;
+  setenv("PYTHONPATH", path.c_str(), 1);
+  std::vector<std::string> args{BARIMPACT_PYTHON, "-m", "barimpact", "plot", run_dir};
+  if (!figures.empty()) {
+    args.emplace_back("--out");
+    args.push_back(figures);
+  }
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  execv(argv[0], argv.data());
+  fmt::print(stderr, "barimpact: error: plot: cannot start {} ({})\n", BARIMPACT_PYTHON, std::strerror(errno));
+  return exit_bad_input;
 }
 
 }  // namespace
@@ -53,10 +93,16 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  if (argc > 1 && argv[1][0] != '-' && std::string_view(argv[1]) != "run") {
-    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run; see barimpact --help)\n", argv[1]);
+  if (argc > 1 && argv[1][0] != '-' && std::string_view(argv[1]) != "run" &&
+      std::string_view(argv[1]) != "plot") {
+    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run, plot; see barimpact --help)\n", argv[1]);
     return exit_bad_input;
   }
+  std::string plot_dir, plot_out;
+  auto* plot = app.add_subcommand("plot", "Draw the figures of a run directory (PNG and SVG) with matplotlib");
+  plot->add_option("dir", plot_dir, "A directory written by barimpact run")->required();
+  plot->add_option("--out", plot_out, "Where the figures go (default: DIR/figures)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -72,6 +118,7 @@ int main(int argc, char** argv) {
 
   try {
     if (run->parsed()) return run_command(case_path, out_dir, sets);
+    if (plot->parsed()) return plot_command(plot_dir, plot_out);
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());
     return exit_bad_input;

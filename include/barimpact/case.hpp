@@ -78,9 +78,10 @@ struct Case {
 
   /// Reads, overrides and validates. Throws InputError.
   static Case from_file(const std::filesystem::path& path, const std::vector<Override>& overrides = {});
-  /// Same from TOML text; `origin` names it in error messages.
+  /// Same from TOML text; `origin` names it in error messages, followed by
+  /// the line when `cite_lines` (not for text made from a dict).
   static Case from_string(std::string_view toml, const std::vector<Override>& overrides = {},
-                          std::string_view origin = "case");
+                          std::string_view origin = "case", bool cite_lines = true);
 
   /// The number of steps N: t_N = N dt is the first step time >= end
   /// (up to a relative 1e-9, so that end = 4, step = 0.01 gives 400).

@@ -4,7 +4,9 @@
 // run, see output.hpp).
 #pragma once
 
+#include <chrono>
 #include <cstddef>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -104,6 +106,35 @@ class ContactMonitor final : public Observer {
   double previous_t_ = 0.0, previous_d_ = 0.0;
   double max_penetration_ = 0.0, max_reaction_ = 0.0;
   std::vector<double> velocity_;
+};
+
+/// Where a run stands, for progress reports.
+struct Progress {
+  long long step = 0;
+  long long steps = 0;
+  double t = 0.0;
+  double t_end = 0.0;
+  double elapsed_seconds = 0.0;
+};
+
+/// Calls `report` about every `interval` seconds of wall time once `delay`
+/// seconds have passed. The clock is read every `stride` steps, the stride
+/// doubling while reads come faster than interval/16, so that the cost per
+/// step stays negligible at any mesh size. `report` returning false stops
+/// the run.
+class ProgressMonitor final : public Observer {
+ public:
+  using Report = std::function<bool(const Progress&)>;
+  ProgressMonitor(Report report, double t_end, double interval_seconds = 0.5, double delay_seconds = 0.0);
+  void begin(const Scheme& scheme, long long steps) override;
+  bool observe(const Scheme& scheme) override;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  Report report_;
+  double t_end_, interval_, delay_;
+  long long steps_ = 0, stride_ = 1, countdown_ = 1;
+  Clock::time_point started_, last_read_, last_report_;
 };
 
 }  // namespace barimpact

@@ -47,9 +47,17 @@ struct RunResult {
   Fields fields;
 };
 
+struct RunOptions {
+  /// Called about every `progress_interval` seconds once `progress_delay`
+  /// seconds have passed; returning false stops the run. Empty: no reports.
+  ProgressMonitor::Report progress;
+  double progress_interval = 0.5;
+  double progress_delay = 0.0;
+};
+
 /// Runs `c` with its scheme and the history, field and contact observers.
 /// Throws InputError when the case does not fit its scheme.
-[[nodiscard]] RunResult run(const Case& c);
+[[nodiscard]] RunResult run(const Case& c, const RunOptions& options = {});
 
 [[nodiscard]] std::string_view to_string(RunStatus status);
 

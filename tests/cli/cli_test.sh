@@ -19,7 +19,7 @@ done
 [ "$(head -1 "$work/ex1/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc" ] && ok || bad "history columns"
 [ "$(head -1 "$work/ex1/fields.csv")" = "t,x,u,v,sigma" ] && ok || bad "fields columns"
 [ "$(wc -l < "$work/ex1/history.csv")" -eq 402 ] && ok || bad "history rows: $(wc -l < "$work/ex1/history.csv")"
-[ "$(wc -l < "$work/ex1/fields.csv")" -eq $((5 * 101 + 1)) ] && ok || bad "fields rows"
+[ "$(wc -l < "$work/ex1/fields.csv")" -eq $((101 * 101 + 1)) ] && ok || bad "fields rows"
 grep -q '"complete": true' "$work/ex1/summary.json" && ok || bad "summary complete"
 grep -q "contact 1" "$work/stdout" && ok || bad "stdout summary"
 ls -a "$work" | grep -q partial && bad "staging left behind" || ok

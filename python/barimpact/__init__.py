@@ -1,0 +1,48 @@
+"""barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979).
+
+    import barimpact
+    case = barimpact.Case("examples/paper-example1.toml", set={"time.lambda": 0.25})
+    result = barimpact.run(case)
+    result.t, result.U, result.R          # numpy views of the history, no copy
+    result.u                              # field snapshots, shape (snapshots, nodes)
+    result.summary                        # the summary.json dict
+    barimpact.plot(result, "figures")     # PNG and SVG
+
+Every number comes from the C++ library (barimpact._core): the same code as
+the `barimpact` command line, so the same case gives the same bits.
+"""
+import json
+
+import numpy as np
+
+from ._core import Case, InputError, Result
+from ._core import run as _run
+
+__all__ = ["Case", "Result", "InputError", "run", "exact_example1", "plot", "load"]
+
+
+def run(case, progress=None):
+    """Run a case: a `Case`, or anything `Case` accepts (a path, TOML text, a
+    dict). The GIL is released while it runs. `progress`, if given, is called
+    about twice a second with a dict (step, steps, t, t_end, elapsed);
+    returning False stops the run (the result is then marked incomplete)."""
+    if not isinstance(case, Case):
+        case = Case(case)
+    return _run(case, progress)
+
+
+Result.summary = property(lambda self: json.loads(self.summary_json), doc="summary.json as a dict")
+
+
+def exact_example1(x, t, length=1.0, stiffness=1.0, density=1.0, v0=-1.0):
+    """The paper's Example 1 with a rigid obstacle (exact): a bar at rest,
+    undeformed, moving at v0 < 0 towards x = 0. Returns a dict of arrays u, v,
+    strain, R, broadcast over x and t."""
+    xb, tb = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(t, dtype=float))
+    u, v, strain, R = _core_exact(xb.ravel(), tb.ravel(), length, stiffness, density, v0)
+    shape = xb.shape
+    return {"u": u.reshape(shape), "v": v.reshape(shape), "strain": strain.reshape(shape), "R": R.reshape(shape)}
+
+
+from ._core import _exact_example1 as _core_exact  # noqa: E402
+from .plot import load, plot  # noqa: E402

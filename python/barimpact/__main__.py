@@ -1,0 +1,26 @@
+"""python3 -m barimpact plot DIR [--out FIGURES] (what `barimpact plot` runs)."""
+import argparse
+import sys
+
+from .plot import load, plot
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(prog="barimpact")
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("plot", help="draw the figures of a run directory")
+    p.add_argument("dir")
+    p.add_argument("--out", default=None, help="where the figures go (default: DIR/figures)")
+    args = parser.parse_args(argv)
+    try:
+        data = load(args.dir)
+    except (OSError, ValueError) as e:
+        print(f"barimpact: error: plot: {e}", file=sys.stderr)
+        return 2
+    for path in plot(data, args.out if args.out else f"{args.dir}/figures"):
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,194 @@
+"""Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
+directory written by `barimpact run`:
+
+- displacement: U(t), with the exact rigid-obstacle solution when the case is
+  the paper's Example 1 family (its Figure 3);
+- reaction: R(t), likewise with the exact reaction;
+- energy: the budget E_kin, E_strain, E_obstacle, W_ext, D_visc and the
+  balance E_kin + E_strain + E_obstacle - W_ext + D_visc;
+- stress_map: sigma(x, t) over the field snapshots, where the waves and their
+  reflections show;
+- snapshots: u(x) at up to eight snapshot times (the paper's Figure 2);
+- impacts: U and R with every contact episode shaded (Example 2's second
+  impact, the paper's Figure 4).
+"""
+import csv
+import json
+import tomllib
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc")
+FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
+DPI = 120
+
+
+class RunData:
+    """What the figures need: history columns, field snapshots, case, summary."""
+
+    def __init__(self, history, x, field_t, u, sigma, case, summary):
+        self.history = history  # dict column -> 1-D array
+        self.x, self.field_t, self.u, self.sigma = x, field_t, u, sigma
+        self.case, self.summary = case, summary
+
+
+def load(run_dir):
+    """Read a directory written by `barimpact run`."""
+    d = Path(run_dir)
+    if not (d / "history.csv").is_file():
+        raise ValueError(f"{run_dir}: no history.csv (not a directory written by barimpact run)")
+    h = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
+    history = {name: h[:, i] for i, name in enumerate(COLUMNS)}
+    x = field_t = u = sigma = np.empty(0)
+    if (d / "fields.csv").is_file():
+        f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2)
+        if f.size:
+            field_t = np.unique(f[:, 0])
+            nodes = f.shape[0] // field_t.size
+            x = f[:nodes, 1]
+            u = f[:, 2].reshape(field_t.size, nodes)
+            sigma = f[:, 4].reshape(field_t.size, nodes)
+    case = tomllib.loads((d / "case.toml").read_text())
+    summary = json.loads((d / "summary.json").read_text())
+    return RunData(history, x, field_t, u, sigma, case, summary)
+
+
+def _from_result(result):
+    history = {name: np.asarray(getattr(result, name)) for name in COLUMNS}
+    return RunData(history, np.asarray(result.x), np.asarray(result.field_t), np.asarray(result.u),
+                   np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary)
+
+
+def _number(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return None
+
+
+def exact_parameters(case):
+    """(L, a, rho, v0) when the case is the paper's Example 1 family (uniform
+    v0 < 0, no load, no initial strain, elastic bar, no gap), else None."""
+    bar, obstacle = case["bar"], case["obstacle"]
+    v0 = _number(case["initial"]["velocity"])
+    if (obstacle["kind"] == "none" or obstacle["gap"] != 0 or bar["viscosity"] != 0
+            or _number(case["load"]["body_force"]) != 0 or _number(case["initial"]["displacement"]) != 0
+            or v0 is None or v0 >= 0):
+        return None
+    return bar["length"], bar["stiffness"], bar["density"], v0
+
+
+def _figure(title):
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    return fig, ax
+
+
+def _save(fig, out, name, formats, written):
+    for fmt in formats:
+        path = out / f"{name}.{fmt}"
+        fig.savefig(path, dpi=DPI)
+        written.append(path)
+    plt.close(fig)
+
+
+def _shade_contacts(ax, summary):
+    for i, c in enumerate(summary.get("contacts", [])):
+        ax.axvspan(c["start"], c["end"], color="tab:orange", alpha=0.15, lw=0, label="contact" if i == 0 else None)
+
+
+def plot(source, out=None, formats=("png", "svg")):
+    """Write the figures of `source` (a Result, a RunData or a run directory)
+    into `out` (default: DIR/figures for a directory, else ./figures).
+    Returns the paths written."""
+    if isinstance(source, (str, Path)):
+        data = load(source)
+        out = Path(out) if out is not None else Path(source) / "figures"
+    else:
+        data = source if isinstance(source, RunData) else _from_result(source)
+        out = Path(out) if out is not None else Path("figures")
+    out.mkdir(parents=True, exist_ok=True)
+    h, written = data.history, []
+    t = h["t"]
+    exact = exact_parameters(data.case)
+    if exact is not None:
+        from . import exact_example1
+        fine_t = np.linspace(t[0], t[-1], 2001)
+        ref = exact_example1(0.0, fine_t, *exact)
+        ref_U = ref["u"]
+    scheme = data.case["time"]["scheme"]
+    k = data.case["obstacle"]["stiffness"]
+
+    fig, ax = _figure("End displacement U(t) = u(0, t)")
+    ax.plot(t, h["U"], ".", ms=3, label=f"{scheme}, k = {k:g}")
+    if exact is not None:
+        ax.plot(fine_t, ref_U, "k-", lw=1.2, label="exact, rigid obstacle")
+    if data.case["obstacle"]["kind"] != "none":
+        ax.axhline(-data.case["obstacle"]["gap"], color="gray", lw=0.8, ls="--", label="obstacle face")
+    ax.set_xlabel("t")
+    ax.set_ylabel("U")
+    ax.legend()
+    _save(fig, out, "displacement", formats, written)
+
+    fig, ax = _figure("Reaction of the obstacle R(t)")
+    ax.plot(t, h["R"], "-", lw=0.9, label=f"{scheme}, k = {k:g}")
+    if exact is not None:
+        ax.plot(fine_t, ref["R"], "k-", lw=1.2, label="exact, rigid obstacle")
+    ax.set_xlabel("t")
+    ax.set_ylabel("R")
+    ax.legend()
+    _save(fig, out, "reaction", formats, written)
+
+    fig, ax = _figure("Energy budget")
+    for name, label in (("E_kin", "kinetic"), ("E_strain", "strain"), ("E_obstacle", "obstacle"),
+                        ("W_ext", "work of f"), ("D_visc", "viscous dissipation")):
+        ax.plot(t, h[name], lw=1.0, label=label)
+    balance = h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"]
+    ax.plot(t, balance, "k-", lw=1.8, label="balance: kin + strain + obstacle - work + dissipation")
+    ax.set_xlabel("t")
+    ax.set_ylabel("energy")
+    ax.legend(fontsize=8, loc="best")
+    _save(fig, out, "energy", formats, written)
+
+    if data.field_t.size >= 2:
+        fig, ax = _figure("Stress sigma(x, t)")
+        limit = float(np.max(np.abs(data.sigma))) or 1.0
+        mesh = ax.pcolormesh(data.x, data.field_t, data.sigma, cmap="RdBu_r", vmin=-limit, vmax=limit,
+                             shading="nearest")
+        fig.colorbar(mesh, ax=ax, label="sigma (tension > 0)")
+        ax.set_xlabel("x")
+        ax.set_ylabel("t")
+        ax.grid(False)
+        _save(fig, out, "stress_map", formats, written)
+
+    if data.field_t.size >= 1:
+        fig, ax = _figure("Displacement u(x) at snapshot times")
+        chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
+        for i in chosen:
+            ax.plot(data.x, data.u[i], lw=1.2, label=f"t = {data.field_t[i]:.3g}")
+        ax.set_xlabel("x")
+        ax.set_ylabel("u")
+        ax.legend(fontsize=8, ncol=2)
+        _save(fig, out, "snapshots", formats, written)
+
+    contacts = data.summary.get("contacts", [])
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=FIGSIZE, dpi=DPI, layout="constrained")
+    fig.suptitle(f"Impacts: {len(contacts)} contact episode{'s' if len(contacts) != 1 else ''}")
+    top.plot(t, h["U"], lw=1.0)
+    top.set_ylabel("U")
+    bottom.plot(t, h["R"], lw=1.0, color="tab:red")
+    bottom.set_ylabel("R")
+    bottom.set_xlabel("t")
+    for ax in (top, bottom):
+        _shade_contacts(ax, data.summary)
+        ax.grid(True, alpha=0.3)
+    if contacts:
+        top.legend(loc="best")
+    _save(fig, out, "impacts", formats, written)
+    return written
