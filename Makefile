@@ -1,8 +1,10 @@
 # Quick start on a fresh Debian machine (as root, or with sudo):
-#   make demo   installs what is missing, builds in Release, runs both paper examples into out/
+#   make demo   installs what is missing, builds in Release, runs both paper examples into out/ with figures
 #   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan)
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
-            nlohmann-json3-dev libgtest-dev libbenchmark-dev python3
+            nlohmann-json3-dev libgtest-dev libbenchmark-dev \
+            python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest
+PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2
 
@@ -28,6 +30,8 @@ demo: build
 	@for ex in $(EXAMPLES); do \
 	  echo "== $$ex"; \
 	  ./build/release/barimpact run examples/$$ex.toml --out out/$$ex || exit $$?; \
+	  ./build/release/barimpact plot out/$$ex > /dev/null || exit $$?; \
+	  echo "  figures in out/$$ex/figures"; \
 	done
 
 test: deps
@@ -39,7 +43,7 @@ test: deps
 	ctest --preset dev -j $(JOBS)
 
 bench: build
-	python3 bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
+	$(PYTHON) bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

@@ -83,10 +83,11 @@ def exact_parameters(case):
     return bar["length"], bar["stiffness"], bar["density"], v0
 
 
-def _figure(title):
+def _figure(title, grid=True):
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
     ax.set_title(title)
-    ax.grid(True, alpha=0.3)
+    if grid:
+        ax.grid(True, alpha=0.3)
     return fig, ax
 
 
@@ -157,14 +158,13 @@ def plot(source, out=None, formats=("png", "svg")):
     _save(fig, out, "energy", formats, written)
 
     if data.field_t.size >= 2:
-        fig, ax = _figure("Stress sigma(x, t)")
+        fig, ax = _figure("Stress sigma(x, t)", grid=False)
         limit = float(np.max(np.abs(data.sigma))) or 1.0
         mesh = ax.pcolormesh(data.x, data.field_t, data.sigma, cmap="RdBu_r", vmin=-limit, vmax=limit,
                              shading="nearest")
         fig.colorbar(mesh, ax=ax, label="sigma (tension > 0)")
         ax.set_xlabel("x")
         ax.set_ylabel("t")
-        ax.grid(False)
         _save(fig, out, "stress_map", formats, written)
 
     if data.field_t.size >= 1:

@@ -129,7 +129,11 @@ PYBIND11_MODULE(_core, m) {
       });
 
   auto result = py::class_<PyResult>(m, "Result");
-  result.def_property_readonly_static("columns", [](py::object) { return columns; })
+  result.def_property_readonly_static("columns", [](py::object) {
+    py::tuple names(columns.size());
+    for (std::size_t i = 0; i < columns.size(); ++i) names[i] = py::str(columns[i]);
+    return names;
+  })
       .def_property_readonly(
           "history",
           [](py::object self) {

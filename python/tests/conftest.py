@@ -1,0 +1,31 @@
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(os.environ.get("BARIMPACT_ROOT", Path(__file__).resolve().parents[2]))
+CLI = os.environ.get("BARIMPACT_CLI", str(ROOT / "build" / "release" / "barimpact"))
+EXAMPLES = ROOT / "examples"
+
+
+@pytest.fixture(scope="session")
+def cli_runs(tmp_path_factory):
+    """Both paper examples run once by the command line."""
+    out = {}
+    base = tmp_path_factory.mktemp("cli")
+    for name in ("paper-example1", "paper-example2"):
+        d = base / name
+        subprocess.run([CLI, "run", str(EXAMPLES / f"{name}.toml"), "--out", str(d)], check=True,
+                       capture_output=True)
+        out[name] = d
+    return out
+
+
+def cli_error(*args):
+    """The command line's one-line error for bad input, without its prefix."""
+    p = subprocess.run([CLI, *args], capture_output=True, text=True)
+    assert p.returncode == 2, p.stderr
+    line = p.stderr.strip()
+    assert line.startswith("barimpact: error: ")
+    return line[len("barimpact: error: "):]

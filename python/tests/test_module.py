@@ -1,0 +1,126 @@
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import barimpact
+from conftest import CLI, EXAMPLES, cli_error
+
+
+def read_history(d):
+    return np.loadtxt(Path(d) / "history.csv", delimiter=",", skiprows=1)
+
+
+@pytest.mark.parametrize("name", ["paper-example1", "paper-example2"])
+def test_same_bits_as_the_command_line(cli_runs, name):
+    # history.csv holds shortest round-trip decimals: parsing gives the same doubles.
+    r = barimpact.run(EXAMPLES / f"{name}.toml")
+    assert np.array_equal(r.history, read_history(cli_runs[name]))
+    f = np.loadtxt(cli_runs[name] / "fields.csv", delimiter=",", skiprows=1)
+    nodes = r.x.size
+    assert np.array_equal(r.u.ravel(), f[:, 2]) and np.array_equal(r.sigma.ravel(), f[:, 4])
+    assert np.array_equal(np.repeat(r.field_t, nodes), f[:, 0])
+
+
+def test_columns_are_views_of_the_history():
+    r = barimpact.run(EXAMPLES / "paper-example1.toml")
+    assert r.columns == ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc")
+    assert np.shares_memory(r.U, r.history) and np.shares_memory(r.t, r.history)
+    assert np.array_equal(r.R, r.history[:, 3])
+    assert not r.U.flags.writeable
+    assert r.u.shape == (101, 101) and r.v.shape == r.u.shape
+    del r  # the views keep the result alive
+    r2 = barimpact.run(EXAMPLES / "paper-example1.toml").U
+    assert r2[0] == 0.0 and r2.size == 401
+
+
+def test_case_from_file_text_dict_and_overrides_agree():
+    path = EXAMPLES / "paper-example1.toml"
+    a = barimpact.Case(path)
+    b = barimpact.Case(str(path))
+    c = barimpact.Case(path.read_text())
+    d = barimpact.Case({
+        "bar": {"length": 1.0, "elements": 100},
+        "initial": {"velocity": "-1"},
+        "time": {"end": 4.0, "step": 0.01},
+        "output": {"fields_at": [round(0.04 * i, 2) for i in range(101)]},
+    })
+    assert a.to_toml() == b.to_toml() == c.to_toml() == d.to_toml()
+    e = barimpact.Case(path, set={"bar.elements": 50, "obstacle.kind": "none", "time.lambda": 0.25})
+    assert "elements = 50" in e.to_toml() and "kind = 'none'" in e.to_toml()
+    assert barimpact.Case(path, set=["bar.elements=50"]).steps == 400
+
+
+def test_errors_carry_the_command_lines_messages():
+    path = str(EXAMPLES / "paper-example1.toml")
+    with pytest.raises(barimpact.InputError) as e:
+        barimpact.Case(path, set=["bar.stiffness=-1"])
+    assert str(e.value) == cli_error("run", path, "--out", "/tmp/never-written", "--set", "bar.stiffness=-1")
+    with pytest.raises(barimpact.InputError) as e:
+        barimpact.Case("/nonexistent/case.toml")
+    assert str(e.value) == cli_error("run", "/nonexistent/case.toml", "--out", "/tmp/never-written")
+    with pytest.raises(ValueError, match="bar.elements must be >= 1"):
+        barimpact.Case({"bar": {"elements": 0}})
+    with pytest.raises(ValueError, match="unknown key bar.mass"):
+        barimpact.run({"bar": {"mass": 1}})
+    with pytest.raises(ValueError, match=r'unknown name "q"'):
+        barimpact.Case("[load]\nbody_force = \"q\"\n")
+    assert not Path("/tmp/never-written").exists()
+
+
+def test_progress_is_reported_and_can_stop_the_run():
+    seen = []
+    r = barimpact.run(EXAMPLES / "paper-example1.toml", progress=lambda p: seen.append(p))
+    assert seen and seen[0]["steps"] == 400 and r.complete
+    stop = barimpact.run(EXAMPLES / "paper-example1.toml", progress=lambda p: False)
+    assert not stop.complete and stop.summary["status"] == "stopped"
+
+
+def test_an_exception_in_the_callback_reaches_the_caller():
+    def boom(p):
+        raise RuntimeError("from the callback")
+    with pytest.raises(RuntimeError, match="from the callback"):
+        barimpact.run(EXAMPLES / "paper-example1.toml", progress=boom)
+
+
+def test_the_gil_is_released_during_a_run():
+    case = barimpact.Case(EXAMPLES / "paper-example1.toml",
+                          set={"bar.elements": 20000, "time.step": 0.0005, "time.end": 1, "output.every": 100,
+                               "output.fields_at": []})
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    start = time.perf_counter()
+    barimpact.run(case)
+    elapsed = time.perf_counter() - start
+    done.set()
+    counter.join()
+    during = [t for t in ticks if start < t < start + elapsed]
+    # A held GIL would freeze the counter for the whole run (> 0.1 s here).
+    assert elapsed > 0.1
+    assert len(during) > 10
+
+
+def test_exact_example1_broadcasts():
+    x = np.linspace(0, 1, 5)
+    e = barimpact.exact_example1(x[:, None], np.array([0.0, 0.5, 3.0])[None, :])
+    assert e["u"].shape == (5, 3)
+    assert np.allclose(e["u"][:, 2], 1.0)  # after lift-off at t = 2: U = t - 2
+    assert np.allclose(e["R"][:, 1], 1.0)
+    assert e["u"][0, 1] == 0.0
+
+
+def test_write_gives_the_run_directory(tmp_path, cli_runs):
+    r = barimpact.run(EXAMPLES / "paper-example1.toml")
+    r.write(str(tmp_path / "run"))
+    for f in ("history.csv", "fields.csv", "case.toml"):
+        assert (tmp_path / "run" / f).read_bytes() == (cli_runs["paper-example1"] / f).read_bytes()

@@ -1,0 +1,56 @@
+import struct
+import subprocess
+
+import pytest
+
+import barimpact
+from conftest import CLI, EXAMPLES
+
+FIGURES = ("displacement", "reaction", "energy", "stress_map", "snapshots", "impacts")
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    assert head[:8] == b"\x89PNG\r\n\x1a\n"
+    return struct.unpack(">II", head[16:24])
+
+
+def check_figures(d):
+    for name in FIGURES:
+        png, svg = d / f"{name}.png", d / f"{name}.svg"
+        assert png.stat().st_size > 10_000, name
+        assert svg.stat().st_size > 10_000 and b"<svg" in svg.read_bytes()[:500], name
+        assert png_size(png) == (960, 540), name
+
+
+@pytest.mark.parametrize("name", ["paper-example1", "paper-example2"])
+def test_barimpact_plot_writes_every_figure(cli_runs, name, tmp_path):
+    out = tmp_path / "figs"
+    p = subprocess.run([CLI, "plot", str(cli_runs[name]), "--out", str(out)], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    check_figures(out)
+    assert len(p.stdout.split()) == 2 * len(FIGURES)
+
+
+def test_plot_of_a_result(tmp_path):
+    r = barimpact.run(EXAMPLES / "paper-example2.toml")
+    written = barimpact.plot(r, tmp_path)
+    assert len(written) == 2 * len(FIGURES)
+    check_figures(tmp_path)
+
+
+def test_plot_refuses_a_directory_that_is_not_a_run(tmp_path):
+    p = subprocess.run([CLI, "plot", str(tmp_path)], capture_output=True, text=True)
+    assert p.returncode == 2
+    assert "no history.csv" in p.stderr
+
+
+def test_the_exact_solution_is_drawn_only_when_it_applies():
+    from barimpact.plot import exact_parameters
+    case = {"bar": {"length": 2.0, "stiffness": 4.0, "density": 1.0, "viscosity": 0.0},
+            "obstacle": {"kind": "elastic", "gap": 0.0},
+            "load": {"body_force": "0"}, "initial": {"displacement": "0", "velocity": "-0.5"}}
+    assert exact_parameters(case) == (2.0, 4.0, 1.0, -0.5)
+    case["load"]["body_force"] = "-1"
+    assert exact_parameters(case) is None
