@@ -27,11 +27,11 @@ struct SectionKeys {
 // The case-file contract: sections and keys, in file order.
 const std::array<SectionKeys, 6>& contract() {
   static const std::array<SectionKeys, 6> c{{
-      {"bar", {"length", "density", "stiffness", "viscosity", "elements"}},
+      {"bar", {"length", "density", "stiffness", "viscosity", "elements", "far_end"}},
       {"load", {"body_force"}},
       {"initial", {"displacement", "velocity"}},
-      {"obstacle", {"kind", "stiffness", "gap"}},
-      {"time", {"end", "step", "scheme", "alpha", "lambda"}},
+      {"obstacle", {"kind", "stiffness", "gap", "viscosity"}},
+      {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution"}},
       {"output", {"every", "fields_at"}},
   }};
   return c;
@@ -274,6 +274,13 @@ Case read_case(const Reader& r) {
   if (elements < 1) r.fail("bar", "elements", fmt::format("must be >= 1 (got {})", elements));
   if (elements > 100'000'000) r.fail("bar", "elements", fmt::format("must be <= 100000000 (got {})", elements));
   bar.elements = static_cast<int>(elements);
+  const std::string far_end = r.word("bar", "far_end", "free");
+  if (far_end == "free")
+    bar.far_end = FarEnd::free;
+  else if (far_end == "clamped")
+    bar.far_end = FarEnd::clamped;
+  else
+    r.fail("bar", "far_end", fmt::format("must be one of free, clamped (got \"{}\")", far_end));
 
   c.load.body_force = r.expression("load", "body_force", c.load.body_force);
   c.initial.displacement = r.expression("initial", "displacement", c.initial.displacement);
@@ -284,12 +291,20 @@ Case read_case(const Reader& r) {
     c.obstacle.kind = ObstacleKind::none;
   else if (kind == "elastic")
     c.obstacle.kind = ObstacleKind::elastic;
+  else if (kind == "viscoelastic")
+    c.obstacle.kind = ObstacleKind::viscoelastic;
+  else if (kind == "rigid")
+    c.obstacle.kind = ObstacleKind::rigid;
   else
-    r.fail("obstacle", "kind", fmt::format("must be one of none, elastic (got \"{}\")", kind));
+    r.fail("obstacle", "kind",
+           fmt::format("must be one of none, elastic, viscoelastic, rigid (got \"{}\")", kind));
   c.obstacle.stiffness = r.number("obstacle", "stiffness", c.obstacle.stiffness);
   c.obstacle.gap = r.number("obstacle", "gap", c.obstacle.gap);
+  c.obstacle.viscosity = r.number("obstacle", "viscosity", c.obstacle.viscosity);
   if (c.obstacle.stiffness < 0)
     r.fail("obstacle", "stiffness", fmt::format("must be >= 0 (got {})", c.obstacle.stiffness));
+  if (c.obstacle.viscosity < 0)
+    r.fail("obstacle", "viscosity", fmt::format("must be >= 0 (got {})", c.obstacle.viscosity));
 
   TimeData& time = c.time;
   time.end = r.number("time", "end", time.end);
@@ -302,12 +317,27 @@ Case read_case(const Reader& r) {
     r.fail("time", "end", fmt::format("must be >= time.step = {} (got {})", time.step, time.end));
   if (time.end / time.step > 1e10)
     r.fail("time", "step", fmt::format("gives {:.3g} steps to time.end; at most 1e10", time.end / time.step));
-  const auto names = scheme_names();
-  if (std::find(names.begin(), names.end(), time.scheme) == names.end())
-    r.fail("time", "scheme", fmt::format("must be one of {} (got \"{}\")", fmt::join(names, ", "), time.scheme));
   if (time.alpha < 0 || time.alpha > 0.5)
     r.fail("time", "alpha", fmt::format("must be in [0, 1/2] (got {})", time.alpha));
   if (time.lambda < 0) r.fail("time", "lambda", fmt::format("must be >= 0 (got {})", time.lambda));
+  time.beta = r.number("time", "beta", time.beta);
+  time.gamma = r.number("time", "gamma", time.gamma);
+  time.theta = r.number("time", "theta", time.theta);
+  time.restitution = r.number("time", "restitution", time.restitution);
+  if (time.beta < 0 || time.beta > 0.5) r.fail("time", "beta", fmt::format("must be in [0, 1/2] (got {})", time.beta));
+  if (time.gamma < 0.5 || time.gamma > 1)
+    r.fail("time", "gamma", fmt::format("must be in [1/2, 1] (got {})", time.gamma));
+  if (time.theta < 0.5 || time.theta > 1)
+    r.fail("time", "theta", fmt::format("must be in [1/2, 1] (got {})", time.theta));
+  if (time.restitution < 0 || time.restitution > 1)
+    r.fail("time", "restitution", fmt::format("must be in [0, 1] (got {})", time.restitution));
+  const auto names = scheme_names();
+  if (std::find(names.begin(), names.end(), time.scheme) == names.end())
+    r.fail("time", "scheme", fmt::format("must be one of {} (got \"{}\")", fmt::join(names, ", "), time.scheme));
+  if (const auto misfit = scheme_misfit(c, r.node("time", "step") != nullptr))
+    r.fail("time", misfit->key, misfit->rule);
+  if (time.end < time.step)
+    r.fail("time", "end", fmt::format("must be >= time.step = {} (got {})", time.step, time.end));
 
   const long long every = r.integer("output", "every", c.output.every);
   if (every < 1) r.fail("output", "every", fmt::format("must be >= 1 (got {})", every));
@@ -325,6 +355,14 @@ Case read_case(const Reader& r) {
   check_expression(r, "initial", "displacement", c.initial.displacement, bar, {0.0});
   check_expression(r, "initial", "velocity", c.initial.velocity, bar, {0.0});
   check_expression(r, "load", "body_force", c.load.body_force, bar, {0.0, t_last});
+  if (bar.far_end == FarEnd::clamped) {
+    for (const auto& [key, text] :
+         {std::pair{"displacement", c.initial.displacement}, std::pair{"velocity", c.initial.velocity}}) {
+      const double at_end = Expression(text)(bar.length, 0.0);
+      if (std::abs(at_end) > 1e-12)
+        r.fail("initial", key, fmt::format("must vanish at the clamped end x = {} (got {})", bar.length, at_end));
+    }
+  }
   return c;
 }
 
@@ -370,9 +408,15 @@ std::string_view to_string(ObstacleKind kind) {
       return "none";
     case ObstacleKind::elastic:
       return "elastic";
+    case ObstacleKind::viscoelastic:
+      return "viscoelastic";
+    case ObstacleKind::rigid:
+      return "rigid";
   }
   return "?";
 }
+
+std::string_view to_string(FarEnd end) { return end == FarEnd::free ? "free" : "clamped"; }
 
 std::string Case::to_toml() const {
   toml::array fields;
@@ -382,17 +426,23 @@ std::string Case::to_toml() const {
                           {"density", bar.density},
                           {"stiffness", bar.stiffness},
                           {"viscosity", bar.viscosity},
-                          {"elements", bar.elements}}},
+                          {"elements", bar.elements},
+                          {"far_end", std::string(to_string(bar.far_end))}}},
       {"load", toml::table{{"body_force", load.body_force}}},
       {"initial", toml::table{{"displacement", initial.displacement}, {"velocity", initial.velocity}}},
       {"obstacle",
        toml::table{
-           {"kind", std::string(to_string(obstacle.kind))}, {"stiffness", obstacle.stiffness}, {"gap", obstacle.gap}}},
+           {"kind", std::string(to_string(obstacle.kind))}, {"stiffness", obstacle.stiffness}, {"gap", obstacle.gap},
+                                {"viscosity", obstacle.viscosity}}},
       {"time", toml::table{{"end", time.end},
                            {"step", time.step},
                            {"scheme", time.scheme},
                            {"alpha", time.alpha},
-                           {"lambda", time.lambda}}},
+                           {"lambda", time.lambda},
+                           {"beta", time.beta},
+                           {"gamma", time.gamma},
+                           {"theta", time.theta},
+                           {"restitution", time.restitution}}},
       {"output", toml::table{{"every", output.every}, {"fields_at", fields}}},
   };
   std::ostringstream out;

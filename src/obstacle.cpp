@@ -2,7 +2,14 @@
 
 namespace barimpact {
 
+namespace {
+bool penalty(ObstacleKind k) { return k == ObstacleKind::elastic || k == ObstacleKind::viscoelastic; }
+}  // namespace
+
 ObstacleLaw::ObstacleLaw(const ObstacleData& data)
-    : kind_(data.kind), k_(data.kind == ObstacleKind::none ? 0.0 : data.stiffness), gap_(data.gap) {}
+    : kind_(data.kind),
+      k_(penalty(data.kind) ? data.stiffness : 0.0),
+      l_(data.kind == ObstacleKind::viscoelastic ? data.viscosity : 0.0),
+      gap_(data.gap) {}
 
 }  // namespace barimpact

@@ -49,6 +49,24 @@ PaperScheme::PaperScheme(const Case& c)
     inv_[j] = 1.0 / pivot;
     upper_[j] = a_off_ * inv_[j];
   }
+  // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
+  // exactly that, and u_M = 0 removes the column's coupling.
+  if (c.bar.far_end == FarEnd::clamped) inv_[n - 1] = upper_[n - 1] = 0.0;
+
+  if (law_.viscosity() > 0.0) {
+    dashpot_sigma_ = law_.viscosity() * (alpha_ * lambda_ + 0.5 / dt_);
+    dashpot_response_.assign(n, 0.0);
+    double y = inv_[0];  // forward sweep of e0
+    dashpot_response_[0] = y;
+    for (std::size_t j = 1; j < n; ++j) {
+      y = -upper_[j] * y;
+      dashpot_response_[j] = y;
+    }
+    for (std::size_t j = n - 1; j-- > 0;) {
+      y = dashpot_response_[j] - upper_[j] * y;
+      dashpot_response_[j] = y;
+    }
+  }
 
   for (auto& level : levels_) level.assign(n, 0.0);
   u0_.assign(n, 0.0);
@@ -143,7 +161,14 @@ void PaperScheme::solve_level(long long m) {
   // The explicit half of the penalty, (k/2)|z_0 + g e^{-lambda t_m}|, and the
   // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
   const double k = law_.stiffness(), g = law_.gap();
-  const double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
+  double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
+  if (dashpot_sigma_ > 0.0) {
+    // Explicit status: in contact and pushing at t_m, dd/dt from u^m and u^{m-1}.
+    const double l = law_.viscosity();
+    const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
+    dashpot_active_ = d > 0.0 && k * d + l * d_rate > 0.0;
+    if (dashpot_active_) contact += l * (zo[0] * 0.5 / dt_ - lambda_ * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]));
+  }
 
   const double b1o = b1_off_, b0o = b0_off_;
   const double b1d = b1_diag_[1], b0d = b0_diag_[1];
@@ -165,6 +190,12 @@ void PaperScheme::solve_level(long long m) {
     y = zn[j] - up[j] * y;
     zn[j] = y;
   }
+  if (dashpot_active_) {
+    // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
+    const double* __restrict w = dashpot_response_.data();
+    const double s = dashpot_sigma_ * zn[0] / (1.0 + dashpot_sigma_ * w[0]);
+    for (std::size_t j = 0; j < n; ++j) zn[j] -= s * w[j];
+  }
 }
 
 void PaperScheme::advance() {
@@ -185,7 +216,7 @@ void PaperScheme::advance() {
   cur_ = next_;
   next_ = oldest;
   n_ = m;
-  if (load_mode_ != LoadMode::zero || b_ > 0.0) accumulate_budget(m);
+  if (load_mode_ != LoadMode::zero || b_ > 0.0 || dashpot_sigma_ > 0.0) accumulate_budget(m);
 }
 
 // The work and dissipation of level m, from testing (6.3)(iv) with
@@ -222,6 +253,10 @@ void PaperScheme::accumulate_budget(long long m) {
       left = right;
     }
     dd *= dt_ * b_ / mesh_.h();
+  }
+  if (dashpot_active_) {  // the obstacle's dashpot: dt l (du_0/dt)^2
+    const double rate = (sp * next_[0] - sm * prev_[0]) / (2.0 * dt_);
+    dd += dt_ * law_.viscosity() * rate * rate;
   }
   work_last_ = dw;
   dissipation_last_ = dd;

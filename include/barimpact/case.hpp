@@ -22,7 +22,8 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class ObstacleKind { none, elastic };
+enum class ObstacleKind { none, elastic, viscoelastic, rigid };
+enum class FarEnd { free, clamped };
 
 struct BarData {
   double length = 1.0;     ///< L
@@ -30,6 +31,7 @@ struct BarData {
   double stiffness = 1.0;  ///< a (Section 2)
   double viscosity = 0.0;  ///< b, Kelvin-Voigt
   int elements = 100;      ///< M, uniform P1 elements
+  FarEnd far_end = FarEnd::free;  ///< x = L: free (sigma = 0) or clamped (u = 0)
 };
 
 struct LoadData {
@@ -45,6 +47,7 @@ struct ObstacleData {
   ObstacleKind kind = ObstacleKind::elastic;
   double stiffness = 100.0;  ///< k, eq. (2.8)
   double gap = 0.0;          ///< g: the face is at u = -g
+  double viscosity = 0.0;    ///< l, viscoelastic: R = max(0, k d + l dd/dt) while d > 0
 };
 
 struct TimeData {
@@ -53,6 +56,10 @@ struct TimeData {
   std::string scheme = "paper";
   double alpha = 0.25;  ///< alpha of (6.3)
   double lambda = 0.0;  ///< lambda_shift: z = exp(-lambda t) u, (6.1)
+  double beta = 0.25;   ///< Newmark beta
+  double gamma = 0.5;   ///< Newmark gamma
+  double theta = 0.5;   ///< Moreau-Jean theta
+  double restitution = 0.0;  ///< e: Paoli-Schatzman, Moreau-Jean
 };
 
 struct OutputData {
@@ -93,5 +100,6 @@ struct Case {
 };
 
 [[nodiscard]] std::string_view to_string(ObstacleKind kind);
+[[nodiscard]] std::string_view to_string(FarEnd end);
 
 }  // namespace barimpact

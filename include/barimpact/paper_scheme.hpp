@@ -12,6 +12,13 @@
 // A gap g shifts the contact variable: z_0 + g exp(-lambda t) replaces z_0 in
 // the obstacle terms, its constant part treated as a load.
 //
+// Viscoelastic obstacle (l > 0): its dashpot, l (dz_0/dt + lambda z_0) in
+// z-variables, joins the implicit side, centred like D and alpha-averaged
+// like S, while the contact status is explicit (d^n > 0 and k d^n + l dd/dt^n
+// > 0): A + sigma e0 e0^T is solved by Sherman-Morrison with w = A^{-1} e0
+// computed once, so the matrix is still factored once.
+// Clamped far end: the last row of A becomes the identity, u_M = 0.
+//
 // Velocity and energies at t_n (docs/methods.md): V^n = (u^{n+1} - u^{n-1}) / (2 dt);
 // E_kin, E_strain are the means of the scheme's half-step energies at
 // n -/+ 1/2, E_obstacle = k ((U^n + g)^-)^2 / 2.
@@ -42,7 +49,7 @@ class PaperScheme final : public Scheme {
   [[nodiscard]] std::size_t nodes() const override { return mesh_.nodes(); }
   [[nodiscard]] double end_displacement() const override;
   [[nodiscard]] double end_velocity() const override;
-  [[nodiscard]] double reaction() const override { return law_.reaction(end_displacement()); }
+  [[nodiscard]] double reaction() const override { return law_.reaction(end_displacement(), end_velocity()); }
   void displacement(std::span<double> out) const override;
   void velocity(std::span<double> out) const override;
   [[nodiscard]] Energies energies() const override;
@@ -77,6 +84,9 @@ class PaperScheme final : public Scheme {
   std::array<double, 3> b1_diag_{}, b0_diag_{};
   std::vector<double> inv_;    // 1 / pivot of A's LU factorisation
   std::vector<double> upper_;  // a_off / pivot: the U factor's off-diagonal
+  std::vector<double> dashpot_response_;  // w = A^{-1} e0 (viscoelastic obstacle)
+  double dashpot_sigma_ = 0.0;            // l (alpha lambda + 1/(2 dt))
+  bool dashpot_active_ = false;           // the contact status used at the last level
 
   std::array<std::vector<double>, 3> levels_;
   double* prev_ = nullptr;  // z^{n-1}

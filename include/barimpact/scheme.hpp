@@ -7,6 +7,8 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <string>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -56,6 +58,21 @@ class Scheme {
 
 /// The names `time.scheme` accepts.
 [[nodiscard]] std::vector<std::string_view> scheme_names();
+
+/// Why a case does not fit its scheme: the `time` key to blame and the rule.
+struct SchemeMisfit {
+  std::string key;
+  std::string rule;
+};
+
+/// Checks that `c.time.scheme` can run `c` (obstacle kind, bar, step limit).
+/// The `characteristic` scheme sets `c.time.step = h/c` (when `step_given`
+/// it must already be that). Returns the first misfit, if any.
+[[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
+
+/// The largest stable step of the explicit schemes (central differences,
+/// lumped or consistent mass) for `c`'s mesh, bar and obstacle.
+[[nodiscard]] double stable_step(const Case& c, bool consistent_mass);
 
 /// The scheme `c.time.scheme` names, set up for `c`. Throws InputError.
 [[nodiscard]] std::unique_ptr<Scheme> make_scheme(const Case& c);
