@@ -34,6 +34,32 @@ Tridiagonal Tridiagonal::combine(double c1, const Tridiagonal& a, double c2, con
   return r;
 }
 
+FactoredTridiagonal::FactoredTridiagonal(const Tridiagonal& a, bool fix_last) : off_(a.off) {
+  const std::size_t n = a.size();
+  inv_.assign(n, 0.0);
+  lower_.assign(n, 0.0);
+  double pivot = a.diag[0];
+  for (std::size_t j = 0; j < n; ++j) {
+    if (j > 0) {
+      lower_[j] = off_[j - 1] * inv_[j - 1];
+      pivot = a.diag[j] - off_[j - 1] * lower_[j];
+    }
+    inv_[j] = 1.0 / pivot;
+  }
+  if (fix_last) {
+    inv_[n - 1] = 0.0;
+    lower_[n - 1] = 0.0;
+  }
+}
+
+void FactoredTridiagonal::solve(std::span<double> x) const {
+  const std::size_t n = inv_.size();
+  // L y = x (unit lower with entries lower_), then U z = y with U = D + off.
+  for (std::size_t j = 1; j < n; ++j) x[j] -= lower_[j] * x[j - 1];
+  x[n - 1] *= inv_[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) x[j] = (x[j] - off_[j] * x[j + 1]) * inv_[j];
+}
+
 Mesh::Mesh(double length, int elements)
     : length_(length), elements_(elements), h_(length / static_cast<double>(elements)) {}
 

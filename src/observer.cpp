@@ -84,10 +84,12 @@ bool ContactMonitor::observe(const Scheme& s) {
   const double t = s.time();
   const double d = s.end_displacement() + law_.gap();  // < 0 in contact
   const double R = s.reaction();
-  const bool contact = law_.kind() != ObstacleKind::none && d < 0.0;
+  // On the obstacle: penetrating (penalty), or held by a reaction (rigid: U + g = 0).
+  const bool contact = law_.kind() != ObstacleKind::none && (d < 0.0 || R > 0.0);
   // Linear interpolation of the crossing of U + g = 0 between two steps.
   auto crossing = [&] {
-    return have_previous_ ? previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d) : t;
+    if (!have_previous_ || previous_d_ == d) return t;  // a rigid end sits at d = 0
+    return previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d);
   };
   if (contact && !in_contact_) {
     intervals_.push_back({crossing(), t, false, 0.0, 0.0});

@@ -6,6 +6,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "barimpact/central_difference_scheme.hpp"
+#include "barimpact/characteristic_scheme.hpp"
+#include "barimpact/mass_redistribution_scheme.hpp"
+#include "barimpact/moreau_jean_scheme.hpp"
+#include "barimpact/newmark_scheme.hpp"
+#include "barimpact/paoli_schatzman_scheme.hpp"
 #include "barimpact/paper_scheme.hpp"
 
 namespace barimpact {
@@ -101,8 +107,15 @@ std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
 }
 
 std::unique_ptr<Scheme> make_scheme(const Case& c) {
-  if (c.time.scheme == "paper") return std::make_unique<PaperScheme>(c);
-  throw InputError(fmt::format("time.scheme: \"{}\" is not available yet", c.time.scheme));
+  const auto& name = c.time.scheme;
+  if (name == "paper") return std::make_unique<PaperScheme>(c);
+  if (name == "newmark") return std::make_unique<NewmarkScheme>(c);
+  if (name == "central-difference") return std::make_unique<CentralDifferenceScheme>(c);
+  if (name == "characteristic") return std::make_unique<CharacteristicScheme>(c);
+  if (name == "paoli-schatzman") return std::make_unique<PaoliSchatzmanScheme>(c);
+  if (name == "moreau-jean") return std::make_unique<MoreauJeanScheme>(c);
+  if (name == "mass-redistribution") return std::make_unique<MassRedistributionScheme>(c);
+  throw InputError(fmt::format("time.scheme: unknown scheme \"{}\"", name));
 }
 
 }  // namespace barimpact

@@ -28,6 +28,23 @@ struct Tridiagonal {
   [[nodiscard]] static Tridiagonal combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b);
 };
 
+/// The LU factors of a symmetric positive definite tridiagonal matrix,
+/// computed once; each solve is two sweeps. With `fix_last` the last row is
+/// replaced by u_M = 0 (a clamped end).
+class FactoredTridiagonal {
+ public:
+  FactoredTridiagonal() = default;
+  FactoredTridiagonal(const Tridiagonal& a, bool fix_last);
+  /// x <- A^{-1} x, in place.
+  void solve(std::span<double> x) const;
+  [[nodiscard]] std::size_t size() const { return inv_.size(); }
+
+ private:
+  std::vector<double> inv_;    // 1 / pivot (0 on a fixed row)
+  std::vector<double> lower_;  // off / pivot of the row above
+  std::vector<double> off_;
+};
+
 class Mesh {
  public:
   /// M uniform elements on (0, L). Preconditions: L > 0, M >= 1.

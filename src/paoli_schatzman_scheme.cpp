@@ -1,0 +1,22 @@
+#include "barimpact/paoli_schatzman_scheme.hpp"
+
+namespace barimpact {
+
+PaoliSchatzmanScheme::PaoliSchatzmanScheme(const Case& c)
+    : ThreeLevelScheme(c, true), mass_factor_(mass_, clamped_), restitution_(c.time.restitution) {
+  response_.assign(mesh_.nodes(), 0.0);
+  response_[0] = 1.0;
+  mass_factor_.solve(response_);
+}
+
+double PaoliSchatzmanScheme::enforce_contact(const double* prev, const double* /*cur*/, double* next) {
+  if (law_.kind() != ObstacleKind::rigid) return 0.0;
+  const double e = restitution_, face = -law_.gap();
+  if ((next[0] + e * prev[0]) / (1.0 + e) >= face) return 0.0;
+  // next + mu w with w = M^{-1} e0: mu from (next_0 + mu w_0 + e prev_0) = (1 + e) face.
+  const double mu = ((1.0 + e) * face - e * prev[0] - next[0]) / response_[0];
+  for (std::size_t j = 0; j < response_.size(); ++j) next[j] += mu * response_[j];
+  return mu / (dt_ * dt_);
+}
+
+}  // namespace barimpact

@@ -1,0 +1,185 @@
+#include "barimpact/three_level_scheme.hpp"
+
+#include <cmath>
+
+namespace barimpact {
+
+ThreeLevelScheme::ThreeLevelScheme(const Case& c, bool consistent_mass)
+    : mesh_(c.bar.length, c.bar.elements),
+      law_(c.obstacle),
+      dt_(c.time.step),
+      clamped_(c.bar.far_end == FarEnd::clamped),
+      mass_(mesh_.mass(c.bar.density)),
+      stiffness_a_(mesh_.stiffness(c.bar.stiffness)),
+      stiffness_b_(mesh_.stiffness(c.bar.viscosity)) {
+  const std::size_t n = mesh_.nodes();
+  lumped_.assign(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j)
+    lumped_[j] = mass_.diag[j] + (j > 0 ? mass_.off[j - 1] : 0.0) + (j + 1 < n ? mass_.off[j] : 0.0);
+  kinetic_mass_ = consistent_mass ? mass_ : Tridiagonal{lumped_, std::vector<double>(n - 1, 0.0)};
+  for (auto& l : levels_) l.assign(n, 0.0);
+  rhs_.assign(n, 0.0);
+  load_.assign(n, 0.0);
+  u0_.assign(n, 0.0);
+  v0_.assign(n, 0.0);
+  body_force_ = std::make_unique<Expression>(c.load.body_force);
+  load_zero_ = body_force_->is_zero();
+  load_steady_ = !body_force_->depends_on_t();
+  initial_displacement_ = std::make_unique<Expression>(c.initial.displacement);
+  initial_velocity_ = std::make_unique<Expression>(c.initial.velocity);
+}
+
+void ThreeLevelScheme::load_at(long long n) {
+  if (load_zero_ || (load_steady_ && n > 0)) return;  // zero, or computed at n = 0
+  mesh_.load(*body_force_, static_cast<double>(n) * dt_, load_);
+}
+
+void ThreeLevelScheme::start() {
+  const std::size_t n = mesh_.nodes();
+  mesh_.interpolate(*initial_displacement_, u0_);
+  mesh_.interpolate(*initial_velocity_, v0_);
+  prev_ = levels_[2].data();
+  cur_ = levels_[0].data();
+  next_ = levels_[1].data();
+  n_ = 0;
+  work_half_ = dissipation_half_ = work_last_ = dissipation_last_ = 0.0;
+  // u^1 = u^0 + dt v^0 + dt^2/2 a^0, a^0 = M^{-1}(F^0 - K_a u^0 - K_b v^0 + R^0 e0):
+  // second order, and exact for a rigid motion.
+  load_at(0);
+  stiffness_a_.multiply(u0_, rhs_);
+  std::vector<double> viscous(n, 0.0);
+  stiffness_b_.multiply(v0_, viscous);
+  for (std::size_t j = 0; j < n; ++j) rhs_[j] = load_[j] - rhs_[j] - viscous[j];
+  rhs_[0] += law_.reaction(u0_[0], v0_[0]);
+  if (clamped_) rhs_[n - 1] = 0.0;
+  apply_inverse_mass(rhs_);
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j] = prev_[j] = u0_[j];
+    next_[j] = u0_[j] + dt_ * v0_[j] + 0.5 * dt_ * dt_ * rhs_[j];
+  }
+  if (clamped_) next_[n - 1] = 0.0;
+  // A rigid obstacle holds from the first step. The start is a Taylor step,
+  // dt^2/2 a^0, so the force behind a correction is twice that of a full step.
+  reaction_ = law_.reaction(u0_[0], v0_[0]) + 2.0 * enforce_contact(prev_, cur_, next_);
+}
+
+void ThreeLevelScheme::advance() {
+  const std::size_t n = mesh_.nodes();
+  const long long m = n_ + 1;  // the equation at level m gives u^{m+1}
+  const double* um = cur_;     // u^{m-1}
+  const double* u = next_;     // u^m
+  double* up = prev_;          // becomes u^{m+1}
+  load_at(m);
+  // r = F^m - K_a u^m - K_b (u^m - u^{m-1}) / dt, row by row.
+  const auto& ka = stiffness_a_;
+  const auto& kb = stiffness_b_;
+  const double inv_dt = 1.0 / dt_;
+  for (std::size_t j = 0; j < n; ++j) {
+    double s = ka.diag[j] * u[j];
+    double d = kb.diag[j] * (u[j] - um[j]);
+    if (j > 0) {
+      s += ka.off[j - 1] * u[j - 1];
+      d += kb.off[j - 1] * (u[j - 1] - um[j - 1]);
+    }
+    if (j + 1 < n) {
+      s += ka.off[j] * u[j + 1];
+      d += kb.off[j] * (u[j + 1] - um[j + 1]);
+    }
+    rhs_[j] = load_[j] - s - d * inv_dt;
+  }
+  // The penalty force at t_m, its rate by a backward difference (explicit).
+  const double penalty = law_.reaction(u[0], (u[0] - um[0]) * inv_dt);
+  rhs_[0] += penalty;
+  if (clamped_) rhs_[n - 1] = 0.0;
+  apply_inverse_mass(rhs_);
+  const double dt2 = dt_ * dt_;
+  for (std::size_t j = 0; j < n; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * rhs_[j];
+  const double impulse_force = enforce_contact(um, u, up);
+  prev_ = cur_;
+  cur_ = next_;
+  next_ = up;
+  n_ = m;
+  reaction_ = penalty + impulse_force;
+
+  // Budget of level m: dW = F^m . (u^{m+1} - u^{m-1}) / 2, dD = viscous force . same.
+  double dw = 0.0, dd = 0.0;
+  if (!load_zero_)
+    for (std::size_t j = 0; j < n; ++j) dw += load_[j] * 0.5 * (next_[j] - prev_[j]);
+  if (stiffness_b_.diag[0] > 0.0) {
+    for (std::size_t j = 0; j < n; ++j) {
+      double d = kb.diag[j] * (cur_[j] - prev_[j]);
+      if (j > 0) d += kb.off[j - 1] * (cur_[j - 1] - prev_[j - 1]);
+      if (j + 1 < n) d += kb.off[j] * (cur_[j + 1] - prev_[j + 1]);
+      dd += d * inv_dt * 0.5 * (next_[j] - prev_[j]);
+    }
+  }
+  if (law_.viscosity() > 0.0 && penalty > 0.0) {  // the obstacle's dashpot
+    const double rate = (cur_[0] - prev_[0]) * inv_dt;
+    dd += law_.viscosity() * rate * 0.5 * (next_[0] - prev_[0]);
+  }
+  work_last_ = dw;
+  dissipation_last_ = dd;
+  work_half_ += dw;
+  dissipation_half_ += dd;
+}
+
+double ThreeLevelScheme::end_velocity() const {
+  if (n_ == 0) return v0_[0];
+  return (next_[0] - prev_[0]) / (2.0 * dt_);
+}
+
+void ThreeLevelScheme::displacement(std::span<double> out) const {
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = cur_[j];
+}
+
+void ThreeLevelScheme::velocity(std::span<double> out) const {
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = n_ == 0 ? v0_[j] : (next_[j] - prev_[j]) / (2.0 * dt_);
+}
+
+void ThreeLevelScheme::half_step_energy(const double* a, const double* b, double& kinetic, double& strain) const {
+  const std::size_t n = mesh_.nodes();
+  double wm = 0.0, ab = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double w = (b[j] - a[j]) / dt_;
+    double mw = kinetic_mass_.diag[j] * w;
+    double kb = stiffness_a_.diag[j] * b[j];
+    if (j > 0) {
+      mw += kinetic_mass_.off[j - 1] * (b[j - 1] - a[j - 1]) / dt_;
+      kb += stiffness_a_.off[j - 1] * b[j - 1];
+    }
+    if (j + 1 < n) {
+      mw += kinetic_mass_.off[j] * (b[j + 1] - a[j + 1]) / dt_;
+      kb += stiffness_a_.off[j] * b[j + 1];
+    }
+    wm += w * mw;
+    ab += a[j] * kb;
+  }
+  kinetic = 0.5 * wm;
+  strain = 0.5 * ab;
+}
+
+Energies ThreeLevelScheme::energies() const {
+  Energies e;
+  e.obstacle = law_.energy(cur_[0]);
+  if (n_ == 0) {
+    e.kinetic = 0.5 * kinetic_mass_.quadratic_form(v0_);
+    e.strain = 0.5 * stiffness_a_.quadratic_form(u0_);
+    return e;
+  }
+  double k1 = 0, s1 = 0, k2 = 0, s2 = 0;
+  half_step_energy(prev_, cur_, k1, s1);
+  half_step_energy(cur_, next_, k2, s2);
+  e.kinetic = 0.5 * (k1 + k2);
+  e.strain = 0.5 * (s1 + s2);
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  return e;
+}
+
+bool ThreeLevelScheme::finite() const {
+  const std::size_t last = mesh_.nodes() - 1;
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) &&
+         std::isfinite(next_[last]) && std::isfinite(work_half_) && std::isfinite(dissipation_half_);
+}
+
+}  // namespace barimpact
