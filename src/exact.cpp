@@ -302,3 +302,67 @@ std::unique_ptr<Solution> for_case(const Case& c) {
 }
 
 }  // namespace barimpact::exact
+
+namespace barimpact::exact {
+
+namespace {
+
+class TabulatedSolution final : public Scheme {
+ public:
+  TabulatedSolution(const Case& c, std::shared_ptr<const Solution> s)
+      : s_(std::move(s)),
+        dt_(c.time.step),
+        L_(c.bar.length),
+        a_(c.bar.stiffness),
+        rho_(c.bar.density),
+        k_(c.obstacle.kind == ObstacleKind::elastic ? c.obstacle.stiffness : 0.0),
+        nodes_(static_cast<std::size_t>(c.bar.elements) + 1) {}
+  void start() override { n_ = 0; }
+  void advance() override { ++n_; }
+  long long step() const override { return n_; }
+  double time() const override { return static_cast<double>(n_) * dt_; }
+  std::size_t nodes() const override { return nodes_; }
+  double end_displacement() const override { return s_->U(time()); }
+  double end_velocity() const override { return s_->V(time()); }
+  double reaction() const override { return s_->R(time()); }
+  void displacement(std::span<double> out) const override { fill(out, [&](double x) { return s_->u(x, time()); }); }
+  void velocity(std::span<double> out) const override { fill(out, [&](double x) { return s_->v(x, time()); }); }
+  Energies energies() const override {
+    Energies e;
+    const double U = end_displacement();
+    e.obstacle = U < 0 ? 0.5 * k_ * U * U : 0.0;
+    if (!s_->has_field()) {
+      e.kinetic = e.strain = std::numeric_limits<double>::quiet_NaN();
+      return e;
+    }
+    constexpr int cells = 20000;
+    const double h = L_ / cells, t = time();
+    for (int i = 0; i < cells; ++i) {
+      const double x = (i + 0.5) * h, v = s_->v(x, t), eps = s_->strain(x, t);
+      e.kinetic += 0.5 * rho_ * v * v * h;
+      e.strain += 0.5 * a_ * eps * eps * h;
+    }
+    return e;
+  }
+  bool finite() const override { return true; }
+
+ private:
+  template <class F>
+  void fill(std::span<double> out, F f) const {
+    for (std::size_t j = 0; j < out.size(); ++j)
+      out[j] = s_->has_field() ? f(L_ * static_cast<double>(j) / static_cast<double>(nodes_ - 1))
+                               : std::numeric_limits<double>::quiet_NaN();
+  }
+  std::shared_ptr<const Solution> s_;
+  double dt_, L_, a_, rho_, k_;
+  std::size_t nodes_;
+  long long n_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Scheme> as_scheme(const Case& c, std::shared_ptr<const Solution> solution) {
+  return std::make_unique<TabulatedSolution>(c, std::move(solution));
+}
+
+}  // namespace barimpact::exact

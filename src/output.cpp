@@ -108,7 +108,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"complete", s.complete},
       {"status", std::string(to_string(s.status))},
       {"message", s.message},
-      {"scheme", c.time.scheme},
+      {"scheme", s.method},
       {"steps", s.steps},
       {"steps_done", s.steps_done},
       {"step", c.time.step},
@@ -128,7 +128,7 @@ std::string summary_json(const Case& c, const Summary& s) {
 }
 
 std::string summary_text(const Case& c, const Summary& s) {
-  std::string out = fmt::format("{}: {} steps of dt = {} on {} elements, t = 0 .. {}{}\n", c.time.scheme, s.steps_done,
+  std::string out = fmt::format("{}: {} steps of dt = {} on {} elements, t = 0 .. {}{}\n", s.method, s.steps_done,
                                 c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
   if (s.contacts.empty()) out += "  no contact\n";
   constexpr std::size_t shown = 8;
@@ -145,9 +145,12 @@ std::string summary_text(const Case& c, const Summary& s) {
   if (s.contacts.size() > shown)
     out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);
   out += fmt::format("  max penetration {:.4g}, max reaction {:.4g}\n", s.max_penetration, s.max_reaction);
-  out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",
-                     s.energy_initial, s.energy_final, s.energy_error_max,
-                     s.energy_initial != 0.0 ? 100.0 * s.energy_error_max / std::abs(s.energy_initial) : 0.0);
+  if (std::isfinite(s.energy_initial))
+    out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",
+                       s.energy_initial, s.energy_final, s.energy_error_max,
+                       s.energy_initial != 0.0 ? 100.0 * s.energy_error_max / std::abs(s.energy_initial) : 0.0);
+  else
+    out += "  energy: not known for this solution\n";
   out += fmt::format("  run time {:.3f} s\n", s.run_seconds);
   if (!s.complete) out += fmt::format("  {}\n", s.message);
   return out;

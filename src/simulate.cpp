@@ -3,7 +3,11 @@
 #include <fmt/format.h>
 
 #include <vector>
+#include <algorithm>
 #include <chrono>
+#include <memory>
+
+#include "barimpact/exact.hpp"
 #include <cmath>
 
 namespace barimpact {
@@ -43,13 +47,42 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
   return result;
 }
 
+namespace {
+
+RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOptions& options);
+
+}  // namespace
+
 RunResult run(const Case& c, const RunOptions& options) {
-  const auto started = std::chrono::steady_clock::now();
   auto scheme = make_scheme(c);
+  return run_scheme(c, *scheme, c.step_count(), options);
+}
+
+RunResult run_exact(const Case& c) {
+  std::shared_ptr<const exact::Solution> solution = exact::for_case(c);
+  if (!solution)
+    throw InputError(
+        "exact: this case admits no exact solution barimpact knows (uniform elastic bar, u0 = 0 and uniform v0 < 0 "
+        "against a rigid obstacle with gap, or with a constant load, or against an elastic obstacle; or the clamped "
+        "bar released from u0 = kappa (L - x) onto a rigid obstacle)");
+  auto scheme = exact::as_scheme(c, solution);
+  const double known = solution->valid_until();
+  long long steps = c.step_count();
+  if (std::isfinite(known)) steps = std::min(steps, static_cast<long long>(std::floor(known / c.time.step)));
+  RunResult r = run_scheme(c, *scheme, steps, {});
+  r.summary.method = "exact";
+  r.summary.message = solution->name();
+  return r;
+}
+
+namespace {
+
+RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options) {
+  const auto started = std::chrono::steady_clock::now();
+  Scheme* scheme = &scheme_ref;
   HistoryRecorder history(c.output.every);
   FieldRecorder fields(c, c.output.fields_at);
   ContactMonitor contact(c.obstacle);
-  const long long steps = c.step_count();
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
   std::vector<Observer*> observers{&history, &fields, &contact};
@@ -58,6 +91,7 @@ RunResult run(const Case& c, const RunOptions& options) {
 
   RunResult r;
   Summary& s = r.summary;
+  s.method = c.time.scheme;
   s.status = loop.status;
   s.complete = loop.status == RunStatus::complete;
   s.message = loop.message;
@@ -79,6 +113,8 @@ RunResult run(const Case& c, const RunOptions& options) {
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
+
+}  // namespace
 
 std::string_view to_string(RunStatus status) {
   switch (status) {

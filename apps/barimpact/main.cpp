@@ -1,6 +1,7 @@
 // barimpact: the command line, thin over the library.
 //
 //   barimpact run CASE.toml --out DIR [--set section.key=value]...
+//   barimpact exact CASE.toml --out DIR [--set ...]   (the exact solution, same files)
 //   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
 //
 // Exit status: 0 done, 2 bad input (one line on stderr, nothing written),
@@ -27,7 +28,8 @@ namespace {
 constexpr int exit_bad_input = 2;
 constexpr int exit_non_finite = 3;
 
-int run_command(const std::string& case_path, const std::string& out_dir, const std::vector<std::string>& sets) {
+int run_command(const std::string& case_path, const std::string& out_dir, const std::vector<std::string>& sets,
+                bool exact) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
   const auto c = barimpact::Case::from_file(case_path, overrides);
@@ -47,9 +49,10 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
       return true;
     };
   }
-  const auto result = barimpact::run(c, options);
+  const auto result = exact ? barimpact::run_exact(c) : barimpact::run(c, options);
   if (reported) fmt::print(stderr, "\r\033[K");
   dir.commit(c, result);
+  if (exact) fmt::print("exact solution: {}\n", result.summary.message);
   fmt::print("{}", barimpact::summary_text(c, result.summary));
   fmt::print("  results in {}\n", dir.target().string());
   if (!result.summary.complete) {
@@ -94,10 +97,17 @@ int main(int argc, char** argv) {
       ->allow_extra_args(false);
 
   if (argc > 1 && argv[1][0] != '-' && std::string_view(argv[1]) != "run" &&
-      std::string_view(argv[1]) != "plot") {
-    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run, plot; see barimpact --help)\n", argv[1]);
+      std::string_view(argv[1]) != "plot" && std::string_view(argv[1]) != "exact") {
+    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run, exact, plot; see barimpact --help)\n", argv[1]);
     return exit_bad_input;
   }
+  std::string exact_case, exact_out;
+  std::vector<std::string> exact_sets;
+  auto* exact = app.add_subcommand("exact", "Tabulate the exact solution the case admits (same files as run)");
+  exact->add_option("case", exact_case, "Case file (TOML)")->required();
+  exact->add_option("--out", exact_out, "Output directory (replaced when complete)")->required();
+  exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
+
   std::string plot_dir, plot_out;
   auto* plot = app.add_subcommand("plot", "Draw the figures of a run directory (PNG and SVG) with matplotlib");
   plot->add_option("dir", plot_dir, "A directory written by barimpact run")->required();
@@ -117,7 +127,8 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (run->parsed()) return run_command(case_path, out_dir, sets);
+    if (run->parsed()) return run_command(case_path, out_dir, sets, false);
+    if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true);
     if (plot->parsed()) return plot_command(plot_dir, plot_out);
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());

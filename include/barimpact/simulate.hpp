@@ -26,6 +26,7 @@ struct LoopResult {
 LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers);
 
 struct Summary {
+  std::string method;  ///< the scheme's name, or "exact"
   bool complete = true;
   RunStatus status = RunStatus::complete;
   std::string message;
@@ -58,6 +59,12 @@ struct RunOptions {
 /// Runs `c` with its scheme and the history, field and contact observers.
 /// Throws InputError when the case does not fit its scheme.
 [[nodiscard]] RunResult run(const Case& c, const RunOptions& options = {});
+
+/// Tabulates the exact solution the case admits (exact.hpp) on its time
+/// grid, through the same observers: same history columns as `run`, rows up
+/// to the end or to where the solution is known. Throws InputError when the
+/// case admits none.
+[[nodiscard]] RunResult run_exact(const Case& c);
 
 [[nodiscard]] std::string_view to_string(RunStatus status);
 
