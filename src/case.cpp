@@ -296,8 +296,7 @@ Case read_case(const Reader& r) {
   else if (kind == "rigid")
     c.obstacle.kind = ObstacleKind::rigid;
   else
-    r.fail("obstacle", "kind",
-           fmt::format("must be one of none, elastic, viscoelastic, rigid (got \"{}\")", kind));
+    r.fail("obstacle", "kind", fmt::format("must be one of none, elastic, viscoelastic, rigid (got \"{}\")", kind));
   c.obstacle.stiffness = r.number("obstacle", "stiffness", c.obstacle.stiffness);
   c.obstacle.gap = r.number("obstacle", "gap", c.obstacle.gap);
   c.obstacle.viscosity = r.number("obstacle", "viscosity", c.obstacle.viscosity);
@@ -416,7 +415,9 @@ std::string_view to_string(ObstacleKind kind) {
   return "?";
 }
 
-std::string_view to_string(FarEnd end) { return end == FarEnd::free ? "free" : "clamped"; }
+std::string_view to_string(FarEnd end) {
+  return end == FarEnd::free ? "free" : "clamped";
+}
 
 std::string Case::to_toml() const {
   toml::array fields;
@@ -430,10 +431,10 @@ std::string Case::to_toml() const {
                           {"far_end", std::string(to_string(bar.far_end))}}},
       {"load", toml::table{{"body_force", load.body_force}}},
       {"initial", toml::table{{"displacement", initial.displacement}, {"velocity", initial.velocity}}},
-      {"obstacle",
-       toml::table{
-           {"kind", std::string(to_string(obstacle.kind))}, {"stiffness", obstacle.stiffness}, {"gap", obstacle.gap},
-                                {"viscosity", obstacle.viscosity}}},
+      {"obstacle", toml::table{{"kind", std::string(to_string(obstacle.kind))},
+                               {"stiffness", obstacle.stiffness},
+                               {"gap", obstacle.gap},
+                               {"viscosity", obstacle.viscosity}}},
       {"time", toml::table{{"end", time.end},
                            {"step", time.step},
                            {"scheme", time.scheme},

@@ -79,9 +79,7 @@ class RigidImpact final : public Solution {
     return -gap_ + bar_.u(x, t - hit_);
   }
   double v(double x, double t) const override { return (V_ >= 0 || t <= hit_) ? V_ : bar_.v(x, t - hit_); }
-  double strain(double x, double t) const override {
-    return (V_ >= 0 || t <= hit_) ? 0.0 : bar_.strain(x, t - hit_);
-  }
+  double strain(double x, double t) const override { return (V_ >= 0 || t <= hit_) ? 0.0 : bar_.strain(x, t - hit_); }
   double energy() const override { return 0.5 * rho_ * L_ * V_ * V_; }
   const char* name() const override { return "rigid obstacle, uniform approach velocity, gap (exact a)"; }
 
@@ -199,9 +197,9 @@ class ClampedPeriodic final : public Solution {
     static const double slope[3] = {-0.5, -0.5, 0.5};
     return 0.5 + periodic_integral(slope, s);
   }
-  double F(double s) const {  // F(s) for s in units of L; F(-t) built from F'(-t)
+  double F(double s) const {                                // F(s) for s in units of L; F(-t) built from F'(-t)
     static const double slope_back[3] = {0.5, -0.5, -0.5};  // F'(-t), t in units
-    if (s >= 0) return 0.5 - 0.5 * s;                        // u0 = (1 - x)/2 on [0, 1]: F' = -1/2
+    if (s >= 0) return 0.5 - 0.5 * s;                       // u0 = (1 - x)/2 on [0, 1]: F' = -1/2
     return 0.5 - periodic_integral(slope_back, -s);
   }
   double Fp(double s) const {
@@ -254,8 +252,7 @@ class ClampedPeriodic final : public Solution {
 std::unique_ptr<Solution> rigid_impact(double length, double stiffness, double density, double V, double gap) {
   return std::make_unique<RigidImpact>(length, stiffness, density, V, gap);
 }
-std::unique_ptr<Solution> rigid_impact_with_load(double length, double stiffness, double density, double V,
-                                                 double f) {
+std::unique_ptr<Solution> rigid_impact_with_load(double length, double stiffness, double density, double V, double f) {
   return std::make_unique<RigidImpactWithLoad>(length, stiffness, density, V, f);
 }
 std::unique_ptr<Solution> elastic_impact(double length, double stiffness, double density, double V, double k) {
@@ -325,8 +322,12 @@ class TabulatedSolution final : public Scheme {
   double end_displacement() const override { return s_->U(time()); }
   double end_velocity() const override { return s_->V(time()); }
   double reaction() const override { return s_->R(time()); }
-  void displacement(std::span<double> out) const override { fill(out, [&](double x) { return s_->u(x, time()); }); }
-  void velocity(std::span<double> out) const override { fill(out, [&](double x) { return s_->v(x, time()); }); }
+  void displacement(std::span<double> out) const override {
+    fill(out, [&](double x) { return s_->u(x, time()); });
+  }
+  void velocity(std::span<double> out) const override {
+    fill(out, [&](double x) { return s_->v(x, time()); });
+  }
   Energies energies() const override {
     Energies e;
     const double U = end_displacement();

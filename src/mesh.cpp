@@ -100,6 +100,12 @@ void Mesh::load(const Expression& f, double t, std::span<double> out) const {
   }
 }
 
+double Mesh::stiffness_form(double coefficient, std::span<const double> a, std::span<const double> b) const {
+  double s = 0.0;
+  for (std::size_t e = 0; e + 1 < a.size(); ++e) s += (a[e + 1] - a[e]) * (b[e + 1] - b[e]);
+  return coefficient / h_ * s;
+}
+
 void Mesh::interpolate(const Expression& g, std::span<double> out) const {
   for (std::size_t j = 0; j < nodes(); ++j) out[j] = g(x(j), 0.0);
 }

@@ -8,8 +8,8 @@ NewmarkScheme::NewmarkScheme(const Case& c)
     : OneStepScheme(c, Mesh(c.bar.length, c.bar.elements).mass(c.bar.density)),
       beta_(c.time.beta),
       gamma_(c.time.gamma) {
-  const Tridiagonal A = Tridiagonal::combine(
-      1.0, Tridiagonal::combine(1.0, mass_, gamma_ * dt_, stiffness_b_), beta_ * dt_ * dt_, stiffness_a_);
+  const Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, mass_, gamma_ * dt_, stiffness_b_),
+                                             beta_ * dt_ * dt_, stiffness_a_);
   factor_ = FactoredTridiagonal(A, clamped_);
   const std::size_t n = mesh_.nodes();
   response_.assign(n, 0.0);

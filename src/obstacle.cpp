@@ -3,7 +3,9 @@
 namespace barimpact {
 
 namespace {
-bool penalty(ObstacleKind k) { return k == ObstacleKind::elastic || k == ObstacleKind::viscoelastic; }
+bool penalty(ObstacleKind k) {
+  return k == ObstacleKind::elastic || k == ObstacleKind::viscoelastic;
+}
 }  // namespace
 
 ObstacleLaw::ObstacleLaw(const ObstacleData& data)

@@ -8,6 +8,8 @@ OneStepScheme::OneStepScheme(const Case& c, Tridiagonal kinetic_mass)
     : mesh_(c.bar.length, c.bar.elements),
       law_(c.obstacle),
       dt_(c.time.step),
+      a_(c.bar.stiffness),
+      b_(c.bar.viscosity),
       clamped_(c.bar.far_end == FarEnd::clamped),
       mass_(std::move(kinetic_mass)),
       stiffness_a_(mesh_.stiffness(c.bar.stiffness)),
@@ -46,7 +48,7 @@ void OneStepScheme::end_step(double extra_dissipation) {
     for (std::size_t j = 0; j < n; ++j) dw += (u_[j] - u_old_[j]) * 0.5 * (load_[j] + load_next_[j]);
   if (stiffness_b_.diag[0] > 0.0) {
     for (std::size_t j = 0; j < n; ++j) work_vector_[j] = 0.5 * (v_[j] + v_old_[j]);
-    dd += dt_ * stiffness_b_.quadratic_form(work_vector_);
+    dd += dt_ * mesh_.stiffness_form(b_, work_vector_, work_vector_);
   }
   work_ += dw;
   dissipation_ += dd;
@@ -55,13 +57,17 @@ void OneStepScheme::end_step(double extra_dissipation) {
   ++n_;
 }
 
-void OneStepScheme::displacement(std::span<double> out) const { std::copy(u_.begin(), u_.end(), out.begin()); }
-void OneStepScheme::velocity(std::span<double> out) const { std::copy(v_.begin(), v_.end(), out.begin()); }
+void OneStepScheme::displacement(std::span<double> out) const {
+  std::copy(u_.begin(), u_.end(), out.begin());
+}
+void OneStepScheme::velocity(std::span<double> out) const {
+  std::copy(v_.begin(), v_.end(), out.begin());
+}
 
 Energies OneStepScheme::energies() const {
   Energies e;
   e.kinetic = 0.5 * mass_.quadratic_form(v_);
-  e.strain = 0.5 * stiffness_a_.quadratic_form(u_);
+  e.strain = 0.5 * mesh_.stiffness_form(a_, u_, u_);
   e.obstacle = law_.energy(u_[0]);
   e.work = work_;
   e.dissipation = dissipation_;

@@ -314,7 +314,7 @@ Energies PaperScheme::energies() const {
   e.obstacle = law_.energy(end_displacement());
   if (n_ == 0) {
     e.kinetic = 0.5 * mass_.quadratic_form(v0_);
-    e.strain = 0.5 * stiffness_a_.quadratic_form(u0_);
+    e.strain = 0.5 * mesh_.stiffness_form(a_, u0_, u0_);
     return e;
   }
   double k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;

@@ -86,8 +86,8 @@ std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
                                               s.name, to_string(c.obstacle.kind), fmt::join(fit, ", "))};
   }
   if (!s.viscous_bar && c.bar.viscosity > 0)
-    return SchemeMisfit{"scheme", fmt::format("= \"{}\" needs an elastic bar (bar.viscosity = 0, got {})", s.name,
-                                              c.bar.viscosity)};
+    return SchemeMisfit{
+        "scheme", fmt::format("= \"{}\" needs an elastic bar (bar.viscosity = 0, got {})", s.name, c.bar.viscosity)};
   if (s.name == "characteristic") {
     const double h = c.bar.length / c.bar.elements;
     const double dt = h / std::sqrt(c.bar.stiffness / c.bar.density);

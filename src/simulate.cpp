@@ -2,13 +2,13 @@
 
 #include <fmt/format.h>
 
-#include <vector>
 #include <algorithm>
 #include <chrono>
 #include <memory>
+#include <vector>
 
-#include "barimpact/exact.hpp"
 #include <cmath>
+#include "barimpact/exact.hpp"
 
 namespace barimpact {
 

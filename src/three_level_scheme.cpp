@@ -8,6 +8,7 @@ ThreeLevelScheme::ThreeLevelScheme(const Case& c, bool consistent_mass)
     : mesh_(c.bar.length, c.bar.elements),
       law_(c.obstacle),
       dt_(c.time.step),
+      a_(c.bar.stiffness),
       clamped_(c.bar.far_end == FarEnd::clamped),
       mass_(mesh_.mass(c.bar.density)),
       stiffness_a_(mesh_.stiffness(c.bar.stiffness)),
@@ -138,24 +139,16 @@ void ThreeLevelScheme::velocity(std::span<double> out) const {
 
 void ThreeLevelScheme::half_step_energy(const double* a, const double* b, double& kinetic, double& strain) const {
   const std::size_t n = mesh_.nodes();
-  double wm = 0.0, ab = 0.0;
+  double wm = 0.0;
   for (std::size_t j = 0; j < n; ++j) {
     const double w = (b[j] - a[j]) / dt_;
     double mw = kinetic_mass_.diag[j] * w;
-    double kb = stiffness_a_.diag[j] * b[j];
-    if (j > 0) {
-      mw += kinetic_mass_.off[j - 1] * (b[j - 1] - a[j - 1]) / dt_;
-      kb += stiffness_a_.off[j - 1] * b[j - 1];
-    }
-    if (j + 1 < n) {
-      mw += kinetic_mass_.off[j] * (b[j + 1] - a[j + 1]) / dt_;
-      kb += stiffness_a_.off[j] * b[j + 1];
-    }
+    if (j > 0) mw += kinetic_mass_.off[j - 1] * (b[j - 1] - a[j - 1]) / dt_;
+    if (j + 1 < n) mw += kinetic_mass_.off[j] * (b[j + 1] - a[j + 1]) / dt_;
     wm += w * mw;
-    ab += a[j] * kb;
   }
   kinetic = 0.5 * wm;
-  strain = 0.5 * ab;
+  strain = 0.5 * mesh_.stiffness_form(a_, {a, n}, {b, n});
 }
 
 Energies ThreeLevelScheme::energies() const {
@@ -163,7 +156,7 @@ Energies ThreeLevelScheme::energies() const {
   e.obstacle = law_.energy(cur_[0]);
   if (n_ == 0) {
     e.kinetic = 0.5 * kinetic_mass_.quadratic_form(v0_);
-    e.strain = 0.5 * stiffness_a_.quadratic_form(u0_);
+    e.strain = 0.5 * mesh_.stiffness_form(a_, u0_, u0_);
     return e;
   }
   double k1 = 0, s1 = 0, k2 = 0, s2 = 0;
@@ -178,8 +171,8 @@ Energies ThreeLevelScheme::energies() const {
 
 bool ThreeLevelScheme::finite() const {
   const std::size_t last = mesh_.nodes() - 1;
-  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) &&
-         std::isfinite(next_[last]) && std::isfinite(work_half_) && std::isfinite(dissipation_half_);
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
+         std::isfinite(work_half_) && std::isfinite(dissipation_half_);
 }
 
 }  // namespace barimpact

@@ -12,8 +12,8 @@
 
 #include <unistd.h>
 
-#include <cstdio>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -96,9 +96,10 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  if (argc > 1 && argv[1][0] != '-' && std::string_view(argv[1]) != "run" &&
-      std::string_view(argv[1]) != "plot" && std::string_view(argv[1]) != "exact") {
-    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run, exact, plot; see barimpact --help)\n", argv[1]);
+  if (argc > 1 && argv[1][0] != '-' && std::string_view(argv[1]) != "run" && std::string_view(argv[1]) != "plot" &&
+      std::string_view(argv[1]) != "exact") {
+    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run, exact, plot; see barimpact --help)\n",
+               argv[1]);
     return exit_bad_input;
   }
   std::string exact_case, exact_out;

@@ -26,11 +26,11 @@ enum class ObstacleKind { none, elastic, viscoelastic, rigid };
 enum class FarEnd { free, clamped };
 
 struct BarData {
-  double length = 1.0;     ///< L
-  double density = 1.0;    ///< rho, mass per unit length
-  double stiffness = 1.0;  ///< a (Section 2)
-  double viscosity = 0.0;  ///< b, Kelvin-Voigt
-  int elements = 100;      ///< M, uniform P1 elements
+  double length = 1.0;            ///< L
+  double density = 1.0;           ///< rho, mass per unit length
+  double stiffness = 1.0;         ///< a (Section 2)
+  double viscosity = 0.0;         ///< b, Kelvin-Voigt
+  int elements = 100;             ///< M, uniform P1 elements
   FarEnd far_end = FarEnd::free;  ///< x = L: free (sigma = 0) or clamped (u = 0)
 };
 
@@ -54,11 +54,11 @@ struct TimeData {
   double end = 1.0;
   double step = 0.01;  ///< dt
   std::string scheme = "paper";
-  double alpha = 0.25;  ///< alpha of (6.3)
-  double lambda = 0.0;  ///< lambda_shift: z = exp(-lambda t) u, (6.1)
-  double beta = 0.25;   ///< Newmark beta
-  double gamma = 0.5;   ///< Newmark gamma
-  double theta = 0.5;   ///< Moreau-Jean theta
+  double alpha = 0.25;       ///< alpha of (6.3)
+  double lambda = 0.0;       ///< lambda_shift: z = exp(-lambda t) u, (6.1)
+  double beta = 0.25;        ///< Newmark beta
+  double gamma = 0.5;        ///< Newmark gamma
+  double theta = 0.5;        ///< Moreau-Jean theta
   double restitution = 0.0;  ///< e: Paoli-Schatzman, Moreau-Jean
 };
 

@@ -92,8 +92,7 @@ class Solution {
 /// v0 = 0, rigid obstacle at x = 0 (no gap). Period 3L/c: the end falls to
 /// the obstacle at speed kappa c, rests on it for L/c with R = a kappa, and
 /// comes back; energy a kappa^2 L / 2 (1/8 for L = a = rho = 1, kappa = 1/2).
-[[nodiscard]] std::unique_ptr<Solution> clamped_periodic(double length, double stiffness, double density,
-                                                         double kappa);
+[[nodiscard]] std::unique_ptr<Solution> clamped_periodic(double length, double stiffness, double density, double kappa);
 
 /// The exact solution the case admits, if any: (a), (b), (c) or (d) above,
 /// recognised from the case's data (expressions evaluated at the nodes).

@@ -29,7 +29,7 @@ class MassRedistributionScheme final : public OneStepScheme {
   bool solve(bool on_obstacle);
 
   double a_over_h_;
-  Tridiagonal reduced_;                        // 2/dt^2 M~ + K_a/2 on nodes 1..M
+  Tridiagonal reduced_;  // 2/dt^2 M~ + K_a/2 on nodes 1..M
   FactoredTridiagonal free_factor_, contact_factor_;
   std::vector<double> rhs_, reduced_rhs_, scratch_;
   bool on_obstacle_ = false;

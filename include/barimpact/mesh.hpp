@@ -64,6 +64,10 @@ class Mesh {
   /// F_i = int f(x, t) phi_i dx by 3-point Gauss per element: exact when f is
   /// a polynomial of degree <= 3 on each element.
   void load(const Expression& f, double t, std::span<double> out) const;
+  /// a^T K b for K = stiffness(coefficient), element by element:
+  /// sum_e (c/h)(a_{e+1} - a_e)(b_{e+1} - b_e). Free of the cancellation that
+  /// the assembled form suffers when u carries a large rigid motion.
+  [[nodiscard]] double stiffness_form(double coefficient, std::span<const double> a, std::span<const double> b) const;
   /// Nodal interpolant of g(x, 0).
   void interpolate(const Expression& g, std::span<double> out) const;
 

@@ -45,7 +45,7 @@ class OneStepScheme : public Scheme {
 
   Mesh mesh_;
   ObstacleLaw law_;
-  double dt_;
+  double dt_, a_, b_;
   bool clamped_;
   Tridiagonal mass_, stiffness_a_, stiffness_b_;
   std::vector<double> u_, v_, u_old_, v_old_, load_, load_next_, work_vector_;

@@ -82,8 +82,8 @@ class PaperScheme final : public Scheme {
   // (identical for every element) and the first, inner and last diagonal.
   double a_off_, b1_off_, b0_off_;
   std::array<double, 3> b1_diag_{}, b0_diag_{};
-  std::vector<double> inv_;    // 1 / pivot of A's LU factorisation
-  std::vector<double> upper_;  // a_off / pivot: the U factor's off-diagonal
+  std::vector<double> inv_;               // 1 / pivot of A's LU factorisation
+  std::vector<double> upper_;             // a_off / pivot: the U factor's off-diagonal
   std::vector<double> dashpot_response_;  // w = A^{-1} e0 (viscoelastic obstacle)
   double dashpot_sigma_ = 0.0;            // l (alpha lambda + 1/(2 dt))
   bool dashpot_active_ = false;           // the contact status used at the last level

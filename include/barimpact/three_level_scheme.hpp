@@ -52,11 +52,11 @@ class ThreeLevelScheme : public Scheme {
 
   Mesh mesh_;
   ObstacleLaw law_;
-  double dt_;
+  double dt_, a_;
   bool clamped_;
   Tridiagonal mass_, stiffness_a_, stiffness_b_;
-  std::vector<double> lumped_;  // row sums of M_h (used by the lumped variant)
-  Tridiagonal kinetic_mass_;    // the M of the scheme: M_h, or diag(lumped_)
+  std::vector<double> lumped_;   // row sums of M_h (used by the lumped variant)
+  Tridiagonal kinetic_mass_;     // the M of the scheme: M_h, or diag(lumped_)
   std::vector<double> u0_, v0_;  // the initial data at the nodes
 
  private:

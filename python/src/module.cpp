@@ -5,10 +5,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <toml++/toml.h>
 #include <exception>
 #include <filesystem>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "barimpact/case.hpp"
 #include "barimpact/exact.hpp"
@@ -33,7 +33,8 @@ toml::table table_from_dict(const py::dict& d) {
   for (auto [section, keys] : d) {
     const auto name = py::str(section).cast<std::string>();
     if (!py::isinstance<py::dict>(keys))
-      throw InputError("dict: [" + name + "] must be a dict of keys (got " + py::str(keys.get_type().attr("__name__")).cast<std::string>() + ")");
+      throw InputError("dict: [" + name + "] must be a dict of keys (got " +
+                       py::str(keys.get_type().attr("__name__")).cast<std::string>() + ")");
     toml::table t;
     for (auto [key, value] : keys.cast<py::dict>()) {
       const auto k = py::str(key).cast<std::string>();
@@ -45,7 +46,8 @@ toml::table table_from_dict(const py::dict& d) {
         t.insert(k, value.cast<double>());
       } else if (py::isinstance<py::str>(value)) {
         t.insert(k, value.cast<std::string>());
-      } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) || py::isinstance<py::array>(value)) {
+      } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) ||
+                 py::isinstance<py::array>(value)) {
         toml::array a;
         for (auto item : value) {
           if (py::isinstance<py::int_>(item))
@@ -96,7 +98,8 @@ Case make_case(const py::object& source, const py::object& set) {
     return Case::from_string(text.str(), overrides, "dict", false);
   }
   const bool is_path = py::hasattr(source, "__fspath__");
-  const auto text = is_path ? py::str(source.attr("__fspath__")()).cast<std::string>() : py::str(source).cast<std::string>();
+  const auto text =
+      is_path ? py::str(source.attr("__fspath__")()).cast<std::string>() : py::str(source).cast<std::string>();
   // A path names a file; TOML text has a newline, a '[' or an '='.
   if (is_path || text.find_first_of("\n[=") == std::string::npos) return Case::from_file(text, overrides);
   return Case::from_string(text, overrides, "string");
@@ -129,11 +132,13 @@ PYBIND11_MODULE(_core, m) {
       });
 
   auto result = py::class_<PyResult>(m, "Result");
-  result.def_property_readonly_static("columns", [](py::object) {
-    py::tuple names(columns.size());
-    for (std::size_t i = 0; i < columns.size(); ++i) names[i] = py::str(columns[i]);
-    return names;
-  })
+  result
+      .def_property_readonly_static("columns",
+                                    [](py::object) {
+                                      py::tuple names(columns.size());
+                                      for (std::size_t i = 0; i < columns.size(); ++i) names[i] = py::str(columns[i]);
+                                      return names;
+                                    })
       .def_property_readonly(
           "history",
           [](py::object self) {
@@ -143,37 +148,48 @@ PYBIND11_MODULE(_core, m) {
                         {sizeof(HistoryRow), sizeof(double)}, self);
           },
           "All history rows, shape (rows, 9), columns as in history.csv (a view, no copy)")
-      .def_property_readonly("x", [](py::object self) {
-        const auto& f = self.cast<const PyResult&>().r.fields;
-        return view(f.x.data(), {static_cast<py::ssize_t>(f.x.size())}, {sizeof(double)}, self);
-      })
-      .def_property_readonly("field_t", [](py::object self) {
-        const auto& f = self.cast<const PyResult&>().r.fields;
-        return view(f.t.data(), {static_cast<py::ssize_t>(f.t.size())}, {sizeof(double)}, self);
-      })
+      .def_property_readonly("x",
+                             [](py::object self) {
+                               const auto& f = self.cast<const PyResult&>().r.fields;
+                               return view(f.x.data(), {static_cast<py::ssize_t>(f.x.size())}, {sizeof(double)}, self);
+                             })
+      .def_property_readonly("field_t",
+                             [](py::object self) {
+                               const auto& f = self.cast<const PyResult&>().r.fields;
+                               return view(f.t.data(), {static_cast<py::ssize_t>(f.t.size())}, {sizeof(double)}, self);
+                             })
       .def_property_readonly("summary_json", [](const PyResult& p) { return summary_json(p.c, p.r.summary); })
       .def_property_readonly("complete", [](const PyResult& p) { return p.r.summary.complete; })
       .def_property_readonly("case", [](const PyResult& p) { return p.c; })
-      .def("write", [](const PyResult& p, const std::string& dir) {
-        RunDirectory out(dir);
-        out.commit(p.c, p.r);
-      }, py::arg("dir"), "Write history.csv, fields.csv, case.toml, summary.json as `barimpact run` does");
+      .def(
+          "write",
+          [](const PyResult& p, const std::string& dir) {
+            RunDirectory out(dir);
+            out.commit(p.c, p.r);
+          },
+          py::arg("dir"), "Write history.csv, fields.csv, case.toml, summary.json as `barimpact run` does");
 
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    result.def_property_readonly(columns[i], [i](py::object self) {
-      const auto& h = self.cast<const PyResult&>().r.history;
-      return view(h.empty() ? nullptr : &h.front().t + i, {static_cast<py::ssize_t>(h.size())}, {sizeof(HistoryRow)},
-                  self);
-    }, "One history column (a strided view of `history`, no copy)");
+    result.def_property_readonly(
+        columns[i],
+        [i](py::object self) {
+          const auto& h = self.cast<const PyResult&>().r.history;
+          return view(h.empty() ? nullptr : &h.front().t + i, {static_cast<py::ssize_t>(h.size())},
+                      {sizeof(HistoryRow)}, self);
+        },
+        "One history column (a strided view of `history`, no copy)");
   }
   for (const auto& [name, member] :
        {std::pair{"u", &Fields::u}, std::pair{"v", &Fields::v}, std::pair{"sigma", &Fields::sigma}}) {
-    result.def_property_readonly(name, [member](py::object self) {
-      const auto& f = self.cast<const PyResult&>().r.fields;
-      const auto n = static_cast<py::ssize_t>(f.nodes());
-      return view((f.*member).data(), {static_cast<py::ssize_t>(f.count()), n},
-                  {n * static_cast<py::ssize_t>(sizeof(double)), sizeof(double)}, self);
-    }, "Field snapshots, shape (snapshots, nodes), a view");
+    result.def_property_readonly(
+        name,
+        [member](py::object self) {
+          const auto& f = self.cast<const PyResult&>().r.fields;
+          const auto n = static_cast<py::ssize_t>(f.nodes());
+          return view((f.*member).data(), {static_cast<py::ssize_t>(f.count()), n},
+                      {n * static_cast<py::ssize_t>(sizeof(double)), sizeof(double)}, self);
+        },
+        "Field snapshots, shape (snapshots, nodes), a view");
   }
 
   m.def(
@@ -185,9 +201,9 @@ PYBIND11_MODULE(_core, m) {
           options.progress = [&progress, &failure](const Progress& p) {
             py::gil_scoped_acquire gil;
             try {
-              const py::object answer = progress(py::dict(py::arg("step") = p.step, py::arg("steps") = p.steps,
-                                                          py::arg("t") = p.t, py::arg("t_end") = p.t_end,
-                                                          py::arg("elapsed") = p.elapsed_seconds));
+              const py::object answer =
+                  progress(py::dict(py::arg("step") = p.step, py::arg("steps") = p.steps, py::arg("t") = p.t,
+                                    py::arg("t_end") = p.t_end, py::arg("elapsed") = p.elapsed_seconds));
               return answer.is_none() || answer.cast<bool>();
             } catch (...) {
               failure = std::current_exception();
