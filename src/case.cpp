@@ -312,8 +312,6 @@ Case read_case(const Reader& r) {
   time.alpha = r.number("time", "alpha", time.alpha);
   time.lambda = r.number("time", "lambda", time.lambda);
   if (time.step <= 0) r.fail("time", "step", fmt::format("must be > 0 (got {})", time.step));
-  if (time.end < time.step)
-    r.fail("time", "end", fmt::format("must be >= time.step = {} (got {})", time.step, time.end));
   if (time.end / time.step > 1e10)
     r.fail("time", "step", fmt::format("gives {:.3g} steps to time.end; at most 1e10", time.end / time.step));
   if (time.alpha < 0 || time.alpha > 0.5)

@@ -136,10 +136,10 @@ std::string summary_text(const Case& c, const Summary& s) {
     const auto& ci = s.contacts[i];
     if (ci.closed)
       out += fmt::format(
-          "  contact {}: t = {:.4f} .. {:.4f}, max R = {:.4g}, leaves with mean velocity {:+.4g} (end {:+.4g})\n",
+          "  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {:+.4g} (end {:+.4g})\n",
           i + 1, ci.start, ci.end, ci.max_reaction, ci.rebound_velocity, ci.exit_velocity);
     else
-      out += fmt::format("  contact {}: t = {:.4f} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
+      out += fmt::format("  contact {}: t = {:.6g} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
                          ci.max_reaction);
   }
   if (s.contacts.size() > shown)

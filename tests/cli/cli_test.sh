@@ -95,5 +95,48 @@ grep -q "step" "$work/err" && ok || bad "non-finite message: $(cat "$work/err")"
 grep -q '"complete": false' "$work/blow/summary.json" && ok || bad "incomplete mark"
 [ "$(wc -l < "$work/blow/history.csv")" -gt 2 ] && ok || bad "rows kept"
 
+# Every scheme runs every example it fits; the others are refused with the
+# schemes that do fit named.
+rigid_schemes="central-difference paoli-schatzman moreau-jean mass-redistribution characteristic"
+penalty_schemes="paper newmark central-difference"
+for ex in "$examples"/*.toml; do
+  name=$(basename "$ex" .toml)
+  kind=$(grep -E '^kind' "$ex" | head -1 | sed 's/.*"\(.*\)".*/\1/')
+  small=0.002
+  [ "$name" = steel-bar ] && small=1e-6
+  for scheme in paper newmark central-difference paoli-schatzman moreau-jean mass-redistribution characteristic; do
+    args=(run "$ex" --out "$work/scheme-run" --set "time.scheme=$scheme" --set output.fields_at=[])
+    case $scheme in
+      characteristic) ;;
+      paper | newmark | moreau-jean | mass-redistribution) [ "$name" = steel-bar ] && args+=(--set "time.step=$small") ;;
+      *) args+=(--set "time.step=$small") ;;
+    esac
+    fits=no
+    if [ "$kind" = rigid ]; then
+      case " $rigid_schemes " in *" $scheme "*) fits=yes ;; esac
+    else
+      case " $penalty_schemes " in *" $scheme "*) fits=yes ;; esac
+    fi
+    "$bin" "${args[@]}" > /dev/null 2> "$work/err"
+    code=$?
+    if [ $fits = yes ]; then
+      [ $code -eq 0 ] && ok || bad "$scheme on $name: exit $code: $(cat "$work/err")"
+    else
+      [ $code -eq 2 ] && grep -q "schemes that do" "$work/err" && ok || bad "$scheme on $name not refused: $code $(cat "$work/err")"
+    fi
+  done
+done
+expect_refused "stable limit" run "$ex1" --out "$work/refused" --set time.scheme=central-difference
+expect_refused "conflicts with characteristic" run "$examples/clamped-periodic.toml" --out "$work/refused" --set time.step=0.02
+expect_refused "bar.viscosity = 0" run "$examples/clamped-periodic.toml" --out "$work/refused" --set bar.viscosity=0.1
+expect_refused "time.restitution" run "$ex1" --out "$work/refused" --set time.restitution=2
+expect_refused "bar.far_end" run "$ex1" --out "$work/refused" --set bar.far_end=pinned
+expect_refused "vanish at the clamped end" run "$ex1" --out "$work/refused" --set bar.far_end=clamped
+
+# barimpact exact: the same files for a case that admits an exact solution, exit 2 otherwise.
+"$bin" exact "$examples/clamped-periodic.toml" --out "$work/exact" > /dev/null && ok || bad "exact clamped"
+[ "$(head -1 "$work/exact/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc" ] && ok || bad "exact columns"
+expect_refused "admits no exact solution" exact "$examples/paper-example2.toml" --out "$work/refused"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
