@@ -16,9 +16,10 @@ import json
 import numpy as np
 
 from ._core import Case, InputError, Result
+from ._core import exact as _exact
 from ._core import run as _run
 
-__all__ = ["Case", "Result", "InputError", "run", "exact_example1", "plot", "load"]
+__all__ = ["Case", "Result", "InputError", "run", "exact", "exact_example1", "plot", "load"]
 
 
 def run(case, progress=None):
@@ -29,6 +30,15 @@ def run(case, progress=None):
     if not isinstance(case, Case):
         case = Case(case)
     return _run(case, progress)
+
+
+def exact(case):
+    """The exact solution the case admits, tabulated on its grid like a run
+    (`barimpact exact`): rigid impact with gap, with a constant load, elastic
+    obstacle, or the clamped periodic benchmark. InputError if none."""
+    if not isinstance(case, Case):
+        case = Case(case)
+    return _exact(case)
 
 
 Result.summary = property(lambda self: json.loads(self.summary_json), doc="summary.json as a dict")

@@ -224,6 +224,15 @@ PYBIND11_MODULE(_core, m) {
       "returning False stops the run.");
 
   m.def(
+      "exact",
+      [](const Case& c) {
+        auto result = std::make_unique<PyResult>(PyResult{c, {}});
+        result->r = run_exact(c);
+        return result;
+      },
+      py::arg("case"), "Tabulate the exact solution the case admits (as `barimpact exact`); InputError if none");
+
+  m.def(
       "_exact_example1",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
          py::array_t<double, py::array::c_style | py::array::forcecast> t, double length, double stiffness,

@@ -110,6 +110,18 @@ def test_the_gil_is_released_during_a_run():
     assert len(during) > 10
 
 
+def test_exact_tabulates_like_the_command_line(tmp_path):
+    import subprocess
+    case = EXAMPLES / "clamped-periodic.toml"
+    e = barimpact.exact(case)
+    subprocess.run([CLI, "exact", str(case), "--out", str(tmp_path / "ex")], check=True, capture_output=True)
+    assert np.array_equal(e.history, read_history(tmp_path / "ex"))
+    r = barimpact.run(case)
+    assert np.max(np.abs(r.U - e.U)) < 1e-12  # characteristic is exact here
+    with pytest.raises(barimpact.InputError, match="no exact solution"):
+        barimpact.exact(EXAMPLES / "paper-example2.toml")
+
+
 def test_exact_example1_broadcasts():
     x = np.linspace(0, 1, 5)
     e = barimpact.exact_example1(x[:, None], np.array([0.0, 0.5, 3.0])[None, :])
