@@ -60,6 +60,13 @@ void FactoredTridiagonal::solve(std::span<double> x) const {
   for (std::size_t j = n - 1; j-- > 0;) x[j] = (x[j] - off_[j] * x[j + 1]) * inv_[j];
 }
 
+std::vector<double> FactoredTridiagonal::response_to_end_force() const {
+  std::vector<double> w(inv_.size(), 0.0);
+  w[0] = 1.0;
+  solve(w);
+  return w;
+}
+
 Mesh::Mesh(double length, int elements)
     : length_(length), elements_(elements), h_(length / static_cast<double>(elements)) {}
 

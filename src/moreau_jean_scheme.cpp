@@ -13,9 +13,7 @@ MoreauJeanScheme::MoreauJeanScheme(const Case& c)
       Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, mass_, th, stiffness_b_), th * th, stiffness_a_);
   factor_ = FactoredTridiagonal(W, clamped_);
   const std::size_t n = mesh_.nodes();
-  response_.assign(n, 0.0);
-  response_[0] = 1.0;
-  factor_.solve(response_);
+  response_ = factor_.response_to_end_force();
   rhs_.assign(n, 0.0);
   scratch_.assign(n, 0.0);
 }

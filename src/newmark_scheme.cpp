@@ -12,9 +12,7 @@ NewmarkScheme::NewmarkScheme(const Case& c)
                                              beta_ * dt_ * dt_, stiffness_a_);
   factor_ = FactoredTridiagonal(A, clamped_);
   const std::size_t n = mesh_.nodes();
-  response_.assign(n, 0.0);
-  response_[0] = 1.0;
-  factor_.solve(response_);
+  response_ = factor_.response_to_end_force();
   acc_.assign(n, 0.0);
   rhs_.assign(n, 0.0);
 }

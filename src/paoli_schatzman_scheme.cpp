@@ -4,9 +4,7 @@ namespace barimpact {
 
 PaoliSchatzmanScheme::PaoliSchatzmanScheme(const Case& c)
     : ThreeLevelScheme(c, true), mass_factor_(mass_, clamped_), restitution_(c.time.restitution) {
-  response_.assign(mesh_.nodes(), 0.0);
-  response_[0] = 1.0;
-  mass_factor_.solve(response_);
+  response_ = mass_factor_.response_to_end_force();
 }
 
 double PaoliSchatzmanScheme::enforce_contact(const double* prev, const double* /*cur*/, double* next) {

@@ -37,6 +37,9 @@ class FactoredTridiagonal {
   FactoredTridiagonal(const Tridiagonal& a, bool fix_last);
   /// x <- A^{-1} x, in place.
   void solve(std::span<double> x) const;
+  /// A^{-1} e_0: how the whole bar answers a unit force at x = 0 (the
+  /// contact schemes' Sherman-Morrison and impulse directions).
+  [[nodiscard]] std::vector<double> response_to_end_force() const;
   [[nodiscard]] std::size_t size() const { return inv_.size(); }
 
  private:

@@ -52,6 +52,29 @@ TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_EQ(c.output.every, 1);
   EXPECT_TRUE(c.output.fields_at.empty());
   EXPECT_EQ(c.step_count(), 100);
+  EXPECT_EQ(c.bar.far_end, FarEnd::free);
+  EXPECT_EQ(c.obstacle.viscosity, 0.0);
+  EXPECT_EQ(c.time.beta, 0.25);
+  EXPECT_EQ(c.time.gamma, 0.5);
+  EXPECT_EQ(c.time.theta, 0.5);
+  EXPECT_EQ(c.time.restitution, 0.0);
+}
+
+TEST(Case, RefusesSchemesThatDoNotFitAndNamesThoseThatDo) {
+  EXPECT_REFUSED("[obstacle]\nkind = \"rigid\"", "time.scheme", "does not handle obstacle.kind = \"rigid\"",
+                 "central-difference, mass-redistribution, paoli-schatzman, moreau-jean, characteristic");
+  EXPECT_REFUSED("[time]\nscheme = \"moreau-jean\"", "time.scheme", "paper, newmark, central-difference");
+  EXPECT_REFUSED("[bar]\nviscosity = 0.1\n[obstacle]\nkind = \"rigid\"\n[time]\nscheme = \"mass-redistribution\"",
+                 "time.scheme", "elastic bar");
+  EXPECT_REFUSED("[time]\nscheme = \"central-difference\"\nstep = 0.01", "time.step", "stable limit");
+  EXPECT_REFUSED("[obstacle]\nkind = \"rigid\"\n[time]\nscheme = \"characteristic\"\nstep = 0.02", "time.step",
+                 "h/c = 0.01");
+}
+
+TEST(Case, CharacteristicSetsTheStep) {
+  const Case c = case_from("[bar]\nstiffness = 4\n[obstacle]\nkind = \"rigid\"\n[time]\nscheme = \"characteristic\"");
+  EXPECT_DOUBLE_EQ(c.time.step, 0.005);  // h / c = 0.01 / 2
+  EXPECT_EQ(c.step_count(), 200);
 }
 
 TEST(Case, StepCountIsTheFirstStepTimeAtOrAfterTheEnd) {
@@ -134,9 +157,16 @@ TEST(Case, RefusesValuesOutsideTheirRange) {
   EXPECT_REFUSED("[time]\nlambda = -1", "time.lambda", ">= 0");
   EXPECT_REFUSED("[output]\nevery = 0", "output.every", ">= 1");
   EXPECT_REFUSED("[output]\nfields_at = [2.0]", "output.fields_at", "[0, 1]");
-  EXPECT_REFUSED("[obstacle]\nkind = \"glass\"", "obstacle.kind", "none, elastic");
+  EXPECT_REFUSED("[obstacle]\nkind = \"glass\"", "obstacle.kind", "none, elastic, viscoelastic, rigid");
   EXPECT_REFUSED("[time]\nscheme = \"euler\"", "time.scheme", "paper");
   EXPECT_REFUSED("[bar]\nlength = nan", "bar.length", "finite");
+  EXPECT_REFUSED("[bar]\nfar_end = \"pinned\"", "bar.far_end", "free, clamped");
+  EXPECT_REFUSED("[obstacle]\nviscosity = -1", "obstacle.viscosity", ">= 0");
+  EXPECT_REFUSED("[time]\nbeta = 0.6", "time.beta", "[0, 1/2]");
+  EXPECT_REFUSED("[time]\ngamma = 0.4", "time.gamma", "[1/2, 1]");
+  EXPECT_REFUSED("[time]\ntheta = 0.3", "time.theta", "[1/2, 1]");
+  EXPECT_REFUSED("[time]\nrestitution = 1.5", "time.restitution", "[0, 1]");
+  EXPECT_REFUSED("[bar]\nfar_end = \"clamped\"\n[initial]\nvelocity = \"-1\"", "initial.velocity", "clamped end");
 }
 
 TEST(Case, RefusesExpressionsThatDoNotParseOrAreNotFinite) {
