@@ -179,23 +179,27 @@ TEST(MoreauJean, PenetratesOnlyByTheVelocityStep) {
   EXPECT_GT(-lowest, 0.0);
 }
 
-TEST(EnergyBudget, EverySchemeConservesItWithoutContactToRoundOff) {
+TEST(EnergyBudget, EverySchemeConservesItWithoutContactToRoundOffOver10000Steps) {
   // A free-free bar vibrating about rest (no rigid drift to cancel) under a
-  // time-dependent load: the budget closes to round-off (measured <= 7e-12).
+  // time-dependent load, 10^4 steps: the budget closes to round-off.
   for (auto [scheme, dt] :
        {std::pair{"paper", 0.01}, std::pair{"newmark", 0.01}, std::pair{"central-difference", 0.005},
         std::pair{"paoli-schatzman", 0.005}, std::pair{"moreau-jean", 0.01}, std::pair{"mass-redistribution", 0.01}}) {
     const auto r =
         run(example("paper-example1.toml",
                     {std::string("time.scheme=\"") + scheme + "\"", "obstacle.kind=none", "time.step=" + num(dt),
-                     "time.end=20", "output.fields_at=[]", "initial.displacement=\"0.1*sin(3*x)\"",
+                     "time.end=" + num(dt * 10000), "output.fields_at=[]", "initial.displacement=\"0.1*sin(3*x)\"",
                      "initial.velocity=\"x - 0.5\"", "load.body_force=\"cos(3*x)*sin(t)\""}));
     double worst = 0, size = 0;
     for (std::size_t i = 1; i < r.history.size(); ++i) {
       worst = std::max(worst, std::abs(total_energy(r.history[i]) - total_energy(r.history[1])));
       size = std::max(size, r.history[i].E_kin + r.history[i].E_strain);
     }
-    EXPECT_LT(worst, 1e-10 * size) << scheme;
+    // The paper's three-level displacement form (A z^{n+1} = B1 z^n + B0 z^{n-1}
+    // with B ~ 2M/dt^2) loses digits to cancellation every step: round-off
+    // grows linearly, measured 1.1e-10 at 10^4 steps; the others <= 1e-11.
+    const double tolerance = std::string(scheme) == "paper" ? 5e-10 : 1e-10;
+    EXPECT_LT(worst, tolerance * size) << scheme << " relative drift " << worst / size;
   }
 }
 
