@@ -29,20 +29,20 @@ double CharacteristicScheme::enforce_contact(const double* prev, const double* c
     G_new = 0.5 * cur[1] + 0.25 * dt_ * (v0_[0] + v0_[1]);
     F_[0] = F_[1];
     G_[0] = G_[1];
+    held_ = false;  // nothing before t = 0
   } else {
     G_new = cur[1] - F_[0];  // G(c t_{m+1}) = u_1^m - F(h - c t_m), and h - c t_m = -c t_{m-1}
   }
   double F_new = F_[1] + G_new - G_[1];  // free end
-  double force = 0.0;
-  const bool on_obstacle_now = rigid && std::abs(cur[0] - face) <= 1e-14 * (1.0 + std::abs(face));
-  if (rigid && F_new + G_new < face) {
-    F_new = face - G_new;
-  }
-  if (on_obstacle_now) {
-    // R = -sigma(0) = -2 rho c^2 G'(ct) at t_m, G' centred (one-sided at t = 0).
-    const double dG = started_ ? (G_new - G_[0]) / 2.0 : (G_new - G_[1]);
-    force = std::max(0.0, -2.0 * impedance_ * dG);
-  }
+  const bool held = rigid && F_new + G_new < face;
+  if (held) F_new = face - G_new;
+  // R = -sigma(0) = (a/h)(dF - dG) over a step (0 when free, where dF = dG;
+  // -2 (a/h) dG on the obstacle), R^m the mean over the two steps around t_m,
+  // i.e. the impulse of [t_m - dt/2, t_m + dt/2] over dt.
+  const double right = held ? impedance_ * ((F_new - F_[1]) - (G_new - G_[1])) : 0.0;
+  const double left = held_ ? impedance_ * ((F_[1] - F_[0]) - (G_[1] - G_[0])) : 0.0;
+  const double force = 0.5 * (left + right);
+  held_ = held;
   next[0] = F_new + G_new;
   F_[0] = F_[1];
   G_[0] = G_[1];

@@ -38,12 +38,6 @@ RunDirectory::~RunDirectory() {
 
 namespace {
 
-void write_text(const fs::path& path, const std::string& text) {
-  auto out = fmt::output_file(path.string());
-  out.print("{}", text);
-  out.close();
-}
-
 // Shortest text that reads back to the same double.
 void write_history(const fs::path& path, const std::vector<HistoryRow>& rows) {
   auto out = fmt::output_file(path.string());
@@ -69,12 +63,24 @@ nlohmann::json number_or_null(double v) {
 
 }  // namespace
 
+void write_text(const fs::path& path, const std::string& text) {
+  auto out = fmt::output_file(path.string());
+  out.print("{}", text);
+  out.close();
+}
+
 void RunDirectory::commit(const Case& c, const RunResult& result) {
+  commit([&](const fs::path& dir) {
+    write_history(dir / "history.csv", result.history);
+    write_fields(dir / "fields.csv", result);
+    write_text(dir / "case.toml", c.to_toml());
+    write_text(dir / "summary.json", summary_json(c, result.summary));
+  });
+}
+
+void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
   try {
-    write_history(staging_ / "history.csv", result.history);
-    write_fields(staging_ / "fields.csv", result);
-    write_text(staging_ / "case.toml", c.to_toml());
-    write_text(staging_ / "summary.json", summary_json(c, result.summary));
+    write(staging_);
   } catch (const std::system_error& e) {
     throw InputError(fmt::format("--out {}: cannot write the results: {}", target_.string(), e.what()));
   }

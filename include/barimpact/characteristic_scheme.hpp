@@ -35,7 +35,7 @@ class CharacteristicScheme final : public CentralDifferenceScheme {
   bool started_ = false;
   // F(-c t) and G(c t) at x = 0 for the last two steps: index 0 is t_{m-1}, 1 is t_m.
   double F_[2] = {0, 0}, G_[2] = {0, 0};
-  double G_next_ = 0;
+  bool held_ = false;  // the end was on the obstacle over the last step
 };
 
 }  // namespace barimpact

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "barimpact/case.hpp"
@@ -24,6 +25,8 @@ class RunDirectory {
 
   /// Writes the four files into staging, then replaces `target` with it.
   void commit(const Case& c, const RunResult& result);
+  /// Lets `write` fill the staging directory, then replaces `target` with it.
+  void commit(const std::function<void(const std::filesystem::path& staging)>& write);
 
   [[nodiscard]] const std::filesystem::path& target() const { return target_; }
 
@@ -31,6 +34,9 @@ class RunDirectory {
   std::filesystem::path target_, staging_;
   bool committed_ = false;
 };
+
+/// Writes `text` to `path` (throws std::system_error).
+void write_text(const std::filesystem::path& path, const std::string& text);
 
 /// summary.json's text.
 [[nodiscard]] std::string summary_json(const Case& c, const Summary& s);

@@ -11,7 +11,14 @@ def main(argv=None):
     p = sub.add_parser("plot", help="draw the figures of a run directory")
     p.add_argument("dir")
     p.add_argument("--out", default=None, help="where the figures go (default: DIR/figures)")
+    c = sub.add_parser("converge-plot", help="draw the plots of a barimpact converge directory")
+    c.add_argument("dir")
     args = parser.parse_args(argv)
+    if args.command == "converge-plot":
+        from .convergence import plot_study
+        for path in plot_study(args.dir):
+            print(path)
+        return 0
     try:
         data = load(args.dir)
     except (OSError, ValueError) as e:
