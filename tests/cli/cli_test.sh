@@ -138,5 +138,21 @@ expect_refused "vanish at the clamped end" run "$ex1" --out "$work/refused" --se
 [ "$(head -1 "$work/exact/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc" ] && ok || bad "exact columns"
 expect_refused "admits no exact solution" exact "$examples/paper-example2.toml" --out "$work/refused"
 
+# barimpact converge: files, bad options refused, a failing run reported and not fatal.
+"$bin" converge "$examples/paper-example1-rigid.toml" --out "$work/conv" --levels 2 \
+  --schemes central-difference,characteristic > "$work/out" 2> "$work/err" && ok || bad "converge: $(cat "$work/err")"
+for f in convergence.csv convergence.md; do [ -s "$work/conv/$f" ] && ok || bad "converge $f"; done
+grep -q "Reference: exact solution" "$work/conv/convergence.md" && ok || bad "converge reference"
+[ "$(grep -c '^central-difference,\|^characteristic,' "$work/conv/convergence.csv")" -eq 4 ] && ok || bad "converge rows"
+"$bin" converge "$ex1" --out "$work/conv-fail" --set time.step=0.1 --set time.end=40 --set output.fields_at=[] \
+  --vary time.alpha=0,0.25 > /dev/null 2> "$work/err" && ok || bad "converge with a failing run exit $?"
+grep -q "did not complete" "$work/err" && ok || bad "failing run not reported: $(cat "$work/err")"
+grep -q "non-finite" "$work/conv-fail/convergence.csv" && ok || bad "failing run row"
+expect_refused "--levels" converge "$ex1" --out "$work/refused" --levels 1
+expect_refused "--refine" converge "$ex1" --out "$work/refused" --refine sideways
+expect_refused "--vary" converge "$ex1" --out "$work/refused" --vary stiffness=1,2
+expect_refused "--schemes" converge "$ex1" --out "$work/refused" --schemes paper,euler
+expect_refused "--refine none" converge "$ex1" --out "$work/refused" --refine none
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

@@ -1,0 +1,111 @@
+#include "barimpact/convergence.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "../support/run_case.hpp"
+
+namespace barimpact {
+namespace {
+
+TEST(ObservedOrder, RecoversTheOrderOfAManufacturedSequence) {
+  // e = C h^p with h halved: log(e_prev/e)/log(2) = p to round-off.
+  for (double p : {0.5, 1.0, 2.0, 3.7}) {
+    const double e0 = 3.0 * std::pow(0.1, p), e1 = 3.0 * std::pow(0.05, p);
+    EXPECT_NEAR(observed_order(e0, e1, 1.0, 2.0), p, 1e-12);
+  }
+  // In a varied key: e = C k^-1 along k = 100, 400 gives order 1.
+  EXPECT_NEAR(observed_order(1.0 / 100, 1.0 / 400, 100, 400), 1.0, 1e-12);
+  EXPECT_TRUE(std::isnan(observed_order(0.0, 1.0, 1.0, 2.0)));
+  EXPECT_TRUE(std::isnan(observed_order(1.0, NAN, 1.0, 2.0)));
+}
+
+TEST(Variation, ParsesListsAndRanges) {
+  EXPECT_EQ(Variation::parse("obstacle.stiffness=10,100,1e3").values, (std::vector<std::string>{"10", "100", "1e3"}));
+  const auto lin = Variation::parse("time.alpha=0:0.5:3");
+  EXPECT_EQ(lin.key, "time.alpha");
+  EXPECT_EQ(lin.values, (std::vector<std::string>{"0", "0.25", "0.5"}));
+  const auto log = Variation::parse("obstacle.stiffness=log:1e2:1e4:3");
+  ASSERT_EQ(log.values.size(), 3u);
+  EXPECT_NEAR(std::stod(log.values[1]), 1e3, 1e-9);
+  for (const char* bad : {"stiffness=1,2", "obstacle.stiffness", "obstacle.stiffness=1", "obstacle.stiffness=log:0:1:3",
+                          "obstacle.stiffness=1:2:1", "obstacle.stiffness=1,,2", "obstacle.stiffness=a:b:3"})
+    EXPECT_THROW((void)Variation::parse(bad), InputError) << bad;
+}
+
+TEST(Converge, MeasuresTheKnownFirstOrderOfCentralDifferencesOnExampleOne) {
+  // Lumped central differences at Courant 1 on Example 1 with a rigid
+  // obstacle: U lags the exact solution by exactly h after lift-off, so the
+  // error halves with h: order 1 to round-off.
+  const Case c = testing::example("paper-example1-rigid.toml", {"time.scheme=\"central-difference\""});
+  StudyOptions o;
+  o.levels = 3;
+  const Study s = converge(c, o);
+  ASSERT_EQ(s.runs.size(), 3u);
+  EXPECT_NE(s.reference.find("exact"), std::string::npos);
+  for (std::size_t i = 1; i < 3; ++i) {
+    EXPECT_EQ(s.runs[i].status, "complete");
+    EXPECT_NEAR(s.runs[i].order_U, 1.0, 1e-9);
+    EXPECT_NEAR(s.runs[i].order_R, 1.0, 1e-6);
+    EXPECT_EQ(s.runs[i].elements, 100 << i);
+    EXPECT_DOUBLE_EQ(s.runs[i].step, 0.01 / (1 << i));
+  }
+  EXPECT_NEAR(s.runs[0].error_U_max, 0.01, 1e-12);
+}
+
+TEST(Converge, ReportsAFailingRunAndGoesOn) {
+  // alpha = 0 at dt = 0.1 on h = 0.01 blows up; alpha = 0.25 does not.
+  const Case c = testing::example("paper-example1.toml", {"time.step=0.1", "time.end=40"});
+  StudyOptions o;
+  o.vary = Variation::parse("time.alpha=0,0.25");
+  o.refine = Refine::none;
+  o.reference = Reference::finest;
+  const Study s = converge(c, o);
+  ASSERT_EQ(s.runs.size(), 2u);
+  EXPECT_EQ(s.runs[0].status, "non-finite");
+  EXPECT_NE(s.runs[0].message.find("step"), std::string::npos);
+  EXPECT_EQ(s.runs[1].status, "reference");
+}
+
+TEST(Converge, MarkdownAndCsvAgree) {
+  const Case c = testing::example("paper-example1.toml", {"time.end=2.5", "output.fields_at=[]"});
+  StudyOptions o;
+  o.levels = 3;
+  o.schemes = {"paper", "newmark"};
+  o.reference = Reference::rigid;
+  const Study s = converge(c, o);
+  const std::string csv = study_csv(s), md = study_markdown(s, "barimpact converge ...");
+  // Every CSV row's U error and order, printed with 3 and 2 decimals, is in the Markdown.
+  std::istringstream lines(csv);
+  std::string line;
+  std::getline(lines, line);  // header
+  int rows = 0;
+  for (const auto& r : s.runs) {
+    std::getline(lines, line);
+    ++rows;
+    EXPECT_EQ(line.rfind(r.scheme + "," + std::to_string(r.level) + ",", 0), 0u) << line;
+    EXPECT_NE(line.find(fmt::format(",{},", r.error_U_max)), std::string::npos) << line;
+    const std::string md_row = fmt::format("| {} | {:.4g} | {} | {:.4g} | {:.3e} |", r.level, r.h, r.elements, r.step,
+                                           r.error_U_max);
+    EXPECT_NE(md.find(md_row), std::string::npos) << md_row;
+  }
+  EXPECT_EQ(rows, 6);
+  EXPECT_NE(md.find("**newmark**"), std::string::npos);
+  EXPECT_NE(md.find("Reference: exact solution: rigid obstacle"), std::string::npos);
+}
+
+TEST(Converge, RefusesBadOptionsBeforeRunning) {
+  const Case c = testing::example("paper-example1.toml");
+  StudyOptions o;
+  o.levels = 1;
+  EXPECT_THROW((void)converge(c, o), InputError);
+  o.levels = 3;
+  o.refine = Refine::none;
+  EXPECT_THROW((void)converge(c, o), InputError);
+}
+
+}  // namespace
+}  // namespace barimpact
