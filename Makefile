@@ -8,7 +8,7 @@ PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2
 
-.PHONY: deps build demo test bench format clean
+.PHONY: deps build demo test bench verification format clean
 
 deps:
 	@missing=""; for p in $(PACKAGES); do \
@@ -44,6 +44,9 @@ test: deps
 
 bench: build
 	$(PYTHON) bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
+
+verification: build
+	bash docs/verification.sh build/release/barimpact
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

@@ -87,8 +87,8 @@ Variation Variation::parse(const std::string& text) {
   const auto where = fmt::format("--vary {}", text);
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || text.find('.') > eq)
-    throw InputError(fmt::format("{}: expected section.key=v1,v2,... or section.key=a:b:n or section.key=log:a:b:n",
-                                 where));
+    throw InputError(
+        fmt::format("{}: expected section.key=v1,v2,... or section.key=a:b:n or section.key=log:a:b:n", where));
   Variation v{text.substr(0, eq), {}};
   const std::string spec = text.substr(eq + 1);
   const auto parts = split(spec, ':');
@@ -96,7 +96,8 @@ Variation Variation::parse(const std::string& text) {
     const bool log = parts.size() == 4;
     const double a = number(parts[log ? 1 : 0], where), b = number(parts[log ? 2 : 1], where);
     const double n = number(parts[log ? 3 : 2], where);
-    if (n < 2 || n != std::floor(n) || n > 1000) throw InputError(fmt::format("{}: the count must be 2 .. 1000", where));
+    if (n < 2 || n != std::floor(n) || n > 1000)
+      throw InputError(fmt::format("{}: the count must be 2 .. 1000", where));
     if (log && (a <= 0 || b <= 0)) throw InputError(fmt::format("{}: a logarithmic range needs a, b > 0", where));
     for (int i = 0; i < static_cast<int>(n); ++i) {
       const double s = i / (n - 1.0);
@@ -139,7 +140,9 @@ Study converge(const Case& base, const StudyOptions& o) {
       const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
       const long long elements = base.bar.elements * (refine_h ? f : 1);
       double step = base.time.step / static_cast<double>(refine_dt ? f : 1);
-      std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""}, {"output.every=1"}, {"output.fields_at=[]"},
+      std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""},
+                                       {"output.every=1"},
+                                       {"output.fields_at=[]"},
                                        {fmt::format("bar.elements={}", elements)}};
       if (o.vary) {
         t.value = o.vary->values[static_cast<std::size_t>(i)];
@@ -288,10 +291,10 @@ std::string study_csv(const Study& study) {
       "contact_episodes,cpu_seconds,order_U,order_R,message\n";
   for (const auto& r : study.runs)
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.scheme, r.level, quoted(r.value),
-                       r.elements, cell(r.h, "{}"), cell(r.step, "{}"), r.status, cell(r.error_U_max, "{}"), cell(r.error_R_l1, "{}"),
-                       cell(r.energy_error_end, "{}"), cell(r.first_contact, "{}"), cell(r.lift_off, "{}"),
-                       r.contact_episodes, cell(r.cpu_seconds, "{}"), cell(r.order_U, "{}"), cell(r.order_R, "{}"),
-                       quoted(r.message));
+                       r.elements, cell(r.h, "{}"), cell(r.step, "{}"), r.status, cell(r.error_U_max, "{}"),
+                       cell(r.error_R_l1, "{}"), cell(r.energy_error_end, "{}"), cell(r.first_contact, "{}"),
+                       cell(r.lift_off, "{}"), r.contact_episodes, cell(r.cpu_seconds, "{}"), cell(r.order_U, "{}"),
+                       cell(r.order_R, "{}"), quoted(r.message));
   return out;
 }
 
@@ -303,7 +306,8 @@ std::string study_markdown(const Study& study, const std::string& command) {
       current = r.scheme;
       out += fmt::format(
           "\n**{}**\n\n| level | {} | M | dt | max err U | order | L1 err R | order | energy err | first contact | "
-          "lift-off | episodes | CPU s | status |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+          "lift-off | episodes | CPU s | status "
+          "|\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
           r.scheme, r.value.empty() ? "h" : "value");
     }
     const std::string abscissa = r.value.empty() ? cell(r.h, "{:.4g}") : r.value;

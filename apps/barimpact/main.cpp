@@ -28,8 +28,8 @@
 
 #include "barimpact/case.hpp"
 #include "barimpact/convergence.hpp"
-#include "barimpact/scheme.hpp"
 #include "barimpact/output.hpp"
+#include "barimpact/scheme.hpp"
 #include "barimpact/simulate.hpp"
 
 namespace {
@@ -105,8 +105,8 @@ int converge_command(ConvergeArgs& a) {
   const auto c = barimpact::Case::from_file(a.case_path, overrides);
   auto& o = a.options;
   if (a.refine_given) {
-    o.refine = a.refine == "h" ? barimpact::Refine::h
-               : a.refine == "dt" ? barimpact::Refine::dt
+    o.refine = a.refine == "h"      ? barimpact::Refine::h
+               : a.refine == "dt"   ? barimpact::Refine::dt
                : a.refine == "none" ? barimpact::Refine::none
                                     : barimpact::Refine::both;
   }
@@ -119,11 +119,12 @@ int converge_command(ConvergeArgs& a) {
     const auto known = barimpact::scheme_names();
     for (std::string s; std::getline(list, s, ',');) {
       if (std::find(known.begin(), known.end(), s) == known.end())
-        throw barimpact::InputError(fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
+        throw barimpact::InputError(
+            fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
       o.schemes.push_back(s);
     }
   }
-  o.reference = a.reference == "rigid" ? barimpact::Reference::rigid
+  o.reference = a.reference == "rigid"    ? barimpact::Reference::rigid
                 : a.reference == "finest" ? barimpact::Reference::finest
                                           : barimpact::Reference::automatic;
   barimpact::RunDirectory dir(a.out);
@@ -138,10 +139,10 @@ int converge_command(ConvergeArgs& a) {
   fmt::print("{}\n", markdown);
   fmt::print("results in {}{}\n", dir.target().string(), plotted ? " (with convergence and work-precision plots)" : "");
   if (!plotted) fmt::print(stderr, "barimpact: note: plots skipped (the Python module is not built here)\n");
-  const auto failed = std::count_if(study.runs.begin(), study.runs.end(), [](const auto& r) {
-    return r.status != "complete" && r.status != "reference";
-  });
-  if (failed > 0) fmt::print(stderr, "barimpact: {} of {} runs did not complete; see their rows\n", failed, study.runs.size());
+  const auto failed = std::count_if(study.runs.begin(), study.runs.end(),
+                                    [](const auto& r) { return r.status != "complete" && r.status != "reference"; });
+  if (failed > 0)
+    fmt::print(stderr, "barimpact: {} of {} runs did not complete; see their rows\n", failed, study.runs.size());
   return 0;
 }
 
@@ -181,8 +182,10 @@ int main(int argc, char** argv) {
 
   const std::vector<std::string_view> commands{"run", "exact", "converge", "plot"};
   if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
-    fmt::print(stderr, "barimpact: error: unknown command \"{}\" (commands: run, exact, converge, plot; see barimpact --help)\n",
-               argv[1]);
+    fmt::print(
+        stderr,
+        "barimpact: error: unknown command \"{}\" (commands: run, exact, converge, plot; see barimpact --help)\n",
+        argv[1]);
     return exit_bad_input;
   }
   std::string exact_case, exact_out;
@@ -193,17 +196,22 @@ int main(int argc, char** argv) {
   exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
 
   ConvergeArgs conv_args;
-  auto* conv = app.add_subcommand("converge", "Convergence and work-precision study of a case (convergence.csv/.md, plots)");
+  auto* conv =
+      app.add_subcommand("converge", "Convergence and work-precision study of a case (convergence.csv/.md, plots)");
   conv->add_option("case", conv_args.case_path, "Case file (TOML)")->required();
   conv->add_option("--out", conv_args.out, "Output directory (replaced when complete)")->required();
-  conv->add_option("--set", conv_args.sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
+  conv->add_option("--set", conv_args.sets, "Override a case key: section.key=value")
+      ->take_all()
+      ->allow_extra_args(false);
   conv->add_option("--levels", conv_args.options.levels, "Refinement levels (default 4)")->check(CLI::Range(2, 12));
   conv->add_option("--refine", conv_args.refine, "both (h and dt together, default), h, dt, or none")
       ->check(CLI::IsMember({"both", "h", "dt", "none"}));
-  conv->add_option("--ratio", conv_args.options.ratio, "Refinement ratio per level (default 2)")->check(CLI::Range(2, 16));
+  conv->add_option("--ratio", conv_args.options.ratio, "Refinement ratio per level (default 2)")
+      ->check(CLI::Range(2, 16));
   conv->add_option("--vary", conv_args.vary, "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n");
   conv->add_option("--schemes", conv_args.schemes, "Compare schemes: a,b,c (default: the case's)");
-  conv->add_option("--reference", conv_args.reference, "auto (exact if the case admits one, else finest), rigid, finest")
+  conv->add_option("--reference", conv_args.reference,
+                   "auto (exact if the case admits one, else finest), rigid, finest")
       ->check(CLI::IsMember({"auto", "rigid", "finest"}));
   conv->add_option("--jobs", conv_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
 

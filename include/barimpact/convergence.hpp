@@ -19,20 +19,20 @@ enum class Reference { automatic, rigid, finest };
 
 /// A case key and the values it takes along the study.
 struct Variation {
-  std::string key;  ///< section.key
+  std::string key;                  ///< section.key
   std::vector<std::string> values;  ///< TOML values as written
   /// "key=v1,v2,..." or "key=a:b:n" (linear) or "key=log:a:b:n". Throws InputError.
   static Variation parse(const std::string& text);
 };
 
 struct StudyOptions {
-  int levels = 4;                  ///< with refinement and no variation
+  int levels = 4;  ///< with refinement and no variation
   Refine refine = Refine::both;
-  int ratio = 2;                   ///< h and/or dt divided by ratio per level
-  std::optional<Variation> vary;   ///< the levels are its values
+  int ratio = 2;                     ///< h and/or dt divided by ratio per level
+  std::optional<Variation> vary;     ///< the levels are its values
   std::vector<std::string> schemes;  ///< empty: the case's scheme
   Reference reference = Reference::automatic;
-  int jobs = 0;                    ///< threads; 0: all cores
+  int jobs = 0;  ///< threads; 0: all cores
 };
 
 /// One run of the study and what it measured.
@@ -45,14 +45,14 @@ struct StudyRun {
   double step = 0.0;
   std::string status;  ///< complete, non-finite, refused
   std::string message;
-  double error_U_max = 0.0;     ///< max_n |U - U_ref|
-  double error_R_l1 = 0.0;      ///< sum_n |R - R_ref| dt
+  double error_U_max = 0.0;       ///< max_n |U - U_ref|
+  double error_R_l1 = 0.0;        ///< sum_n |R - R_ref| dt
   double energy_error_end = 0.0;  ///< |E_total(end) - E_total(0)| / |E_total(0)|
-  double first_contact = 0.0;   ///< start of the first contact episode (NaN: none)
-  double lift_off = 0.0;        ///< end of the first contact episode (NaN: none or unclosed)
+  double first_contact = 0.0;     ///< start of the first contact episode (NaN: none)
+  double lift_off = 0.0;          ///< end of the first contact episode (NaN: none or unclosed)
   int contact_episodes = 0;
   double cpu_seconds = 0.0;
-  double order_U = 0.0;         ///< observed order against the previous level (NaN on level 0)
+  double order_U = 0.0;  ///< observed order against the previous level (NaN on level 0)
   double order_R = 0.0;
 };
 

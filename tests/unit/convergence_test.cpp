@@ -88,8 +88,8 @@ TEST(Converge, MarkdownAndCsvAgree) {
     ++rows;
     EXPECT_EQ(line.rfind(r.scheme + "," + std::to_string(r.level) + ",", 0), 0u) << line;
     EXPECT_NE(line.find(fmt::format(",{},", r.error_U_max)), std::string::npos) << line;
-    const std::string md_row = fmt::format("| {} | {:.4g} | {} | {:.4g} | {:.3e} |", r.level, r.h, r.elements, r.step,
-                                           r.error_U_max);
+    const std::string md_row =
+        fmt::format("| {} | {:.4g} | {} | {:.4g} | {:.3e} |", r.level, r.h, r.elements, r.step, r.error_U_max);
     EXPECT_NE(md.find(md_row), std::string::npos) << md_row;
   }
   EXPECT_EQ(rows, 6);
