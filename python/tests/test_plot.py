@@ -54,3 +54,13 @@ def test_the_exact_solution_is_drawn_only_when_it_applies():
     assert exact_parameters(case) == (2.0, 4.0, 1.0, -0.5)
     case["load"]["body_force"] = "-1"
     assert exact_parameters(case) is None
+
+
+def test_converge_draws_convergence_and_work_precision(tmp_path):
+    out = tmp_path / "study"
+    p = subprocess.run([CLI, "converge", str(EXAMPLES / "paper-example1-rigid.toml"), "--out", str(out), "--levels", "2",
+                        "--schemes", "central-difference,characteristic"], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    for name in ("convergence", "work_precision"):
+        assert png_size(out / f"{name}.png") == (960, 540)
+        assert (out / f"{name}.svg").stat().st_size > 5_000
