@@ -3,7 +3,8 @@
 #   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan)
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
             nlohmann-json3-dev libgtest-dev libbenchmark-dev \
-            python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest
+            python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest \
+            libopenmpi-dev openmpi-bin python3-scipy
 PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2

@@ -4,14 +4,13 @@
 #include <time.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
-#include <thread>
 
 #include "barimpact/exact.hpp"
+#include "barimpact/executor.hpp"
 #include "barimpact/simulate.hpp"
 
 namespace barimpact {
@@ -168,29 +167,21 @@ Study converge(const Case& base, const StudyOptions& o) {
     }
   }
 
-  // The pool: each thread takes the next task; runs are independent.
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned jobs = o.jobs > 0 ? static_cast<unsigned>(o.jobs) : hardware;
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < tasks.size(); i = next++) {
-      Task& t = tasks[i];
-      if (!t.c) continue;
-      const double start = thread_cpu_seconds();
-      try {
-        t.result = run(*t.c);
-        t.status = std::string(to_string(t.result.summary.status));
-        t.message = t.result.summary.message;
-      } catch (const std::exception& e) {
-        t.status = "refused";
-        t.message = e.what();
-      }
-      t.cpu = thread_cpu_seconds() - start;
+  // Independent runs through the shared executor.
+  run_parallel(tasks.size(), o.jobs, [&](std::size_t i) {
+    Task& t = tasks[i];
+    if (!t.c) return;
+    const double start = thread_cpu_seconds();
+    try {
+      t.result = run(*t.c);
+      t.status = std::string(to_string(t.result.summary.status));
+      t.message = t.result.summary.message;
+    } catch (const std::exception& e) {
+      t.status = "refused";
+      t.message = e.what();
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned j = 0; j < std::min<std::size_t>(jobs, tasks.size()); ++j) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
+    t.cpu = thread_cpu_seconds() - start;
+  });
 
   // References and errors.
   Study study;

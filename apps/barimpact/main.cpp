@@ -3,6 +3,7 @@
 //   barimpact run CASE.toml --out DIR [--set section.key=value]...
 //   barimpact exact CASE.toml --out DIR [--set ...]   (the exact solution, same files)
 //   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
+//   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch]   (also under mpirun -n P)
 //   barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
 //                      [--vary key=spec] [--schemes a,b] [--reference auto|rigid|finest] [--jobs N]
 //
@@ -30,6 +31,11 @@
 #include "barimpact/convergence.hpp"
 #include "barimpact/output.hpp"
 #include "barimpact/scheme.hpp"
+#include "barimpact/sweep.hpp"
+
+#ifdef BARIMPACT_HAVE_MPI
+#include <mpi.h>
+#endif
 #include "barimpact/simulate.hpp"
 
 namespace {
@@ -146,6 +152,108 @@ int converge_command(ConvergeArgs& a) {
   return 0;
 }
 
+#ifdef BARIMPACT_HAVE_MPI
+// Under mpirun: rank 0 hands out case indices one at a time to whichever
+// rank asks (dynamic load balancing) and gathers their rows; the others run.
+constexpr int tag_request = 1, tag_case = 2, tag_row = 3;
+
+std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
+                                           const std::vector<std::size_t>& todo, const barimpact::SweepOptions& o,
+                                           int rank, int size) {
+  std::vector<barimpact::SweepRow> rows;
+  if (rank == 0) {
+    std::size_t next = 0;
+    int active = size - 1;
+    while (active > 0) {
+      MPI_Status status;
+      MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+      if (status.MPI_TAG == tag_request) {
+        int dummy = 0;
+        MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        long long index = next < todo.size() ? static_cast<long long>(todo[next++]) : -1;
+        if (index < 0) --active;
+        MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, tag_case, MPI_COMM_WORLD);
+      } else {
+        int length = 0;
+        MPI_Get_count(&status, MPI_CHAR, &length);
+        std::string text(static_cast<std::size_t>(length), '\0');
+        MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, tag_row, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        rows.push_back(barimpact::row_from_json(text));
+      }
+    }
+  } else {
+    barimpact::SweepOptions one = o;
+    one.jobs = 1;
+    while (true) {
+      int dummy = 0;
+      MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
+      long long index = -1;
+      MPI_Recv(&index, 1, MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      if (index < 0) break;
+      const auto done = barimpact::run_sweep(plan, dir, {static_cast<std::size_t>(index)}, one);
+      const std::string text = barimpact::row_to_json(done.front());
+      MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_row, MPI_COMM_WORLD);
+    }
+  }
+  return rows;
+}
+#endif
+
+int sweep_command(const std::string& sweep_path, const std::string& out_dir, const barimpact::SweepOptions& o) {
+  int rank = 0, size = 1;
+#ifdef BARIMPACT_HAVE_MPI
+  const bool distributed = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr;
+  if (distributed) {
+    MPI_Init(nullptr, nullptr);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+  }
+  struct Finalize {
+    bool on;
+    ~Finalize() {
+      if (on) MPI_Finalize();
+    }
+  } finalize{distributed};
+#endif
+  const auto plan = barimpact::SweepPlan::from_file(sweep_path);
+  const std::filesystem::path dir(out_dir);
+  std::error_code ec;
+  if (rank == 0) {
+    std::filesystem::create_directories(dir / "runs", ec);
+    if (ec) throw barimpact::InputError(fmt::format("--out {}: cannot create it ({})", out_dir, ec.message()));
+  }
+  std::vector<barimpact::SweepRow> rows(plan.points().size());
+  std::vector<std::size_t> todo;
+  std::size_t resumed = 0;
+  for (std::size_t i = 0; i < plan.points().size(); ++i) {
+    if (barimpact::read_row(plan, dir, i, rows[i]))
+      ++resumed;
+    else
+      todo.push_back(i);
+  }
+  std::vector<barimpact::SweepRow> done;
+#ifdef BARIMPACT_HAVE_MPI
+  if (size > 1) {
+    MPI_Barrier(MPI_COMM_WORLD);  // the directory exists before any rank writes
+    done = mpi_sweep(plan, dir, todo, o, rank, size);
+    if (rank != 0) return 0;
+  } else
+#endif
+    done = barimpact::run_sweep(plan, dir, todo, o);
+  std::size_t failed = 0;
+  for (auto& r : done) {
+    const auto at = static_cast<std::size_t>(std::stoll(r.id));
+    rows[at] = r;
+  }
+  for (const auto& r : rows) failed += r.status != "complete";
+  const auto staging = dir / ".sweep.csv.partial";
+  barimpact::write_text(staging, barimpact::sweep_csv(plan, rows));
+  std::filesystem::rename(staging, dir / "sweep.csv");
+  fmt::print("{} cases: {} run{}, {} resumed, {} not complete; sweep.csv in {}\n", rows.size(), done.size(),
+             size > 1 ? fmt::format(" on {} ranks", size - 1) : "", resumed, failed, out_dir);
+  return 0;
+}
+
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures) {
   std::string path = BARIMPACT_PYTHON_DIR;
@@ -180,11 +288,11 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  const std::vector<std::string_view> commands{"run", "exact", "converge", "plot"};
+  const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "plot"};
   if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
     fmt::print(
         stderr,
-        "barimpact: error: unknown command \"{}\" (commands: run, exact, converge, plot; see barimpact --help)\n",
+        "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, plot; see barimpact --help)\n",
         argv[1]);
     return exit_bad_input;
   }
@@ -194,6 +302,15 @@ int main(int argc, char** argv) {
   exact->add_option("case", exact_case, "Case file (TOML)")->required();
   exact->add_option("--out", exact_out, "Output directory (replaced when complete)")->required();
   exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
+
+  std::string sweep_file, sweep_out;
+  barimpact::SweepOptions sweep_options;
+  bool no_batch = false;
+  auto* sweep = app.add_subcommand("sweep", "Run every case of a sweep file (runs/<id>/ and sweep.csv); resumes");
+  sweep->add_option("sweep", sweep_file, "Sweep file (TOML)")->required();
+  sweep->add_option("--out", sweep_out, "Output directory (created; rerunning resumes)")->required();
+  sweep->add_option("--jobs", sweep_options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sweep->add_flag("--no-batch", no_batch, "Run every case alone (no SIMD batches)");
 
   ConvergeArgs conv_args;
   auto* conv =
@@ -236,6 +353,10 @@ int main(int argc, char** argv) {
   try {
     if (run->parsed()) return run_command(case_path, out_dir, sets, false);
     if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true);
+    if (sweep->parsed()) {
+      sweep_options.batch = !no_batch;
+      return sweep_command(sweep_file, sweep_out, sweep_options);
+    }
     if (conv->parsed()) {
       conv_args.refine_given = conv->count("--refine") > 0;
       conv_args.command = "barimpact";

@@ -154,5 +154,39 @@ expect_refused "--vary" converge "$ex1" --out "$work/refused" --vary stiffness=1
 expect_refused "--schemes" converge "$ex1" --out "$work/refused" --schemes paper,euler
 expect_refused "--refine none" converge "$ex1" --out "$work/refused" --refine none
 
+# barimpact sweep: one row and one complete run directory per case; resume; failures recorded.
+sweeps="$examples/sweeps"
+"$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" --jobs 2 > "$work/out" && ok || bad "sweep"
+[ "$(ls "$work/sweep/runs" | wc -l)" -eq 12 ] && ok || bad "sweep run directories"
+[ "$(tail -n +2 "$work/sweep/sweep.csv" | wc -l)" -eq 12 ] && ok || bad "sweep rows"
+[ "$(grep -c ',complete,' "$work/sweep/sweep.csv")" -eq 12 ] && ok || bad "sweep statuses"
+for f in history.csv fields.csv case.toml summary.json; do [ -s "$work/sweep/runs/0005/$f" ] && ok || bad "run file $f"; done
+# The run directory of a case equals barimpact run on that case's resolved file.
+"$bin" run "$work/sweep/runs/0005/case.toml" --out "$work/single" > /dev/null
+cmp -s "$work/single/history.csv" "$work/sweep/runs/0005/history.csv" && ok || bad "sweep case differs from run"
+cut -d, -f1-14 "$work/sweep/sweep.csv" > "$work/first.csv"
+# Resume: a removed case is redone, a half-written one (staging) ignored, the others skipped.
+rm -rf "$work/sweep/runs/0007"
+mkdir -p "$work/sweep/runs/.0008.partial-1" && rm -rf "$work/sweep/runs/0008" && touch "$work/sweep/runs/.0008.partial-1/history.csv"
+"$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" > "$work/out" && ok || bad "resume"
+grep -q "12 cases: 2 run, 10 resumed" "$work/out" && ok || bad "resume counts: $(cat "$work/out")"
+cmp -s <(cut -d, -f1-14 "$work/sweep/sweep.csv") "$work/first.csv" && ok || bad "resumed sweep.csv differs"
+# Failures: recorded in their rows, the others run.
+"$bin" sweep "$sweeps/with-failures.toml" --out "$work/sweep-fail" > "$work/out" && ok || bad "sweep with failures"
+grep -q "^0000,.*,non-finite," "$work/sweep-fail/sweep.csv" && ok || bad "non-finite row"
+grep -q "^0001,.*,refused,.*time.alpha" "$work/sweep-fail/sweep.csv" && ok || bad "refused row"
+[ "$(grep -c ',complete,' "$work/sweep-fail/sweep.csv")" -eq 2 ] && ok || bad "complete rows"
+printf 'case = "nope.toml"\n[[axis]]\nkey = "bar.length"\nvalues = [1]\n' > "$work/badsweep.toml"
+expect_refused "no such case file" sweep "$work/badsweep.toml" --out "$work/refused"
+printf 'case = "%s"\n[[axis]]\nkey = "bar.lenght"\nvalues = [1]\n' "$ex1" > "$work/badsweep.toml"
+expect_refused "unknown key bar.lenght" sweep "$work/badsweep.toml" --out "$work/refused"
+# Under MPI (when built with it): two ranks give the same sweep.csv but for run times.
+if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 "$BARIMPACT_MPIEXEC" -n 2 --oversubscribe \
+    "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-mpi" > "$work/out" 2> "$work/err" && ok || bad "mpi sweep: $(cat "$work/err")"
+  grep -q "on 1 ranks" "$work/out" && ok || bad "mpi sweep did not run distributed: $(cat "$work/out")"
+  cmp -s <(cut -d, -f1-14 "$work/sweep-mpi/sweep.csv") "$work/first.csv" && ok || bad "mpi sweep.csv differs"
+fi
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
