@@ -178,7 +178,7 @@ grep -q "^0001,.*,refused,.*time.alpha" "$work/sweep-fail/sweep.csv" && ok || ba
 [ "$(grep -c ',complete,' "$work/sweep-fail/sweep.csv")" -eq 2 ] && ok || bad "complete rows"
 printf 'case = "nope.toml"\n[[axis]]\nkey = "bar.length"\nvalues = [1]\n' > "$work/badsweep.toml"
 expect_refused "no such case file" sweep "$work/badsweep.toml" --out "$work/refused"
-printf 'case = "%s"\n[[axis]]\nkey = "bar.lenght"\nvalues = [1]\n' "$ex1" > "$work/badsweep.toml"
+printf 'case = "%s"\n[[axis]]\nkey = "bar.lenght"\nvalues = [1]\n' "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/badsweep.toml"
 expect_refused "unknown key bar.lenght" sweep "$work/badsweep.toml" --out "$work/refused"
 # Under MPI (when built with it): two ranks give the same sweep.csv but for run times.
 if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
