@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
-"""Runs barimpact_bench and writes docs/benchmarks.md: the paper scheme's step
-against the bare loop, in one run (repetitions interleaved at random so that
-the machine's noise falls on both alike), medians of the repetitions.
+"""Runs the benchmarks and writes docs/benchmarks.md: the paper scheme's step
+against the bare loop and four cases batched in SIMD registers (one Google
+Benchmark run, repetitions interleaved at random so that the machine's noise
+falls on all alike, medians), a sweep's throughput (bench/sweep_throughput.sh)
+and the SciPy baseline (bench/scipy_baseline.py).
 
     python3 bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
 """
+import os
 import json
 import platform
 import statistics
@@ -29,6 +32,8 @@ def machine():
 
 def main():
     binary, out = sys.argv[1], sys.argv[2]
+    build = os.path.dirname(os.path.dirname(os.path.abspath(binary)))
+    here = os.path.dirname(os.path.abspath(__file__))
     args = [binary, "--benchmark_format=json", "--benchmark_repetitions=7",
             "--benchmark_enable_random_interleaving=true", "--benchmark_min_time=0.2"]
     data = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
@@ -43,7 +48,13 @@ def main():
     for s in sizes:
         paper = statistics.median(samples[("BM_PaperStep", s)])
         bare = statistics.median(samples[("BM_BareLoop", s)])
-        rows.append(f"| {s:>9,} | {paper:6.2f} | {bare:6.2f} | {paper / bare:5.2f} |")
+        batch = statistics.median(samples[("BM_PaperBatch4", s)])
+        rows.append(f"| {s:>9,} | {paper:6.2f} | {bare:6.2f} | {paper / bare:5.2f} | {batch:6.2f} | {paper / batch:4.1f}x |")
+    sweep = subprocess.run(["bash", os.path.join(here, "sweep_throughput.sh"), os.path.join(build, "barimpact")],
+                           capture_output=True, text=True, check=True).stdout.strip()
+    env = dict(os.environ, PYTHONPATH=os.path.join(build, "python"))
+    scipy = subprocess.run(["/usr/bin/python3", os.path.join(here, "scipy_baseline.py"), "100", "1000", "10000"],
+                           capture_output=True, text=True, check=True, env=env).stdout.strip()
     text = f"""# Benchmarks
 
 ## One time step of `paper` against the bare loop
@@ -55,8 +66,8 @@ dispatch and finiteness check. The bare loop is the same arithmetic written
 flat (stencil right-hand side fused into the forward sweep of the
 prefactored tridiagonal solve, then the backward sweep). Target: ratio <= 1.25.
 
-| M (elements) | paper (ns) | bare loop (ns) | ratio |
-|---:|---:|---:|---:|
+| M (elements) | paper (ns) | bare loop (ns) | ratio | batch of 4 (ns per case) | batch gain |
+|---:|---:|---:|---:|---:|---:|
 {chr(10).join(rows)}
 
 Machine: {machine()}.
@@ -65,6 +76,31 @@ Produced by `make bench`, that is
 
     cmake --preset release && cmake --build --preset release
     python3 bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
+
+"batch of 4" is `PaperBatch::advance()` on four different cases, one per
+lane of an AVX2 register (the same arithmetic lane by lane, the same bits as
+the single runs: tests/unit/paper_batch_test.cpp), per node-step per case.
+
+## Sweeps: SIMD batches, threads, MPI
+
+{sweep}
+
+Produced by `bash bench/sweep_throughput.sh build/release/barimpact` (part of
+`make bench`): per core, batching four cases per register runs a sweep
+about 3 times faster than running its cases one by one; the `mpirun` line
+includes Open MPI's start-up (about 0.4 s) and uses one worker rank.
+
+## Against the SciPy script a user would write (bench/scipy_baseline.py)
+
+{scipy}
+
+The same scheme on Example 1 scaled to M elements: NumPy stencil right-hand
+side and `scipy.linalg.cho_solve_banded` with the matrix factored once by
+`cholesky_banded`, timed in the same process as barimpact's Python module.
+The target of 100x is **not** met at M = 10^3 and 10^4: LAPACK's banded
+solve is compiled code too, and SciPy's per-step overhead (about 20 us) only
+dominates on small meshes (M = 100). barimpact's advantage there comes from
+fusing the right-hand side into the sweep, and grows with batching (3x more).
 
 Both loops are latency-bound: each sweep carries one fused multiply-add from
 node to node (about 4 cycles), so about 8 cycles, 3 ns, per node-step at any

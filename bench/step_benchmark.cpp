@@ -40,9 +40,26 @@ void BM_PaperStep(benchmark::State& state) {
   scheme.start();
   for (auto _ : state) {
     scheme.advance();
-    benchmark::DoNotOptimize(scheme.next_level().data());
+    benchmark::DoNotOptimize(scheme.next_level());
   }
   per_node_step(state, scheme.nodes());
+}
+
+// Four cases in one PaperBatch (4 doubles per register): time per node-step
+// per case, to compare with BM_PaperStep.
+void BM_PaperBatch4(benchmark::State& state) {
+  std::vector<barimpact::Case> cases;
+  for (int l = 0; l < 4; ++l) {
+    cases.push_back(bench_case(state.range(0)));
+    cases.back().obstacle.stiffness = 100.0 * (l + 1);  // four different cases
+  }
+  barimpact::PaperBatch batch({&cases[0], &cases[1], &cases[2], &cases[3]});
+  batch.start();
+  for (auto _ : state) {
+    batch.advance();
+    benchmark::DoNotOptimize(batch.lane(0).next_level());
+  }
+  per_node_step(state, 4 * batch.lane(0).nodes());
 }
 
 // The bare loop: the right-hand side B1 z^n + B0 z^{n-1} formed inside the
@@ -93,4 +110,5 @@ void BM_BareLoop(benchmark::State& state) {
 
 BENCHMARK(BM_PaperStep)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareLoop)->RangeMultiplier(10)->Range(100, 1'000'000);
+BENCHMARK(BM_PaperBatch4)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK_MAIN();

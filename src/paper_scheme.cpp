@@ -92,14 +92,17 @@ void PaperScheme::start() {
   const std::size_t n = mesh_.nodes();
   mesh_.interpolate(*initial_displacement_, u0_);
   mesh_.interpolate(*initial_velocity_, v0_);
-  prev_ = levels_[2].data();
-  cur_ = levels_[0].data();
-  next_ = levels_[1].data();
+  if (!batched_) {
+    prev_ = levels_[2].data();
+    cur_ = levels_[0].data();
+    next_ = levels_[1].data();
+  }
+  const std::size_t st = stride_;
   // (6.3)(ii)-(iii) with erratum 2: z^1 = u0 + dt (v0 - lambda u0) at the nodes.
   for (std::size_t j = 0; j < n; ++j) {
-    cur_[j] = u0_[j];
-    next_[j] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]);
-    prev_[j] = u0_[j];
+    cur_[j * st] = u0_[j];
+    next_[j * st] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]);
+    prev_[j * st] = u0_[j];
   }
   if (load_mode_ == LoadMode::steady) mesh_.load(*body_force_, 0.0, loads_[0]);
   if (load_mode_ == LoadMode::unsteady) {
@@ -211,6 +214,10 @@ void PaperScheme::advance() {
       solve_level<LoadMode::unsteady>(m);
       break;
   }
+  finish_level(m);
+}
+
+void PaperScheme::finish_level(long long m) {
   double* oldest = prev_;
   prev_ = cur_;
   cur_ = next_;
@@ -223,7 +230,7 @@ void PaperScheme::advance() {
 // (u^{m+1} - u^{m-1}) / 2: dW = F^{m,alpha} . (u^{m+1} - u^{m-1}) / 2 and
 // dD = dt |(u^{m+1} - u^{m-1}) / (2 dt)|^2_{K_b}.
 void PaperScheme::accumulate_budget(long long m) {
-  const std::size_t n = mesh_.nodes();
+  const std::size_t n = mesh_.nodes(), st = stride_;
   const double sm = scale(m - 1), sp = scale(m + 1);
   double dw = 0.0;
   if (load_mode_ != LoadMode::zero) {
@@ -232,14 +239,14 @@ void PaperScheme::accumulate_budget(long long m) {
     if (load_mode_ == LoadMode::steady) {
       const double w = back * (alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1);
       const auto& f = loads_[0];
-      for (std::size_t j = 0; j < n; ++j) dw += w * f[j] * 0.5 * (sp * next_[j] - sm * prev_[j]);
+      for (std::size_t j = 0; j < n; ++j) dw += w * f[j] * 0.5 * (sp * next_[j * st] - sm * prev_[j * st]);
     } else {
       const auto& fp = loads_[static_cast<std::size_t>((m + 1) % 3)];
       const auto& f0 = loads_[static_cast<std::size_t>(m % 3)];
       const auto& fm = loads_[static_cast<std::size_t>((m - 1) % 3)];
       for (std::size_t j = 0; j < n; ++j) {
         const double f = back * (alpha_ * ep1 * fp[j] + (1.0 - 2.0 * alpha_) * e0 * f0[j] + alpha_ * em1 * fm[j]);
-        dw += f * 0.5 * (sp * next_[j] - sm * prev_[j]);
+        dw += f * 0.5 * (sp * next_[j * st] - sm * prev_[j * st]);
       }
     }
   }
@@ -248,7 +255,7 @@ void PaperScheme::accumulate_budget(long long m) {
     const double c = 0.5 / dt_;
     double left = c * (sp * next_[0] - sm * prev_[0]);
     for (std::size_t j = 1; j < n; ++j) {
-      const double right = c * (sp * next_[j] - sm * prev_[j]);
+      const double right = c * (sp * next_[j * st] - sm * prev_[j * st]);
       dd += (right - left) * (right - left);
       left = right;
     }
@@ -275,7 +282,7 @@ double PaperScheme::end_velocity() const {
 
 void PaperScheme::displacement(std::span<double> out) const {
   const double s = scale(n_);
-  for (std::size_t j = 0; j < out.size(); ++j) out[j] = s * cur_[j];
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = s * cur_[j * stride_];
 }
 
 void PaperScheme::velocity(std::span<double> out) const {
@@ -284,21 +291,23 @@ void PaperScheme::velocity(std::span<double> out) const {
     return;
   }
   const double sp = scale(n_ + 1), sm = scale(n_ - 1);
-  for (std::size_t j = 0; j < out.size(); ++j) out[j] = (sp * next_[j] - sm * prev_[j]) / (2.0 * dt_);
+  for (std::size_t j = 0; j < out.size(); ++j)
+    out[j] = (sp * next_[j * stride_] - sm * prev_[j * stride_]) / (2.0 * dt_);
 }
 
 void PaperScheme::half_step_energy(const double* za, double sa, const double* zb, double sb, double& kinetic,
                                    double& strain) const {
   // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
   const double h = mesh_.h();
+  const std::size_t st = stride_;
   const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
   const double extra = (alpha_ - 0.25) * dt_ * dt_;
   double wm = 0.0, wk = 0.0, mk = 0.0;
   double w_left = (sb * zb[0] - sa * za[0]) / dt_;
   double m_left = 0.5 * (sb * zb[0] + sa * za[0]);
   for (std::size_t j = 1; j < mesh_.nodes(); ++j) {
-    const double w_right = (sb * zb[j] - sa * za[j]) / dt_;
-    const double m_right = 0.5 * (sb * zb[j] + sa * za[j]);
+    const double w_right = (sb * zb[j * st] - sa * za[j * st]) / dt_;
+    const double m_right = 0.5 * (sb * zb[j * st] + sa * za[j * st]);
     wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
     wk += (w_right - w_left) * (w_right - w_left);
     mk += (m_right - m_left) * (m_right - m_left);
@@ -335,8 +344,125 @@ Energies PaperScheme::energies() const {
 
 bool PaperScheme::finite() const {
   const std::size_t last = mesh_.nodes() - 1;
-  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
+  const std::size_t at = last * stride_;
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[at]) && std::isfinite(next_[0]) && std::isfinite(next_[at]) &&
          std::isfinite(work_half_) && std::isfinite(dissipation_half_) && std::isfinite(scale(n_ + 1));
+}
+
+}  // namespace barimpact
+
+namespace barimpact {
+
+bool PaperScheme::batchable(const Case& a, const Case& b) {
+  auto fits = [](const Case& c) {
+    return c.time.scheme == "paper" && c.obstacle.kind != ObstacleKind::viscoelastic &&
+           !Expression(c.load.body_force).depends_on_t();
+  };
+  return fits(a) && fits(b) && a.bar.elements == b.bar.elements && a.step_count() == b.step_count() &&
+         Expression(a.load.body_force).is_zero() == Expression(b.load.body_force).is_zero();
+}
+
+// GCC's generic vectors: AVX2 registers with -march=native, emulated elsewhere.
+#pragma GCC diagnostic ignored "-Wpsabi"
+namespace {
+typedef double v4 __attribute__((vector_size(32)));
+inline v4 load4(const double* p) {
+  v4 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store4(double* p, v4 v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+}  // namespace
+
+PaperBatch::PaperBatch(const std::vector<const Case*>& cases) {
+  if (cases.empty() || cases.size() > width) throw InputError("PaperBatch: 1 to 4 cases");
+  for (const auto* c : cases) {
+    if (!PaperScheme::batchable(*cases.front(), *c)) throw InputError("PaperBatch: the cases cannot share a batch");
+    lanes_.push_back(std::make_unique<PaperScheme>(*c));
+  }
+  nodes_ = lanes_.front()->nodes();
+  steady_load_ = lanes_.front()->load_mode_ == PaperScheme::LoadMode::steady;
+  for (auto& l : levels_) l.assign(width * nodes_, 0.0);
+  inv_.assign(width * nodes_, 0.0);
+  up_.assign(width * nodes_, 0.0);
+  load_.assign(width * nodes_, 0.0);
+  // Unused lanes repeat lane 0: they compute what it computes, and are ignored.
+  for (std::size_t l = 0; l < width; ++l) {
+    const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
+    for (std::size_t j = 0; j < nodes_; ++j) {
+      inv_[width * j + l] = s.inv_[j];
+      up_[width * j + l] = s.upper_[j];
+    }
+  }
+  for (std::size_t l = 0; l < lanes_.size(); ++l) {
+    PaperScheme& s = *lanes_[l];
+    s.batched_ = true;
+    s.stride_ = width;
+    s.prev_ = levels_[2].data() + l;
+    s.cur_ = levels_[0].data() + l;
+    s.next_ = levels_[1].data() + l;
+  }
+}
+
+void PaperBatch::start() {
+  for (auto& s : lanes_) s->start();
+  for (std::size_t l = lanes_.size(); l < width; ++l)  // padding lanes copy lane 0
+    for (auto& level : levels_)
+      for (std::size_t j = 0; j < nodes_; ++j) level[width * j + l] = level[width * j];
+  if (steady_load_)
+    for (std::size_t l = 0; l < width; ++l)
+      for (std::size_t j = 0; j < nodes_; ++j)
+        load_[width * j + l] = lanes_[std::min(l, lanes_.size() - 1)]->loads_[0][j];
+}
+
+// PaperScheme::solve_level with four lanes: the same operations in the same
+// order, so that every lane's result is bit-for-bit the scalar kernel's.
+void PaperBatch::advance() {
+  const long long m = lanes_.front()->n_ + 1;
+  v4 b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0;
+  for (std::size_t l = 0; l < width; ++l) {
+    const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
+    const double em1 = 1.0 / s.scale(m - 1), e0 = 1.0 / s.scale(m), ep1 = 1.0 / s.scale(m + 1);
+    const double ebar = s.alpha_ * ep1 + (1.0 - 2.0 * s.alpha_) * e0 + s.alpha_ * em1;
+    const double k = s.law_.stiffness(), g = s.law_.gap();
+    contact[l] = 0.5 * k * (std::abs(s.next_[0] + g * e0) - g * ebar);
+    c0[l] = steady_load_ ? ebar : 0.0;
+    b1d0[l] = s.b1_diag_[0], b1d[l] = s.b1_diag_[1], b1dl[l] = s.b1_diag_[2];
+    b0d0[l] = s.b0_diag_[0], b0d[l] = s.b0_diag_[1], b0dl[l] = s.b0_diag_[2];
+    b1o[l] = s.b1_off_, b0o[l] = s.b0_off_;
+  }
+  PaperScheme& first = *lanes_.front();
+  const double* __restrict zc = first.next_;  // lane 0's pointers are the interleaved arrays' starts
+  const double* __restrict zo = first.cur_;
+  double* __restrict zn = first.prev_;
+  const double* __restrict inv = inv_.data();
+  const double* __restrict up = up_.data();
+  const double* __restrict f = load_.data();
+  const std::size_t w = width, last = nodes_ - 1;
+  auto load = [&](std::size_t j) {
+    if (steady_load_) return c0 * load4(f + w * j);
+    return v4{0.0, 0.0, 0.0, 0.0};
+  };
+  v4 y = (b1d0 * load4(zc) + b1o * load4(zc + w) + b0d0 * load4(zo) + b0o * load4(zo + w) + load(0) + contact) *
+         load4(inv);
+  store4(zn, y);
+  for (std::size_t j = 1; j < last; ++j) {
+    const v4 r = b1d * load4(zc + w * j) + b1o * (load4(zc + w * (j - 1)) + load4(zc + w * (j + 1))) +
+                 b0d * load4(zo + w * j) + b0o * (load4(zo + w * (j - 1)) + load4(zo + w * (j + 1))) + load(j);
+    y = r * load4(inv + w * j) - load4(up + w * j) * y;
+    store4(zn + w * j, y);
+  }
+  const v4 r_last = b1dl * load4(zc + w * last) + b1o * load4(zc + w * (last - 1)) + b0dl * load4(zo + w * last) +
+                    b0o * load4(zo + w * (last - 1)) + load(last);
+  y = r_last * load4(inv + w * last) - load4(up + w * last) * y;
+  store4(zn + w * last, y);
+  for (std::size_t j = last; j-- > 0;) {
+    y = load4(zn + w * j) - load4(up + w * j) * y;
+    store4(zn + w * j, y);
+  }
+  for (auto& s : lanes_) s->finish_level(m);
 }
 
 }  // namespace barimpact

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include "barimpact/exact.hpp"
+#include "barimpact/paper_scheme.hpp"
 
 namespace barimpact {
 
@@ -51,11 +52,64 @@ namespace {
 
 RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOptions& options);
 
+// The observers of one run and the summary they add up to.
+struct Recorders {
+  HistoryRecorder history;
+  FieldRecorder fields;
+  ContactMonitor contact;
+  explicit Recorders(const Case& c) : history(c.output.every), fields(c, c.output.fields_at), contact(c.obstacle) {}
+  std::array<Observer*, 3> all() { return {&history, &fields, &contact}; }
+};
+
+RunResult collect(const Case& c, const LoopResult& loop, long long steps, Recorders& rec,
+                  std::chrono::steady_clock::time_point started);
+
 }  // namespace
 
 RunResult run(const Case& c, const RunOptions& options) {
   auto scheme = make_scheme(c);
   return run_scheme(c, *scheme, c.step_count(), options);
+}
+
+std::vector<RunResult> run_batch(const std::vector<const Case*>& cases) {
+  const auto started = std::chrono::steady_clock::now();
+  PaperBatch batch(cases);
+  const long long steps = cases.front()->step_count();
+  std::vector<std::unique_ptr<Recorders>> rec;
+  std::vector<LoopResult> loops(cases.size());
+  std::vector<bool> live(cases.size(), true);
+  for (std::size_t l = 0; l < cases.size(); ++l) {
+    rec.push_back(std::make_unique<Recorders>(*cases[l]));
+    for (auto* o : rec[l]->all()) o->begin(batch.lane(l), steps);
+  }
+  batch.start();
+  // The loop of simulate(), lane by lane: a lane that turns non-finite stops
+  // being observed (its numbers keep being computed, and are ignored).
+  auto observe = [&](std::size_t l) {
+    Scheme& s = batch.lane(l);
+    if (!s.finite()) {
+      live[l] = false;
+      loops[l].status = RunStatus::non_finite;
+      loops[l].message = s.step() == 0
+                             ? std::string("the initial state is not finite")
+                             : fmt::format("the state became non-finite at step {} (t = {})", s.step(), s.time());
+      return;
+    }
+    loops[l].steps_done = s.step();
+    for (auto* o : rec[l]->all()) o->observe(s);
+  };
+  for (std::size_t l = 0; l < cases.size(); ++l) observe(l);
+  for (long long n = 1; n <= steps && std::find(live.begin(), live.end(), true) != live.end(); ++n) {
+    batch.advance();
+    for (std::size_t l = 0; l < cases.size(); ++l)
+      if (live[l]) observe(l);
+  }
+  std::vector<RunResult> out;
+  for (std::size_t l = 0; l < cases.size(); ++l) {
+    out.push_back(collect(*cases[l], loops[l], steps, *rec[l], started));
+    out.back().summary.run_seconds /= static_cast<double>(cases.size());  // each lane's share of the batch
+  }
+  return out;
 }
 
 RunResult run_exact(const Case& c) {
@@ -79,16 +133,17 @@ namespace {
 
 RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options) {
   const auto started = std::chrono::steady_clock::now();
-  Scheme* scheme = &scheme_ref;
-  HistoryRecorder history(c.output.every);
-  FieldRecorder fields(c, c.output.fields_at);
-  ContactMonitor contact(c.obstacle);
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
-  std::vector<Observer*> observers{&history, &fields, &contact};
+  Recorders rec(c);
+  std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact};
   if (options.progress) observers.push_back(&progress);
-  const LoopResult loop = simulate(*scheme, steps, observers);
+  const LoopResult loop = simulate(scheme_ref, steps, observers);
+  return collect(c, loop, steps, rec, started);
+}
 
+RunResult collect(const Case& c, const LoopResult& loop, long long steps, Recorders& rec,
+                  std::chrono::steady_clock::time_point started) {
   RunResult r;
   Summary& s = r.summary;
   s.method = c.time.scheme;
@@ -98,10 +153,10 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   s.steps = steps;
   s.steps_done = loop.steps_done;
   s.t_end = static_cast<double>(loop.steps_done) * c.time.step;
-  s.contacts = contact.intervals();
-  s.max_penetration = contact.max_penetration();
-  s.max_reaction = contact.max_reaction();
-  r.history = history.rows();
+  s.contacts = rec.contact.intervals();
+  s.max_penetration = rec.contact.max_penetration();
+  s.max_reaction = rec.contact.max_reaction();
+  r.history = rec.history.rows();
   if (!r.history.empty()) {
     auto total = [](const HistoryRow& h) { return h.E_kin + h.E_strain + h.E_obstacle - h.W_ext + h.D_visc; };
     s.energy_initial = total(r.history.front());
@@ -109,7 +164,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
     for (const auto& h : r.history)
       s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
   }
-  r.fields = fields.take();
+  r.fields = rec.fields.take();
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

@@ -2,15 +2,17 @@
 
 #include <fmt/format.h>
 
+#include <toml++/toml.h>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "barimpact/executor.hpp"
 #include "barimpact/output.hpp"
+#include "barimpact/paper_scheme.hpp"
 #include "barimpact/simulate.hpp"
 
 namespace barimpact {
@@ -31,7 +33,9 @@ std::string plain_text(const std::string& toml_value) {
   return toml_value;
 }
 
-double nan_if(bool known, double v) { return known ? v : std::numeric_limits<double>::quiet_NaN(); }
+double nan_if(bool known, double v) {
+  return known ? v : std::numeric_limits<double>::quiet_NaN();
+}
 
 SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
   SweepRow r;
@@ -43,7 +47,8 @@ SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
   r.t_end = s.t_end;
   r.contacts = static_cast<int>(s.contacts.size());
   r.first_contact = nan_if(!s.contacts.empty(), s.contacts.empty() ? 0 : s.contacts.front().start);
-  r.lift_off = nan_if(!s.contacts.empty() && s.contacts.front().closed, s.contacts.empty() ? 0 : s.contacts.front().end);
+  r.lift_off =
+      nan_if(!s.contacts.empty() && s.contacts.front().closed, s.contacts.empty() ? 0 : s.contacts.front().end);
   const ContactInterval* last_closed = nullptr;
   for (const auto& c : s.contacts)
     if (c.closed) last_closed = &c;
@@ -83,7 +88,8 @@ SweepPlan SweepPlan::from_file(const fs::path& path) {
     }
   }
   const auto* axes = root.get_as<toml::array>("axis");
-  if (axes == nullptr || axes->empty()) throw InputError(fmt::format("{}: at least one [[axis]] is required", path.string()));
+  if (axes == nullptr || axes->empty())
+    throw InputError(fmt::format("{}: at least one [[axis]] is required", path.string()));
   std::vector<SweepAxis> list;
   for (const auto& node : *axes) {
     const auto* t = node.as_table();
@@ -91,9 +97,10 @@ SweepPlan SweepPlan::from_file(const fs::path& path) {
     SweepAxis a;
     for (auto&& [k, v] : *t)
       if (k != "key" && k != "values" && k != "from" && k != "to" && k != "count" && k != "scale")
-        throw InputError(fmt::format("{}: unknown key {} in [[axis]] (known: key, values, from, to, count, scale; "
-                                     "zip belongs before the first [[axis]])",
-                                     where(v), k.str()));
+        throw InputError(
+            fmt::format("{}: unknown key {} in [[axis]] (known: key, values, from, to, count, scale; "
+                        "zip belongs before the first [[axis]])",
+                        where(v), k.str()));
     const auto* key = t->get_as<std::string>("key");
     if (key == nullptr) throw InputError(fmt::format("{}: axis.key = \"section.key\" is required", where(node)));
     a.key = key->get();
@@ -147,7 +154,8 @@ SweepPlan SweepPlan::from_file(const fs::path& path) {
         const auto name = n.value<std::string>();
         std::size_t i = 0;
         while (i < list.size() && (!name || list[i].key != *name)) ++i;
-        if (i == list.size()) throw InputError(fmt::format("{}: zip names {}, which is no axis", where(z), toml_text(n)));
+        if (i == list.size())
+          throw InputError(fmt::format("{}: zip names {}, which is no axis", where(z), toml_text(n)));
         if (grouped[i]) throw InputError(fmt::format("{}: axis {} is zipped twice", where(z), list[i].key));
         if (list[i].values.size() != list[g.empty() ? i : g.front()].values.size())
           throw InputError(fmt::format("{}: zipped axes must have as many values each", where(z)));
@@ -207,7 +215,8 @@ bool read_row(const SweepPlan& plan, const fs::path& dir, std::size_t point, Swe
     row.t_end = num("t_end");
     row.contacts = j.at("contact_count").get<int>();
     const auto& contacts = j.at("contacts");
-    row.first_contact = contacts.empty() ? std::numeric_limits<double>::quiet_NaN() : contacts[0]["start"].get<double>();
+    row.first_contact =
+        contacts.empty() ? std::numeric_limits<double>::quiet_NaN() : contacts[0]["start"].get<double>();
     row.lift_off = contacts.empty() || !contacts[0]["closed"].get<bool>() ? std::numeric_limits<double>::quiet_NaN()
                                                                           : contacts[0]["end"].get<double>();
     row.rebound_velocity = std::numeric_limits<double>::quiet_NaN();
@@ -227,30 +236,74 @@ bool read_row(const SweepPlan& plan, const fs::path& dir, std::size_t point, Swe
 std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, const std::vector<std::size_t>& todo,
                                 const SweepOptions& options) {
   std::vector<SweepRow> rows(todo.size());
-  run_parallel(todo.size(), options.jobs, [&](std::size_t i) {
+  auto refused = [&](std::size_t i, const std::string& why) {
     const auto& p = plan.points()[todo[i]];
     SweepRow& row = rows[i];
+    row = SweepRow{};
+    row.id = p.id;
+    for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
+    row.status = "refused";
+    row.message = why;
+    row.t_end = row.first_contact = row.lift_off = row.rebound_velocity = row.max_penetration = row.max_reaction =
+        row.energy_error_relative = row.run_seconds = std::numeric_limits<double>::quiet_NaN();
+  };
+  std::vector<std::optional<Case>> cases(todo.size());
+  for (std::size_t i = 0; i < todo.size(); ++i) {
     try {
-      const Case c = plan.case_at(p);
-      RunDirectory out(dir / "runs" / p.id);
-      const RunResult r = run(c);
-      out.commit(c, r);
-      row = row_from_summary(p, r.summary);
+      cases[i] = plan.case_at(plan.points()[todo[i]]);
+    } catch (const InputError& e) {
+      refused(i, e.what());
+    }
+  }
+  // Groups of up to four cases that can share a SIMD batch; the rest alone.
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<bool> taken(todo.size(), false);
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    if (!cases[i] || taken[i]) continue;
+    std::vector<std::size_t> g{i};
+    taken[i] = true;
+    if (options.batch && PaperScheme::batchable(*cases[i], *cases[i]))
+      for (std::size_t k = i + 1; k < todo.size() && g.size() < PaperBatch::width; ++k)
+        if (cases[k] && !taken[k] && PaperScheme::batchable(*cases[i], *cases[k])) {
+          g.push_back(k);
+          taken[k] = true;
+        }
+    groups.push_back(std::move(g));
+  }
+  run_parallel(groups.size(), options.jobs, [&](std::size_t gi) {
+    const auto& g = groups[gi];
+    std::vector<RunResult> results;
+    try {
+      if (g.size() == 1) {
+        results.push_back(run(*cases[g.front()]));
+      } else {
+        std::vector<const Case*> ptrs;
+        for (auto i : g) ptrs.push_back(&*cases[i]);
+        results = run_batch(ptrs);
+      }
     } catch (const std::exception& e) {
-      row = SweepRow{};
-      row.id = p.id;
-      for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
-      row.status = "refused";
-      row.message = e.what();
-      row.t_end = row.first_contact = row.lift_off = row.rebound_velocity = row.max_penetration = row.max_reaction =
-          row.energy_error_relative = row.run_seconds = std::numeric_limits<double>::quiet_NaN();
+      for (auto i : g) refused(i, e.what());
+      return;
+    }
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      const auto& p = plan.points()[todo[g[k]]];
+      try {
+        RunDirectory out(dir / "runs" / p.id);
+        out.commit(*cases[g[k]], results[k]);
+        rows[g[k]] = row_from_summary(p, results[k].summary);
+        rows[g[k]].batched = g.size() > 1;
+      } catch (const std::exception& e) {
+        refused(g[k], e.what());
+      }
     }
   });
   return rows;
 }
 
 namespace {
-std::string cell(double v) { return std::isfinite(v) ? fmt::format("{}", v) : std::string("nan"); }
+std::string cell(double v) {
+  return std::isfinite(v) ? fmt::format("{}", v) : std::string("nan");
+}
 std::string quoted(const std::string& s) {
   std::string out = "\"";
   for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);

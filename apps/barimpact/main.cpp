@@ -153,8 +153,9 @@ int converge_command(ConvergeArgs& a) {
 }
 
 #ifdef BARIMPACT_HAVE_MPI
-// Under mpirun: rank 0 hands out case indices one at a time to whichever
-// rank asks (dynamic load balancing) and gathers their rows; the others run.
+// Under mpirun: rank 0 hands out case indices, four at a time (one SIMD
+// batch), to whichever rank asks (dynamic load balancing) and gathers their
+// rows; the others run them.
 constexpr int tag_request = 1, tag_case = 2, tag_row = 3;
 
 std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
@@ -170,9 +171,11 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
       if (status.MPI_TAG == tag_request) {
         int dummy = 0;
         MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        long long index = next < todo.size() ? static_cast<long long>(todo[next++]) : -1;
-        if (index < 0) --active;
-        MPI_Send(&index, 1, MPI_LONG_LONG, status.MPI_SOURCE, tag_case, MPI_COMM_WORLD);
+        std::vector<long long> chunk;
+        while (next < todo.size() && chunk.size() < 4) chunk.push_back(static_cast<long long>(todo[next++]));
+        if (chunk.empty()) --active;
+        MPI_Send(chunk.data(), static_cast<int>(chunk.size()), MPI_LONG_LONG, status.MPI_SOURCE, tag_case,
+                 MPI_COMM_WORLD);
       } else {
         int length = 0;
         MPI_Get_count(&status, MPI_CHAR, &length);
@@ -187,12 +190,17 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
     while (true) {
       int dummy = 0;
       MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
-      long long index = -1;
-      MPI_Recv(&index, 1, MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      if (index < 0) break;
-      const auto done = barimpact::run_sweep(plan, dir, {static_cast<std::size_t>(index)}, one);
-      const std::string text = barimpact::row_to_json(done.front());
-      MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_row, MPI_COMM_WORLD);
+      long long chunk[4];
+      MPI_Status status;
+      MPI_Recv(chunk, 4, MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD, &status);
+      int count = 0;
+      MPI_Get_count(&status, MPI_LONG_LONG, &count);
+      if (count == 0) break;
+      std::vector<std::size_t> indices(chunk, chunk + count);
+      for (const auto& row : barimpact::run_sweep(plan, dir, indices, one)) {
+        const std::string text = barimpact::row_to_json(row);
+        MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_row, MPI_COMM_WORLD);
+      }
     }
   }
   return rows;
@@ -249,8 +257,9 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   const auto staging = dir / ".sweep.csv.partial";
   barimpact::write_text(staging, barimpact::sweep_csv(plan, rows));
   std::filesystem::rename(staging, dir / "sweep.csv");
-  fmt::print("{} cases: {} run{}, {} resumed, {} not complete; sweep.csv in {}\n", rows.size(), done.size(),
-             size > 1 ? fmt::format(" on {} ranks", size - 1) : "", resumed, failed, out_dir);
+  const auto batched = std::count_if(done.begin(), done.end(), [](const auto& r) { return r.batched; });
+  fmt::print("{} cases: {} run{} ({} in SIMD batches), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
+             done.size(), size > 1 ? fmt::format(" on {} ranks", size - 1) : "", batched, resumed, failed, out_dir);
   return 0;
 }
 
@@ -290,10 +299,10 @@ int main(int argc, char** argv) {
 
   const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "plot"};
   if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
-    fmt::print(
-        stderr,
-        "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, plot; see barimpact --help)\n",
-        argv[1]);
+    fmt::print(stderr,
+               "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, plot; see barimpact "
+               "--help)\n",
+               argv[1]);
     return exit_bad_input;
   }
   std::string exact_case, exact_out;

@@ -55,15 +55,22 @@ class PaperScheme final : public Scheme {
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
 
-  /// The level z^{n+1} (exposed for tests of the scheme itself).
-  [[nodiscard]] std::span<const double> next_level() const { return {next_, mesh_.nodes()}; }
-  [[nodiscard]] std::span<const double> current_level() const { return {cur_, mesh_.nodes()}; }
+  /// The level z^{n+1}, node j at [j * stride()] (exposed for tests of the scheme itself).
+  [[nodiscard]] const double* next_level() const { return next_; }
+  [[nodiscard]] std::size_t stride() const { return stride_; }
+
+  /// Whether `a` and `b` can share a PaperBatch: same mesh size and step
+  /// count, a load that does not depend on t, no dashpot.
+  [[nodiscard]] static bool batchable(const Case& a, const Case& b);
 
  private:
+  friend class PaperBatch;
   enum class LoadMode { zero, steady, unsteady };
 
   template <LoadMode mode>
   void solve_level(long long m);
+  /// Rotates the levels and books the budget of level m.
+  void finish_level(long long m);
   /// exp(lambda t_m): u^m = scale(m) z^m (Remark 6.2).
   [[nodiscard]] double scale(long long m) const;
   /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
@@ -89,6 +96,8 @@ class PaperScheme final : public Scheme {
   bool dashpot_active_ = false;           // the contact status used at the last level
 
   std::array<std::vector<double>, 3> levels_;
+  std::size_t stride_ = 1;  // node j of a level is at [j * stride_] (4 inside a PaperBatch)
+  bool batched_ = false;
   double* prev_ = nullptr;  // z^{n-1}
   double* cur_ = nullptr;   // z^n
   double* next_ = nullptr;  // z^{n+1}
@@ -108,6 +117,32 @@ class PaperScheme final : public Scheme {
   long long n_ = 0;
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // increments of level n
+};
+
+/// Up to four paper-scheme cases stepped together, one per lane of a
+/// 4-double SIMD register: their levels, pivots and loads interleaved
+/// (node j of lane l at [4 j + l]), the same arithmetic as PaperScheme's
+/// kernel lane by lane, so that each lane's results are PaperScheme's to the
+/// last bit (tested). The Thomas sweeps are latency-bound; four independent
+/// chains in one register make them nearly four times cheaper per case.
+/// Each lane stays a PaperScheme: observers see it through the Scheme
+/// interface.
+class PaperBatch {
+ public:
+  static constexpr std::size_t width = 4;
+  /// 1 to 4 cases, pairwise batchable. Throws InputError otherwise.
+  explicit PaperBatch(const std::vector<const Case*>& cases);
+  void start();
+  void advance();
+  [[nodiscard]] std::size_t size() const { return lanes_.size(); }
+  [[nodiscard]] PaperScheme& lane(std::size_t i) { return *lanes_[i]; }
+
+ private:
+  std::vector<std::unique_ptr<PaperScheme>> lanes_;
+  std::array<std::vector<double>, 3> levels_;
+  std::vector<double> inv_, up_, load_;
+  std::size_t nodes_ = 0;
+  bool steady_load_ = false;
 };
 
 }  // namespace barimpact

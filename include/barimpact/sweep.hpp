@@ -36,7 +36,7 @@ struct SweepAxis {
 };
 
 struct SweepPoint {
-  std::string id;  ///< zero-padded index, stable for a given sweep file
+  std::string id;                                           ///< zero-padded index, stable for a given sweep file
   std::vector<std::pair<std::string, std::string>> values;  ///< key, TOML value text
 };
 
@@ -73,8 +73,8 @@ struct SweepRow {
 };
 
 struct SweepOptions {
-  int jobs = 0;        ///< threads (0: all cores)
-  bool batch = true;   ///< run compatible paper-scheme cases 4 to a SIMD register
+  int jobs = 0;       ///< threads (0: all cores)
+  bool batch = true;  ///< run compatible paper-scheme cases 4 to a SIMD register
 };
 
 /// Runs (or resumes) the points `todo` (indices into plan.points()) into

@@ -171,6 +171,11 @@ mkdir -p "$work/sweep/runs/.0008.partial-1" && rm -rf "$work/sweep/runs/0008" &&
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" > "$work/out" && ok || bad "resume"
 grep -q "12 cases: 2 run, 10 resumed" "$work/out" && ok || bad "resume counts: $(cat "$work/out")"
 cmp -s <(cut -d, -f1-14 "$work/sweep/sweep.csv") "$work/first.csv" && ok || bad "resumed sweep.csv differs"
+# SIMD batches change nothing: the same bits with and without them.
+"$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-nobatch" --no-batch > "$work/out" && ok || bad "no-batch"
+grep -q "(0 in SIMD batches)" "$work/out" && ok || bad "no-batch still batched"
+cmp -s <(cut -d, -f1-14 "$work/sweep-nobatch/sweep.csv") "$work/first.csv" && ok || bad "batched and unbatched rows differ"
+cmp -s "$work/sweep-nobatch/runs/0009/history.csv" "$work/sweep/runs/0009/history.csv" && ok || bad "batched history differs"
 # Failures: recorded in their rows, the others run.
 "$bin" sweep "$sweeps/with-failures.toml" --out "$work/sweep-fail" > "$work/out" && ok || bad "sweep with failures"
 grep -q "^0000,.*,non-finite," "$work/sweep-fail/sweep.csv" && ok || bad "non-finite row"

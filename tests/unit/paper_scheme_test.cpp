@@ -42,7 +42,7 @@ TEST(PaperScheme, FirstStepsOfTwoElementsMatchTheHandComputation) {
   ASSERT_EQ(s.step(), 0);
   EXPECT_EQ(s.end_displacement(), 0.0);
   EXPECT_EQ(s.end_velocity(), -1.0);
-  for (double z : s.next_level()) EXPECT_EQ(z, -1.0);  // (6.3)(iii)
+  for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(s.next_level()[j], -1.0);  // (6.3)(iii)
   s.advance();
   ASSERT_EQ(s.step(), 1);
   const auto z2 = s.next_level();

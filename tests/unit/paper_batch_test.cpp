@@ -1,0 +1,77 @@
+// A PaperBatch lane gives PaperScheme's numbers to the last bit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+#include "../support/run_case.hpp"
+#include "barimpact/paper_scheme.hpp"
+
+namespace barimpact {
+namespace {
+
+bool same_bits(const std::vector<HistoryRow>& a, const std::vector<HistoryRow>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(HistoryRow)) == 0;
+}
+
+std::vector<Case> four_cases(const std::string& load) {
+  // Everything a lane may have of its own: k, gap, alpha, lambda, viscosity,
+  // density, stiffness, initial data, far end, with a shared mesh and step count.
+  const std::string base =
+      "[bar]\nelements = 60\n[time]\nend = 3\n[output]\nfields_at = [0.5, 1.0]\n[load]\nbody_force = \"" + load +
+      "\"\n";
+  return {testing::case_from(base, {"initial.velocity=\"-1\""}),
+          testing::case_from(base, {"initial.velocity=\"-0.5 + x/4\"", "obstacle.stiffness=400", "obstacle.gap=0.01",
+                                    "time.alpha=0.4"}),
+          testing::case_from(base, {"initial.velocity=\"-1\"", "time.lambda=0.25", "bar.viscosity=0.02",
+                                    "bar.density=2", "bar.stiffness=3"}),
+          testing::case_from(base, {"initial.displacement=\"0.01*(1-x)\"", "bar.far_end=\"clamped\"", "time.step=0.005",
+                                    "time.end=1.5", "obstacle.kind=none"})};
+}
+
+TEST(PaperBatch, LanesMatchSingleRunsToTheLastBit) {
+  for (const char* load : {"0", "-1 + x"}) {
+    const auto cases = four_cases(load);
+    std::vector<const Case*> ptrs;
+    for (const auto& c : cases) ptrs.push_back(&c);
+    const auto batch = run_batch(ptrs);
+    ASSERT_EQ(batch.size(), 4u);
+    for (std::size_t l = 0; l < 4; ++l) {
+      const auto single = run(cases[l]);
+      EXPECT_TRUE(same_bits(batch[l].history, single.history)) << "lane " << l << " load " << load;
+      EXPECT_EQ(batch[l].fields.u, single.fields.u) << l;
+      EXPECT_EQ(batch[l].summary.contacts.size(), single.summary.contacts.size()) << l;
+    }
+  }
+}
+
+TEST(PaperBatch, APartialBatchAndAFailingLane) {
+  // Three lanes (the fourth pads); lane 1 blows up (alpha = 0, dt far above
+  // its limit), the others complete unchanged.
+  const std::string base =
+      "[bar]\nelements = 100\n[initial]\nvelocity = \"-1\"\n[time]\nstep = 0.1\nend = 40\n[output]\nevery = 10\n";
+  const std::vector<Case> cases{testing::case_from(base), testing::case_from(base, {"time.alpha=0"}),
+                                testing::case_from(base, {"time.alpha=0.5"})};
+  const auto batch = run_batch({&cases[0], &cases[1], &cases[2]});
+  EXPECT_EQ(batch[1].summary.status, RunStatus::non_finite);
+  for (std::size_t l : {0u, 2u}) {
+    EXPECT_TRUE(batch[l].summary.complete);
+    EXPECT_TRUE(same_bits(batch[l].history, run(cases[l]).history)) << l;
+  }
+  const auto single = run(cases[1]);
+  EXPECT_EQ(batch[1].summary.steps_done, single.summary.steps_done);
+  EXPECT_TRUE(same_bits(batch[1].history, single.history));
+}
+
+TEST(PaperBatch, RefusesCasesThatCannotShareIt) {
+  const Case a = testing::case_from("");
+  const Case b = testing::case_from("[bar]\nelements = 50");
+  const Case v = testing::case_from("[obstacle]\nkind = \"viscoelastic\"\nviscosity = 0.1");
+  const Case t = testing::case_from("[load]\nbody_force = \"t\"");
+  EXPECT_FALSE(PaperScheme::batchable(a, b));
+  EXPECT_FALSE(PaperScheme::batchable(a, v));
+  EXPECT_FALSE(PaperScheme::batchable(a, t));
+  EXPECT_THROW((void)run_batch({&a, &b}), InputError);
+}
+
+}  // namespace
+}  // namespace barimpact
