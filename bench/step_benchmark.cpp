@@ -14,6 +14,10 @@
 
 #include "barimpact/case.hpp"
 #include "barimpact/paper_scheme.hpp"
+#include "barimpact/scheme.hpp"
+
+#include <string>
+#include <utility>
 
 namespace {
 
@@ -106,9 +110,74 @@ void BM_BareLoop(benchmark::State& state) {
   per_node_step(state, n);
 }
 
+// Every scheme's step on Example 1 (rigid obstacle for the rigid schemes,
+// k = 100 for the penalty ones), dt = h/2 (h for characteristic).
+void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigid) {
+  const long long M = state.range(0);
+  const double h = 1.0 / static_cast<double>(M);
+  auto c = barimpact::Case::from_string(fmt::format(
+      "[bar]\nelements = {}\n[initial]\nvelocity = \"-1\"\n[obstacle]\nkind = \"{}\"\n[time]\n"
+      "scheme = \"{}\"\n{}end = 1\n",
+      M, rigid ? "rigid" : "elastic", scheme, scheme == "characteristic" ? "" : fmt::format("step = {}\n", h / 2)));
+  auto s = barimpact::make_scheme(c);
+  s->start();
+  for (auto _ : state) {
+    s->advance();
+    benchmark::DoNotOptimize(s->end_displacement());
+  }
+  per_node_step(state, s->nodes());
+}
+
+// The bare loop of lumped central differences: one fused, vectorisable pass
+// u^{n+1}_j = 2u_j - u^{n-1}_j - (dt^2/m_j) (K u)_j with the same arrays.
+void BM_BareCentralDifference(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1;
+  const double h = 1.0 / static_cast<double>(n - 1), dt = h / 2;
+  std::vector<double> kd(n, 2.0 / h), ko(n - 1, -1.0 / h), inv_m(n, 1.0 / h), f(n, 0.0);
+  kd[0] = kd[n - 1] = 1.0 / h;
+  inv_m[0] = inv_m[n - 1] = 2.0 / h;
+  std::vector<double> a(n, 0.0), b(n, -dt), c(n, 0.0);
+  double *um = a.data(), *u = b.data(), *up = c.data();
+  for (auto _ : state) {
+    const double* __restrict pu = u;
+    const double* __restrict pm = um;
+    double* __restrict pn = up;
+    const double dt2 = dt * dt;
+    pn[0] = 2.0 * pu[0] - pm[0] + dt2 * ((f[0] - (kd[0] * pu[0] + ko[0] * pu[1])) * inv_m[0]);
+    for (std::size_t j = 1; j + 1 < n; ++j)
+      pn[j] =
+          2.0 * pu[j] - pm[j] + dt2 * ((f[j] - (kd[j] * pu[j] + ko[j - 1] * pu[j - 1] + ko[j] * pu[j + 1])) * inv_m[j]);
+    const std::size_t l = n - 1;
+    pn[l] = 2.0 * pu[l] - pm[l] + dt2 * ((f[l] - (kd[l] * pu[l] + ko[l - 1] * pu[l - 1])) * inv_m[l]);
+    if (pn[0] < 0.0) pn[0] = 0.0;
+    double* t = um;
+    um = u;
+    u = up;
+    up = t;
+    benchmark::DoNotOptimize(u);
+  }
+  per_node_step(state, n);
+}
+
 }  // namespace
 
 BENCHMARK(BM_PaperStep)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareLoop)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_PaperBatch4)->RangeMultiplier(10)->Range(100, 1'000'000);
+BENCHMARK(BM_BareCentralDifference)->RangeMultiplier(10)->Range(100, 1'000'000);
+
+namespace {
+const bool registered = [] {
+  for (auto [scheme, rigid] :
+       {std::pair{"paper", false}, std::pair{"newmark", false}, std::pair{"central-difference", false},
+        std::pair{"central-difference", true}, std::pair{"characteristic", true}, std::pair{"paoli-schatzman", true},
+        std::pair{"moreau-jean", true}, std::pair{"mass-redistribution", true}}) {
+    const std::string name = fmt::format("BM_Scheme/{}/{}", scheme, rigid ? "rigid" : "elastic");
+    benchmark::RegisterBenchmark(name.c_str(), BM_SchemeStep, std::string(scheme), rigid)
+        ->RangeMultiplier(100)
+        ->Range(100, 1'000'000);
+  }
+  return true;
+}();
+}  // namespace
 BENCHMARK_MAIN();

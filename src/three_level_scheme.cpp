@@ -18,6 +18,10 @@ ThreeLevelScheme::ThreeLevelScheme(const Case& c, bool consistent_mass)
   for (std::size_t j = 0; j < n; ++j)
     lumped_[j] = mass_.diag[j] + (j > 0 ? mass_.off[j - 1] : 0.0) + (j + 1 < n ? mass_.off[j] : 0.0);
   kinetic_mass_ = consistent_mass ? mass_ : Tridiagonal{lumped_, std::vector<double>(n - 1, 0.0)};
+  lumped_step_ = !consistent_mass;
+  kb_positive_ = c.bar.viscosity > 0.0;
+  inverse_lumped_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) inverse_lumped_[j] = 1.0 / lumped_[j];
   for (auto& l : levels_) l.assign(n, 0.0);
   rhs_.assign(n, 0.0);
   load_.assign(n, 0.0);
@@ -64,6 +68,54 @@ void ThreeLevelScheme::start() {
   reaction_ = law_.reaction(u0_[0], v0_[0]) + 2.0 * enforce_contact(prev_, cur_, next_);
 }
 
+// u^{m+1} = 2 u^m - u^{m-1} + dt^2 M^{-1} r, r = F^m - K_a u^m - K_b (u^m - u^{m-1})/dt
+// (+ the penalty at node 0). Interior rows without branches; with lumped
+// mass the update is fused into the same pass (vectorised over nodes).
+template <bool viscous>
+void ThreeLevelScheme::step_rows(const double* __restrict um, const double* __restrict u, double* __restrict up,
+                                 double penalty) {
+  const std::size_t n = mesh_.nodes(), last = n - 1;
+  const double* __restrict kd = stiffness_a_.diag.data();
+  const double* __restrict ko = stiffness_a_.off.data();
+  const double* __restrict bd = stiffness_b_.diag.data();
+  const double* __restrict bo = stiffness_b_.off.data();
+  const double* __restrict f = load_.data();
+  const double* __restrict inv_m = inverse_lumped_.data();
+  double* __restrict r = rhs_.data();
+  const double inv_dt = 1.0 / dt_, dt2 = dt_ * dt_;
+  auto viscous_force = [&](std::size_t j, double d) {
+    if constexpr (viscous) return d * inv_dt;
+    (void)j;
+    return 0.0 * d;
+  };
+  // Boundary rows.
+  double d0 = 0.0, dl = 0.0;
+  if constexpr (viscous) {
+    d0 = bd[0] * (u[0] - um[0]) + bo[0] * (u[1] - um[1]);
+    dl = bd[last] * (u[last] - um[last]) + bo[last - 1] * (u[last - 1] - um[last - 1]);
+  }
+  r[0] = f[0] - (kd[0] * u[0] + ko[0] * u[1]) - viscous_force(0, d0) + penalty;
+  r[last] = clamped_ ? 0.0 : f[last] - (kd[last] * u[last] + ko[last - 1] * u[last - 1]) - viscous_force(last, dl);
+  if (lumped_step_) {
+    for (std::size_t j = 1; j < last; ++j) {
+      double rj = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]);
+      if constexpr (viscous)
+        rj -= (bd[j] * (u[j] - um[j]) + bo[j - 1] * (u[j - 1] - um[j - 1]) + bo[j] * (u[j + 1] - um[j + 1])) * inv_dt;
+      up[j] = 2.0 * u[j] - um[j] + dt2 * (rj * inv_m[j]);
+    }
+    for (std::size_t j : {std::size_t{0}, last}) up[j] = 2.0 * u[j] - um[j] + dt2 * (r[j] * inv_m[j]);
+    return;
+  }
+  for (std::size_t j = 1; j < last; ++j) {
+    double rj = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]);
+    if constexpr (viscous)
+      rj -= (bd[j] * (u[j] - um[j]) + bo[j - 1] * (u[j - 1] - um[j - 1]) + bo[j] * (u[j + 1] - um[j + 1])) * inv_dt;
+    r[j] = rj;
+  }
+  apply_inverse_mass(rhs_);
+  for (std::size_t j = 0; j < n; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * r[j];
+}
+
 void ThreeLevelScheme::advance() {
   const std::size_t n = mesh_.nodes();
   const long long m = n_ + 1;  // the equation at level m gives u^{m+1}
@@ -71,30 +123,13 @@ void ThreeLevelScheme::advance() {
   const double* u = next_;     // u^m
   double* up = prev_;          // becomes u^{m+1}
   load_at(m);
-  // r = F^m - K_a u^m - K_b (u^m - u^{m-1}) / dt, row by row.
-  const auto& ka = stiffness_a_;
-  const auto& kb = stiffness_b_;
-  const double inv_dt = 1.0 / dt_;
-  for (std::size_t j = 0; j < n; ++j) {
-    double s = ka.diag[j] * u[j];
-    double d = kb.diag[j] * (u[j] - um[j]);
-    if (j > 0) {
-      s += ka.off[j - 1] * u[j - 1];
-      d += kb.off[j - 1] * (u[j - 1] - um[j - 1]);
-    }
-    if (j + 1 < n) {
-      s += ka.off[j] * u[j + 1];
-      d += kb.off[j] * (u[j + 1] - um[j + 1]);
-    }
-    rhs_[j] = load_[j] - s - d * inv_dt;
-  }
   // The penalty force at t_m, its rate by a backward difference (explicit).
-  const double penalty = law_.reaction(u[0], (u[0] - um[0]) * inv_dt);
-  rhs_[0] += penalty;
-  if (clamped_) rhs_[n - 1] = 0.0;
-  apply_inverse_mass(rhs_);
-  const double dt2 = dt_ * dt_;
-  for (std::size_t j = 0; j < n; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * rhs_[j];
+  const double penalty = law_.reaction(u[0], (u[0] - um[0]) / dt_);
+  const bool viscous = kb_positive_;
+  if (viscous)
+    step_rows<true>(um, u, up, penalty);
+  else
+    step_rows<false>(um, u, up, penalty);
   const double impulse_force = enforce_contact(um, u, up);
   prev_ = cur_;
   cur_ = next_;
@@ -103,10 +138,12 @@ void ThreeLevelScheme::advance() {
   reaction_ = penalty + impulse_force;
 
   // Budget of level m: dW = F^m . (u^{m+1} - u^{m-1}) / 2, dD = viscous force . same.
+  const auto& kb = stiffness_b_;
+  const double inv_dt = 1.0 / dt_;
   double dw = 0.0, dd = 0.0;
   if (!load_zero_)
     for (std::size_t j = 0; j < n; ++j) dw += load_[j] * 0.5 * (next_[j] - prev_[j]);
-  if (stiffness_b_.diag[0] > 0.0) {
+  if (viscous) {
     for (std::size_t j = 0; j < n; ++j) {
       double d = kb.diag[j] * (cur_[j] - prev_[j]);
       if (j > 0) d += kb.off[j - 1] * (cur_[j - 1] - prev_[j - 1]);

@@ -58,8 +58,13 @@ class ThreeLevelScheme : public Scheme {
   std::vector<double> lumped_;   // row sums of M_h (used by the lumped variant)
   Tridiagonal kinetic_mass_;     // the M of the scheme: M_h, or diag(lumped_)
   std::vector<double> u0_, v0_;  // the initial data at the nodes
+  bool lumped_step_ = false;     // M = diag(lumped_): the update is fused into one pass
+  bool kb_positive_ = false;
+  std::vector<double> inverse_lumped_;
 
  private:
+  template <bool viscous>
+  void step_rows(const double* um, const double* u, double* up, double penalty);
   void load_at(long long n);
   void half_step_energy(const double* a, const double* b, double& kinetic, double& strain) const;
 
