@@ -50,6 +50,8 @@ FactoredTridiagonal::FactoredTridiagonal(const Tridiagonal& a, bool fix_last) : 
     inv_[n - 1] = 0.0;
     lower_[n - 1] = 0.0;
   }
+  scaled_upper_.assign(n, 0.0);
+  for (std::size_t j = 0; j + 1 < n; ++j) scaled_upper_[j] = off_[j] * inv_[j];
 }
 
 void FactoredTridiagonal::solve(std::span<double> x) const {

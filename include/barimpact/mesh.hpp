@@ -41,11 +41,18 @@ class FactoredTridiagonal {
   /// contact schemes' Sherman-Morrison and impulse directions).
   [[nodiscard]] std::vector<double> response_to_end_force() const;
   [[nodiscard]] std::size_t size() const { return inv_.size(); }
+  /// The factors, for kernels that fuse their right-hand side into the sweeps:
+  /// forward y_j = r_j - lower_j y_{j-1}; backward x_j = y_j inv_j - scaled_upper_j x_{j+1},
+  /// scaled_upper_j = off_j inv_j (one multiply-subtract on the sweep's chain).
+  [[nodiscard]] const double* lower() const { return lower_.data(); }
+  [[nodiscard]] const double* inverse_pivots() const { return inv_.data(); }
+  [[nodiscard]] const double* scaled_upper() const { return scaled_upper_.data(); }
 
  private:
   std::vector<double> inv_;    // 1 / pivot (0 on a fixed row)
   std::vector<double> lower_;  // off / pivot of the row above
   std::vector<double> off_;
+  std::vector<double> scaled_upper_;
 };
 
 class Mesh {

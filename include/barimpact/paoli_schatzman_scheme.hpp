@@ -18,6 +18,7 @@ class PaoliSchatzmanScheme final : public ThreeLevelScheme {
 
  protected:
   void apply_inverse_mass(std::span<double> r) const override { mass_factor_.solve(r); }
+  [[nodiscard]] const FactoredTridiagonal* mass_factor() const override { return &mass_factor_; }
   double enforce_contact(const double* prev, const double* cur, double* next) override;
 
  private:
