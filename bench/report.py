@@ -107,10 +107,12 @@ rigid schemes, k = 100 otherwise), dt = h/2 (h for characteristic):
 The explicit lumped schemes (central-difference, characteristic) run one
 fused pass that the compiler vectorises, about 0.65 ns per node-step: at or
 near 1.25x of their bare loop at M = 100, where the per-step work (contact,
-checks, observers' bookkeeping) shows, and at par above (memory-bound at 10^6). The implicit one-step
-schemes (newmark, moreau-jean, mass-redistribution) and paoli-schatzman
-still make several passes per step (products, a solve, updates): 5-15 ns per
-node-step, about 1.5-4x a fused version; fusing them is open work.
+checks, observers' bookkeeping) shows, and at par above (memory-bound at 10^6).
+paper and paoli-schatzman fuse their right-hand side into a prefactored
+tridiagonal solve: their ratio is to the bare loop of that (first table).
+The implicit one-step schemes (newmark, moreau-jean, mass-redistribution)
+still make several passes per step (products, a solve, updates): 8-20 ns per
+node-step, about 2-4x a fused version; fusing them is open work.
 
 ## Sweeps: SIMD batches, threads, MPI
 
