@@ -72,10 +72,12 @@ Fields FieldRecorder::take() {
   return std::move(fields_);
 }
 
-void ContactMonitor::begin(const Scheme& scheme, long long /*steps*/) {
+void ContactMonitor::begin(const Scheme& scheme, long long steps) {
   velocity_.assign(scheme.nodes(), 0.0);
   intervals_.clear();
-  intervals_.reserve(64);
+  // A stiff penalty can chatter hundreds of times: room for 4096 episodes
+  // (or one per two steps, if fewer) before the vector has to grow.
+  intervals_.reserve(static_cast<std::size_t>(std::min<long long>(steps / 2 + 1, 4096)));
   in_contact_ = have_previous_ = false;
   max_penetration_ = max_reaction_ = 0.0;
 }
