@@ -35,9 +35,11 @@ void OneStepScheme::start_state() {
   reaction_ = law_.reaction(u_[0], v_[0]);
 }
 
-void OneStepScheme::begin_step() {
-  u_old_ = u_;
-  v_old_ = v_;
+void OneStepScheme::begin_step(bool keep_old) {
+  if (keep_old) {
+    u_old_ = u_;
+    v_old_ = v_;
+  }
   if (!load_zero_ && !load_steady_) mesh_.load(*body_force_, static_cast<double>(n_ + 1) * dt_, load_next_);
 }
 

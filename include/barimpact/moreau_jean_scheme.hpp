@@ -7,6 +7,8 @@
 //
 // W = M + theta dt K_b + theta^2 dt^2 K_a is factored once; the one-contact
 // LCP is solved in closed form with w = W^{-1} e_0. History reports R = p/dt.
+// A step is two passes: the right-hand side formed in the forward sweep, the
+// update of v and u in the backward one (a third only when p > 0).
 // The constraint holds on velocities: positions may penetrate by O(dt V).
 // theta = 1/2, e = 1 conserves energy at impacts with V^n < 0; e < 1
 // dissipates (1 - e^2) of the end's normal kinetic energy.
@@ -25,6 +27,9 @@ class MoreauJeanScheme final : public OneStepScheme {
  private:
   double theta_, restitution_;
   FactoredTridiagonal factor_;
+  // The right-hand side is P v + Q u + loads, P = M - dt^2 theta (1 - theta) K_a
+  // - dt (1 - theta) K_b and Q = -dt K_a, formed inside the forward sweep.
+  Tridiagonal P_, Q_;
   std::vector<double> response_, rhs_, scratch_;
 };
 

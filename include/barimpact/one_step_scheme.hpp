@@ -37,8 +37,11 @@ class OneStepScheme : public Scheme {
 
   /// u, v from the initial data, F^0; step 0.
   void start_state();
-  /// Keeps (u^n, v^n) and computes F^{n+1} into load_next_.
-  void begin_step();
+  /// Keeps (u^n, v^n) in u_old_, v_old_ (when `keep_old`) and computes
+  /// F^{n+1} into load_next_.
+  void begin_step(bool keep_old = true);
+  /// Whether end_step's budget reads u_old_, v_old_ (a load or viscosity).
+  [[nodiscard]] bool budget_needs_old() const { return !load_zero_ || stiffness_b_.diag[0] > 0.0; }
   /// Adds the step's work and dissipation (plus `extra_dissipation`), moves
   /// F^{n+1} into load_, and n -> n + 1.
   void end_step(double extra_dissipation);
