@@ -61,7 +61,7 @@ def main():
         bare_name = None
         if label.startswith("central-difference") or label.startswith("characteristic"):
             bare_name = "BM_BareCentralDifference"
-        if label.startswith("paper") or label.startswith("paoli-schatzman") or label.startswith("moreau-jean"):
+        if label.split("/")[0] in ("paper", "paoli-schatzman", "moreau-jean", "newmark"):
             bare_name = "BM_BareLoop"  # stencil fused into a prefactored tridiagonal solve
         if bare_name:
             bare = [statistics.median(samples[(bare_name, m)]) for m in scheme_sizes]
@@ -113,13 +113,13 @@ The explicit lumped schemes (central-difference, characteristic) run one
 fused pass that the compiler vectorises, about 0.65 ns per node-step: at or
 near 1.25x of their bare loop at M = 100, where the per-step work (contact,
 checks, observers' bookkeeping) shows, and at par above (memory-bound at 10^6).
-paper, paoli-schatzman and moreau-jean fuse their right-hand side into a
-prefactored tridiagonal solve (moreau-jean also its update into the
-backward sweep): their ratio is to the bare loop of that (first table); at
-10^6 nodes the extra arrays they stream (stencils, factors, loads) cost
-memory bandwidth. newmark and mass-redistribution still make several passes
-per step (products, a solve, updates): 8-20 ns per node-step, about 2-4x a
-fused version; fusing them is open work.
+paper, paoli-schatzman, moreau-jean and newmark fuse their right-hand side
+into a prefactored tridiagonal solve (the one-step schemes also their update
+into the backward sweep; newmark adds a predictor pass): their ratio is to
+the bare loop of that (first table); at 10^6 nodes the extra arrays they
+stream (stencils, factors, loads) cost memory bandwidth. mass-redistribution
+still makes several passes per step (8-15 ns per node-step); fusing it is
+open work.
 
 ## Sweeps: SIMD batches, threads, MPI
 
