@@ -15,7 +15,6 @@ MoreauJeanScheme::MoreauJeanScheme(const Case& c)
   const std::size_t n = mesh_.nodes();
   response_ = factor_.response_to_end_force();
   rhs_.assign(n, 0.0);
-  scratch_.assign(n, 0.0);
   P_ = Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, mass_, -dt_ * dt_ * theta_ * (1.0 - theta_), stiffness_a_),
                             -dt_ * (1.0 - theta_), stiffness_b_);
   Q_ = Tridiagonal::combine(-dt_, stiffness_a_, 0.0, stiffness_a_);

@@ -96,48 +96,36 @@ void ThreeLevelScheme::step_rows(const double* __restrict um, const double* __re
   }
   r[0] = f[0] - (kd[0] * u[0] + ko[0] * u[1]) - viscous_force(0, d0) + penalty;
   r[last] = clamped_ ? 0.0 : f[last] - (kd[last] * u[last] + ko[last - 1] * u[last - 1]) - viscous_force(last, dl);
-  if (lumped_step_) {
-    for (std::size_t j = 1; j < last; ++j) {
-      double rj = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]);
-      if constexpr (viscous)
-        rj -= (bd[j] * (u[j] - um[j]) + bo[j - 1] * (u[j - 1] - um[j - 1]) + bo[j] * (u[j + 1] - um[j + 1])) * inv_dt;
-      up[j] = 2.0 * u[j] - um[j] + dt2 * (rj * inv_m[j]);
-    }
-    for (std::size_t j : {std::size_t{0}, last}) up[j] = 2.0 * u[j] - um[j] + dt2 * (r[j] * inv_m[j]);
-    return;
-  }
-  if (const FactoredTridiagonal* factor = mass_factor()) {
-    // Consistent mass: the right-hand side formed inside the forward sweep,
-    // the update inside the backward one.
-    const double* __restrict lower = factor->lower();
-    const double* __restrict inv = factor->inverse_pivots();
-    const double* __restrict su = factor->scaled_upper();
-    double y = r[0];
-    up[0] = y;
-    for (std::size_t j = 1; j < last; ++j) {
-      double rj = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]);
-      if constexpr (viscous)
-        rj -= (bd[j] * (u[j] - um[j]) + bo[j - 1] * (u[j - 1] - um[j - 1]) + bo[j] * (u[j + 1] - um[j + 1])) * inv_dt;
-      y = rj - lower[j] * y;
-      up[j] = y;
-    }
-    y = r[last] - lower[last] * y;
-    double x = y * inv[last];
-    up[last] = 2.0 * u[last] - um[last] + dt2 * x;
-    for (std::size_t j = last; j-- > 0;) {
-      x = up[j] * inv[j] - su[j] * x;
-      up[j] = 2.0 * u[j] - um[j] + dt2 * x;
-    }
-    return;
-  }
-  for (std::size_t j = 1; j < last; ++j) {
+  auto interior = [&](std::size_t j) {
     double rj = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]);
     if constexpr (viscous)
       rj -= (bd[j] * (u[j] - um[j]) + bo[j - 1] * (u[j - 1] - um[j - 1]) + bo[j] * (u[j + 1] - um[j + 1])) * inv_dt;
-    r[j] = rj;
+    return rj;
+  };
+  if (lumped_step_) {
+    for (std::size_t j = 1; j < last; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * (interior(j) * inv_m[j]);
+    for (std::size_t j : {std::size_t{0}, last}) up[j] = 2.0 * u[j] - um[j] + dt2 * (r[j] * inv_m[j]);
+    return;
   }
-  apply_inverse_mass(rhs_);
-  for (std::size_t j = 0; j < n; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * r[j];
+  // Consistent mass: the right-hand side formed inside the forward sweep of
+  // M_h's factors, the update inside the backward one.
+  const FactoredTridiagonal& factor = *mass_factor();
+  const double* __restrict lower = factor.lower();
+  const double* __restrict inv = factor.inverse_pivots();
+  const double* __restrict su = factor.scaled_upper();
+  double y = r[0];
+  up[0] = y;
+  for (std::size_t j = 1; j < last; ++j) {
+    y = interior(j) - lower[j] * y;
+    up[j] = y;
+  }
+  y = r[last] - lower[last] * y;
+  double x = y * inv[last];
+  up[last] = 2.0 * u[last] - um[last] + dt2 * x;
+  for (std::size_t j = last; j-- > 0;) {
+    x = up[j] * inv[j] - su[j] * x;
+    up[j] = 2.0 * u[j] - um[j] + dt2 * x;
+  }
 }
 
 void ThreeLevelScheme::advance() {

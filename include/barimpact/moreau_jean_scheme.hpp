@@ -30,7 +30,7 @@ class MoreauJeanScheme final : public OneStepScheme {
   // The right-hand side is P v + Q u + loads, P = M - dt^2 theta (1 - theta) K_a
   // - dt (1 - theta) K_b and Q = -dt K_a, formed inside the forward sweep.
   Tridiagonal P_, Q_;
-  std::vector<double> response_, rhs_, scratch_;
+  std::vector<double> response_, rhs_;
 };
 
 }  // namespace barimpact

@@ -45,8 +45,8 @@ class ThreeLevelScheme : public Scheme {
 
   /// Writes M^{-1} r into r (r has the clamped row zeroed by the caller).
   virtual void apply_inverse_mass(std::span<double> r) const = 0;
-  /// The factored consistent mass, when the scheme uses it: the step then
-  /// fuses its right-hand side into the solve's sweeps (two passes).
+  /// The factored consistent mass; required of every scheme built with
+  /// consistent_mass (the step fuses its right-hand side into its sweeps).
   [[nodiscard]] virtual const FactoredTridiagonal* mass_factor() const { return nullptr; }
   /// Enforces the obstacle on `next` (u^{n+1}) given the free prediction;
   /// returns R^n, the force (impulse / dt) the obstacle put on the bar.
