@@ -34,32 +34,25 @@ Tridiagonal Tridiagonal::combine(double c1, const Tridiagonal& a, double c2, con
   return r;
 }
 
-FactoredTridiagonal::FactoredTridiagonal(const Tridiagonal& a, bool fix_last) : off_(a.off) {
+FactoredTridiagonal::FactoredTridiagonal(const Tridiagonal& a, bool fix_last) {
   const std::size_t n = a.size();
   inv_.assign(n, 0.0);
-  lower_.assign(n, 0.0);
-  double pivot = a.diag[0];
-  for (std::size_t j = 0; j < n; ++j) {
-    if (j > 0) {
-      lower_[j] = off_[j - 1] * inv_[j - 1];
-      pivot = a.diag[j] - off_[j - 1] * lower_[j];
-    }
-    inv_[j] = 1.0 / pivot;
+  coupling_.assign(n, 0.0);
+  // Pivots from the far end: p_{n-1} = d_{n-1}, p_j = d_j - off_j^2 / p_{j+1}.
+  // A fixed last row drops out: inv = 0 there, and p_{n-2} = d_{n-2}.
+  inv_[n - 1] = fix_last ? 0.0 : 1.0 / a.diag[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) {
+    coupling_[j + 1] = a.off[j] * inv_[j + 1];
+    inv_[j] = 1.0 / (a.diag[j] - a.off[j] * coupling_[j + 1]);
   }
-  if (fix_last) {
-    inv_[n - 1] = 0.0;
-    lower_[n - 1] = 0.0;
-  }
-  scaled_upper_.assign(n, 0.0);
-  for (std::size_t j = 0; j + 1 < n; ++j) scaled_upper_[j] = off_[j] * inv_[j];
 }
 
 void FactoredTridiagonal::solve(std::span<double> x) const {
   const std::size_t n = inv_.size();
-  // L y = x (unit lower with entries lower_), then U z = y with U = D + off.
-  for (std::size_t j = 1; j < n; ++j) x[j] -= lower_[j] * x[j - 1];
-  x[n - 1] *= inv_[n - 1];
-  for (std::size_t j = n - 1; j-- > 0;) x[j] = (x[j] - off_[j] * x[j + 1]) * inv_[j];
+  if (inv_[n - 1] == 0.0) x[n - 1] = 0.0;  // the fixed row
+  for (std::size_t j = n - 1; j-- > 0;) x[j] -= coupling_[j + 1] * x[j + 1];
+  x[0] *= inv_[0];
+  for (std::size_t j = 1; j < n; ++j) x[j] = x[j] * inv_[j] - coupling_[j] * x[j - 1];
 }
 
 std::vector<double> FactoredTridiagonal::response_to_end_force() const {

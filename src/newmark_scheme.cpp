@@ -12,7 +12,6 @@ NewmarkScheme::NewmarkScheme(const Case& c)
                                              beta_ * dt_ * dt_, stiffness_a_);
   factor_ = FactoredTridiagonal(A, clamped_);
   const std::size_t n = mesh_.nodes();
-  response_ = factor_.response_to_end_force();
   acc_.assign(n, 0.0);
   rhs_.assign(n, 0.0);
 }
@@ -30,6 +29,20 @@ void NewmarkScheme::start() {
 }
 
 void NewmarkScheme::advance() {
+  const bool loaded = !load_zero_, viscous = stiffness_b_.diag[0] > 0.0;
+  if (loaded)
+    viscous ? step<true, true>() : step<true, false>();
+  else
+    viscous ? step<false, true>() : step<false, false>();
+}
+
+// One pass towards x = 0 forms r = F^{n+1} - K_a u_pred - K_b v_pred (the
+// predictors computed on the fly) inside the first sweep of A; R^{n+1} is
+// then a scalar problem at node 0; one pass back finishes the solve with
+// R e_0 in the right-hand side and updates a, u, v. Interior rows use the
+// uniform mesh's constant stencils.
+template <bool loaded, bool viscous>
+void NewmarkScheme::step() {
   const double v0_old = v_[0];
   begin_step(budget_needs_old());
   const std::size_t n = mesh_.nodes(), last = n - 1;
@@ -39,49 +52,49 @@ void NewmarkScheme::advance() {
   double* __restrict v = v_.data();
   double* __restrict acc = acc_.data();
   double* __restrict y = rhs_.data();
-  // Pass 1: the predictors, in place (vectorised).
-  for (std::size_t j = 0; j < n; ++j) {
-    u[j] += dt * v[j] + c1 * acc[j];
-    v[j] += c2 * acc[j];
-  }
-  // Pass 2: r = F^{n+1} - K_a u_pred - K_b v_pred inside the forward sweep of A.
-  const double* __restrict kd = stiffness_a_.diag.data();
-  const double* __restrict ko = stiffness_a_.off.data();
-  const double* __restrict bd = stiffness_b_.diag.data();
-  const double* __restrict bo = stiffness_b_.off.data();
   const double* __restrict f = load_next_.data();
-  const double* __restrict lower = factor_.lower();
   const double* __restrict inv = factor_.inverse_pivots();
-  const double* __restrict su = factor_.scaled_upper();
-  double carry = f[0] - (kd[0] * u[0] + ko[0] * u[1]) - (bd[0] * v[0] + bo[0] * v[1]);
-  y[0] = carry;
-  for (std::size_t j = 1; j < last; ++j) {
-    const double r = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]) -
-                     (bd[j] * v[j] + bo[j - 1] * v[j - 1] + bo[j] * v[j + 1]);
-    carry = r - lower[j] * carry;
+  const double* __restrict cp = factor_.coupling();
+  const Tridiagonal &ka = stiffness_a_, &kb = stiffness_b_;
+  const double kd = ka.diag[1], ko = ka.off[0], bd = kb.diag[1], bo = kb.off[0];
+  auto u_pred = [&](std::size_t j) { return u[j] + dt * v[j] + c1 * acc[j]; };
+  auto v_pred = [&](std::size_t j) { return v[j] + c2 * acc[j]; };
+  auto force = [&](std::size_t j) {
+    if constexpr (loaded) return f[j];
+    (void)j;
+    return 0.0;
+  };
+  // Towards x = 0, the predictors of nodes j - 1, j, j + 1 in registers.
+  double up_r = u_pred(last), up_c = u_pred(last - 1), vp_r = 0.0, vp_c = 0.0;
+  if constexpr (viscous) vp_r = v_pred(last), vp_c = v_pred(last - 1);
+  double r = force(last) - (ka.diag[last] * up_r + ka.off[last - 1] * up_c);
+  if constexpr (viscous) r -= kb.diag[last] * vp_r + kb.off[last - 1] * vp_c;
+  double carry = clamped_ ? 0.0 : r;
+  y[last] = carry;
+  for (std::size_t j = last - 1; j > 0; --j) {
+    const double up_l = u_pred(j - 1);
+    double rj = force(j) - (kd * up_c + ko * (up_l + up_r));
+    if constexpr (viscous) {
+      const double vp_l = v_pred(j - 1);
+      rj -= bd * vp_c + bo * (vp_l + vp_r);
+      vp_r = vp_c;
+      vp_c = vp_l;
+    }
+    up_r = up_c;
+    up_c = up_l;
+    carry = rj - cp[j + 1] * carry;
     y[j] = carry;
   }
-  const double r_last = clamped_ ? 0.0
-                                 : f[last] - (kd[last] * u[last] + ko[last - 1] * u[last - 1]) -
-                                       (bd[last] * v[last] + bo[last - 1] * v[last - 1]);
-  y[last] = r_last - lower[last] * carry;
-  // Pass 3: backward sweep, a_lin, and the update as if R = 0.
-  double x = y[last] * inv[last];
-  acc[last] = x;
-  u[last] += bdt2 * x;
-  v[last] += gdt * x;
-  for (std::size_t j = last; j-- > 0;) {
-    x = y[j] * inv[j] - su[j] * x;
-    acc[j] = x;
-    u[j] += bdt2 * x;
-    v[j] += gdt * x;
-  }
+  double r0 = force(0) - (ka.diag[0] * up_c + ka.off[0] * up_r);
+  if constexpr (viscous) r0 -= kb.diag[0] * vp_c + kb.off[0] * vp_r;
+  const double y0 = r0 - cp[1] * carry;
 
   // R from d(R) = d_lin - beta dt^2 w0 R, dd/dt(R) = rate_lin - gamma dt w0 R,
-  // where d_lin and rate_lin are the R = 0 values now in u_0, v_0.
-  const double w0 = response_[0], k = law_.stiffness(), l = law_.viscosity();
-  const double d_lin = -(u[0] + law_.gap());
-  const double rate_lin = -v[0];
+  // where w0 = inv_0 is the answer of node 0 to a unit force there.
+  const double w0 = inv[0], k = law_.stiffness(), l = law_.viscosity();
+  const double a_lin = y0 * inv[0];
+  const double d_lin = -(up_c + bdt2 * a_lin + law_.gap());
+  const double rate_lin = -(v_pred(0) + gdt * a_lin);
   double R = 0.0;
   if (law_.kind() != ObstacleKind::none && d_lin > 0.0) {
     const double s = k * d_lin + l * rate_lin;
@@ -90,13 +103,18 @@ void NewmarkScheme::advance() {
       if (bdt2 > 0.0 && d_lin - bdt2 * w0 * R <= 0.0) R = d_lin / (bdt2 * w0);  // stops at the face
     }
   }
-  if (R > 0.0) {  // pass 4, in contact only: a += R w
-    const double* __restrict w = response_.data();
-    for (std::size_t j = 0; j < n; ++j) {
-      acc[j] += R * w[j];
-      u[j] += bdt2 * R * w[j];
-      v[j] += gdt * R * w[j];
-    }
+  // Away from x = 0: the solve with R e_0, and a, u, v in the same pass.
+  double x = (y0 + R) * inv[0];
+  auto update = [&](std::size_t j) {
+    const double uj = u_pred(j), vj = v_pred(j);
+    acc[j] = x;
+    u[j] = uj + bdt2 * x;
+    v[j] = vj + gdt * x;
+  };
+  update(0);
+  for (std::size_t j = 1; j < n; ++j) {
+    x = y[j] * inv[j] - cp[j] * x;
+    update(j);
   }
   // The dashpot's share of the obstacle's work, trapezoidal like the rest.
   double dashpot = 0.0;

@@ -69,63 +69,67 @@ void ThreeLevelScheme::start() {
 }
 
 // u^{m+1} = 2 u^m - u^{m-1} + dt^2 M^{-1} r, r = F^m - K_a u^m - K_b (u^m - u^{m-1})/dt
-// (+ the penalty at node 0). Interior rows without branches; with lumped
-// mass the update is fused into the same pass (vectorised over nodes).
-template <bool viscous>
-void ThreeLevelScheme::step_rows(const double* __restrict um, const double* __restrict u, double* __restrict up,
-                                 double penalty) {
+// (+ the penalty at node 0). Interior rows without branches, with the
+// uniform mesh's constant stencils; with lumped mass the update is fused into
+// the same pass (vectorised over nodes). Returns the force of a fused impulse
+// (consistent mass), else 0.
+template <bool viscous, bool loaded>
+double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __restrict u, double* __restrict up,
+                                   double penalty) {
   const std::size_t n = mesh_.nodes(), last = n - 1;
-  const double* __restrict kd = stiffness_a_.diag.data();
-  const double* __restrict ko = stiffness_a_.off.data();
-  const double* __restrict bd = stiffness_b_.diag.data();
-  const double* __restrict bo = stiffness_b_.off.data();
+  const Tridiagonal &ka = stiffness_a_, &kb = stiffness_b_;
+  const double kd = ka.diag[1], ko = ka.off[0], bd = kb.diag[1], bo = kb.off[0];
   const double* __restrict f = load_.data();
   const double* __restrict inv_m = inverse_lumped_.data();
   double* __restrict r = rhs_.data();
   const double inv_dt = 1.0 / dt_, dt2 = dt_ * dt_;
-  auto viscous_force = [&](std::size_t j, double d) {
-    if constexpr (viscous) return d * inv_dt;
+  auto force = [&](std::size_t j) {
+    if constexpr (loaded) return f[j];
     (void)j;
-    return 0.0 * d;
+    return 0.0;
   };
   // Boundary rows.
   double d0 = 0.0, dl = 0.0;
   if constexpr (viscous) {
-    d0 = bd[0] * (u[0] - um[0]) + bo[0] * (u[1] - um[1]);
-    dl = bd[last] * (u[last] - um[last]) + bo[last - 1] * (u[last - 1] - um[last - 1]);
+    d0 = (kb.diag[0] * (u[0] - um[0]) + kb.off[0] * (u[1] - um[1])) * inv_dt;
+    dl = (kb.diag[last] * (u[last] - um[last]) + kb.off[last - 1] * (u[last - 1] - um[last - 1])) * inv_dt;
   }
-  r[0] = f[0] - (kd[0] * u[0] + ko[0] * u[1]) - viscous_force(0, d0) + penalty;
-  r[last] = clamped_ ? 0.0 : f[last] - (kd[last] * u[last] + ko[last - 1] * u[last - 1]) - viscous_force(last, dl);
+  r[0] = force(0) - (ka.diag[0] * u[0] + ka.off[0] * u[1]) - d0 + penalty;
+  r[last] = clamped_ ? 0.0 : force(last) - (ka.diag[last] * u[last] + ka.off[last - 1] * u[last - 1]) - dl;
   auto interior = [&](std::size_t j) {
-    double rj = f[j] - (kd[j] * u[j] + ko[j - 1] * u[j - 1] + ko[j] * u[j + 1]);
+    double rj = force(j) - (kd * u[j] + ko * (u[j - 1] + u[j + 1]));
     if constexpr (viscous)
-      rj -= (bd[j] * (u[j] - um[j]) + bo[j - 1] * (u[j - 1] - um[j - 1]) + bo[j] * (u[j + 1] - um[j + 1])) * inv_dt;
+      rj -= (bd * (u[j] - um[j]) + bo * ((u[j - 1] - um[j - 1]) + (u[j + 1] - um[j + 1]))) * inv_dt;
     return rj;
   };
   if (lumped_step_) {
-    for (std::size_t j = 1; j < last; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * (interior(j) * inv_m[j]);
+    const double inv_mi = inv_m[1];
+    for (std::size_t j = 1; j < last; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * (interior(j) * inv_mi);
     for (std::size_t j : {std::size_t{0}, last}) up[j] = 2.0 * u[j] - um[j] + dt2 * (r[j] * inv_m[j]);
-    return;
+    return 0.0;
   }
-  // Consistent mass: the right-hand side formed inside the forward sweep of
-  // M_h's factors, the update inside the backward one.
+  // Consistent mass: the right-hand side formed inside the sweep of M_h's
+  // factors towards x = 0; the obstacle's impulse decided at node 0; the
+  // update inside the sweep back.
   const FactoredTridiagonal& factor = *mass_factor();
-  const double* __restrict lower = factor.lower();
   const double* __restrict inv = factor.inverse_pivots();
-  const double* __restrict su = factor.scaled_upper();
-  double y = r[0];
-  up[0] = y;
-  for (std::size_t j = 1; j < last; ++j) {
-    y = interior(j) - lower[j] * y;
+  const double* __restrict cp = factor.coupling();
+  double y = r[last];
+  up[last] = y;
+  for (std::size_t j = last - 1; j > 0; --j) {
+    y = interior(j) - cp[j + 1] * y;
     up[j] = y;
   }
-  y = r[last] - lower[last] * y;
-  double x = y * inv[last];
-  up[last] = 2.0 * u[last] - um[last] + dt2 * x;
-  for (std::size_t j = last; j-- > 0;) {
-    x = up[j] * inv[j] - su[j] * x;
+  const double y0 = r[0] - cp[1] * y;
+  // next += mu M^{-1} e_0 is r_0 += mu / dt^2.
+  const double mu = end_impulse(um[0], 2.0 * u[0] - um[0] + dt2 * (y0 * inv[0]));
+  double x = (y0 + mu / dt2) * inv[0];
+  up[0] = 2.0 * u[0] - um[0] + dt2 * x;
+  for (std::size_t j = 1; j < n; ++j) {
+    x = up[j] * inv[j] - cp[j] * x;
     up[j] = 2.0 * u[j] - um[j] + dt2 * x;
   }
+  return mu / dt2;
 }
 
 void ThreeLevelScheme::advance() {
@@ -138,11 +142,13 @@ void ThreeLevelScheme::advance() {
   // The penalty force at t_m, its rate by a backward difference (explicit).
   const double penalty = law_.reaction(u[0], (u[0] - um[0]) / dt_);
   const bool viscous = kb_positive_;
+  double impulse_force = 0.0;
   if (viscous)
-    step_rows<true>(um, u, up, penalty);
+    impulse_force = load_zero_ ? step_rows<true, false>(um, u, up, penalty) : step_rows<true, true>(um, u, up, penalty);
   else
-    step_rows<false>(um, u, up, penalty);
-  const double impulse_force = enforce_contact(um, u, up);
+    impulse_force =
+        load_zero_ ? step_rows<false, false>(um, u, up, penalty) : step_rows<false, true>(um, u, up, penalty);
+  if (lumped_step_) impulse_force = enforce_contact(um, u, up);
   prev_ = cur_;
   cur_ = next_;
   next_ = up;

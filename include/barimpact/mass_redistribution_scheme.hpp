@@ -8,8 +8,9 @@
 // Crank-Nicolson (midpoint) rule
 //   M~ (v^{n+1} - v^n) = dt (Fbar - K_a (u^n + u^{n+1}) / 2),  u^{n+1} - u^n = dt (v^n + v^{n+1}) / 2.
 // Two factorisations (node 0 free: u_0 tied to u_1; on the obstacle: u_0 = -g)
-// are made once; a step solves with the previous status and switches once
-// if it is inconsistent. Energy is conserved while the status does not
+// are made once, from the far end, so that they differ only in node 1's
+// pivot: a step sweeps towards x = 0 once, tries the previous status at
+// node 1 and switches if it is inconsistent, then sweeps back. Energy is conserved while the status does not
 // change, and no chatter arises (node 0 has nothing to bounce with). Elastic
 // bar only; V at x = 0 is the backward difference of the massless node.
 #pragma once
@@ -25,13 +26,14 @@ class MassRedistributionScheme final : public OneStepScheme {
   void advance() override;
 
  private:
-  /// Solves the reduced system (nodes 1..M) for one status; true if consistent.
-  bool solve(bool on_obstacle);
+  template <bool loaded>
+  void step();
 
   double a_over_h_;
   Tridiagonal reduced_;  // 2/dt^2 M~ + K_a/2 on nodes 1..M
-  FactoredTridiagonal free_factor_, contact_factor_;
-  std::vector<double> rhs_, reduced_rhs_, scratch_;
+  FactoredTridiagonal contact_factor_;
+  double free_inverse_pivot_ = 0.0;  // node 1's, when node 0 is free
+  std::vector<double> reduced_rhs_;
   bool on_obstacle_ = false;
 };
 

@@ -28,31 +28,34 @@ struct Tridiagonal {
   [[nodiscard]] static Tridiagonal combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b);
 };
 
-/// The LU factors of a symmetric positive definite tridiagonal matrix,
-/// computed once; each solve is two sweeps. With `fix_last` the last row is
-/// replaced by u_M = 0 (a clamped end).
+/// The factors of a symmetric positive definite tridiagonal matrix, computed
+/// once, eliminated from the far end towards x = 0 (A = U L): the first sweep
+/// runs from node n-1 to node 0, so that x_0, where the obstacle acts, is
+/// known before the second sweep, and a force at node 0 found then (contact,
+/// the obstacle's status) enters the solve at no extra pass. With `fix_last`
+/// the last row is replaced by u_M = 0 (a clamped end).
 class FactoredTridiagonal {
  public:
   FactoredTridiagonal() = default;
   FactoredTridiagonal(const Tridiagonal& a, bool fix_last);
   /// x <- A^{-1} x, in place.
   void solve(std::span<double> x) const;
-  /// A^{-1} e_0: how the whole bar answers a unit force at x = 0 (the
-  /// contact schemes' Sherman-Morrison and impulse directions).
+  /// A^{-1} e_0: how the whole bar answers a unit force at x = 0; its first
+  /// entry is inverse_pivots()[0].
   [[nodiscard]] std::vector<double> response_to_end_force() const;
   [[nodiscard]] std::size_t size() const { return inv_.size(); }
-  /// The factors, for kernels that fuse their right-hand side into the sweeps:
-  /// forward y_j = r_j - lower_j y_{j-1}; backward x_j = y_j inv_j - scaled_upper_j x_{j+1},
-  /// scaled_upper_j = off_j inv_j (one multiply-subtract on the sweep's chain).
-  [[nodiscard]] const double* lower() const { return lower_.data(); }
+  /// The factors, for kernels that fuse their right-hand side and update into
+  /// the sweeps:
+  ///   towards x = 0:  y_{n-1} = r_{n-1},  y_j = r_j - coupling_{j+1} y_{j+1};
+  ///   away from it:   x_0 = y_0 inv_0,    x_j = y_j inv_j - coupling_j x_{j-1},
+  /// coupling_j = off_{j-1} inv_j (one multiply-subtract on each sweep's
+  /// chain). A clamped last row has inv = coupling = 0, so r_{n-1} is ignored.
   [[nodiscard]] const double* inverse_pivots() const { return inv_.data(); }
-  [[nodiscard]] const double* scaled_upper() const { return scaled_upper_.data(); }
+  [[nodiscard]] const double* coupling() const { return coupling_.data(); }
 
  private:
-  std::vector<double> inv_;    // 1 / pivot (0 on a fixed row)
-  std::vector<double> lower_;  // off / pivot of the row above
-  std::vector<double> off_;
-  std::vector<double> scaled_upper_;
+  std::vector<double> inv_;       // 1 / pivot (0 on a fixed row)
+  std::vector<double> coupling_;  // off_{j-1} / pivot_j (coupling_0 = 0)
 };
 
 class Mesh {

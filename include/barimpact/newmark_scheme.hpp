@@ -7,8 +7,9 @@
 //   R^{n+1} = max(0, k d + l dd/dt) while d = -(u_0^{n+1} + g) > 0.
 //
 // Only node 0 is nonlinear: with A = M + gamma dt K_b + beta dt^2 K_a
-// factored once and w = A^{-1} e_0, a^{n+1} = a_lin + R w, and R solves a
-// scalar piecewise-linear equation in closed form (no iteration). beta = 1/4,
+// factored once (from the far end), a^{n+1}_0 = a_lin + R w_0, and R solves
+// a scalar piecewise-linear equation in closed form (no iteration) between
+// the two sweeps of the solve. beta = 1/4,
 // gamma = 1/2 (the defaults) is the trapezoidal rule: energy-conserving
 // without contact; the penalty's trapezoidal work is not, at impacts.
 #pragma once
@@ -24,9 +25,12 @@ class NewmarkScheme final : public OneStepScheme {
   void advance() override;
 
  private:
+  template <bool loaded, bool viscous>
+  void step();
+
   double beta_, gamma_;
   FactoredTridiagonal factor_;
-  std::vector<double> response_, acc_, rhs_;
+  std::vector<double> acc_, rhs_;
 };
 
 }  // namespace barimpact

@@ -20,6 +20,7 @@ class PaoliSchatzmanScheme final : public ThreeLevelScheme {
   void apply_inverse_mass(std::span<double> r) const override { mass_factor_.solve(r); }
   [[nodiscard]] const FactoredTridiagonal* mass_factor() const override { return &mass_factor_; }
   double enforce_contact(const double* prev, const double* cur, double* next) override;
+  [[nodiscard]] double end_impulse(double prev0, double next0) const override;
 
  private:
   FactoredTridiagonal mass_factor_;

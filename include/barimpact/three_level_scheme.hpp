@@ -52,6 +52,10 @@ class ThreeLevelScheme : public Scheme {
   /// returns R^n, the force (impulse / dt) the obstacle put on the bar.
   /// `prev` is u^{n-1}, `cur` u^n.
   virtual double enforce_contact(const double* prev, const double* cur, double* next) = 0;
+  /// With consistent mass, the step asks between its two sweeps for the
+  /// displacement impulse mu at node 0 (u^{n+1} += mu M^{-1} e_0) given
+  /// u^{n-1}_0 and the free u^{n+1}_0; 0 when none.
+  [[nodiscard]] virtual double end_impulse(double /*prev0*/, double /*next0*/) const { return 0.0; }
 
   Mesh mesh_;
   ObstacleLaw law_;
@@ -66,8 +70,8 @@ class ThreeLevelScheme : public Scheme {
   std::vector<double> inverse_lumped_;
 
  private:
-  template <bool viscous>
-  void step_rows(const double* um, const double* u, double* up, double penalty);
+  template <bool viscous, bool loaded>
+  double step_rows(const double* um, const double* u, double* up, double penalty);
   void load_at(long long n);
   void half_step_energy(const double* a, const double* b, double& kinetic, double& strain) const;
 
