@@ -68,44 +68,52 @@ void ThreeLevelScheme::start() {
   reaction_ = law_.reaction(u0_[0], v0_[0]) + 2.0 * enforce_contact(prev_, cur_, next_);
 }
 
+namespace {
+// F_j - (K_a u)_j - (K_b (u - u_old))_j / dt on an interior row, with the
+// uniform mesh's constant stencils.
+struct InteriorRow {
+  double kd, ko, bd, bo, inv_dt;
+  template <bool viscous, bool loaded>
+  [[nodiscard]] double force(const double* __restrict f, const double* __restrict um, const double* __restrict u,
+                             std::size_t j) const {
+    double rj = -(kd * u[j] + ko * (u[j - 1] + u[j + 1]));
+    if constexpr (loaded) rj = f[j] + rj;
+    if constexpr (viscous)
+      rj -= (bd * (u[j] - um[j]) + bo * ((u[j - 1] - um[j - 1]) + (u[j + 1] - um[j + 1]))) * inv_dt;
+    return rj;
+  }
+};
+}  // namespace
+
 // u^{m+1} = 2 u^m - u^{m-1} + dt^2 M^{-1} r, r = F^m - K_a u^m - K_b (u^m - u^{m-1})/dt
-// (+ the penalty at node 0). Interior rows without branches, with the
-// uniform mesh's constant stencils; with lumped mass the update is fused into
-// the same pass (vectorised over nodes). Returns the force of a fused impulse
-// (consistent mass), else 0.
+// (+ the penalty at node 0). Interior rows without branches; with lumped mass
+// the update is fused into the same pass (vectorised over nodes), with
+// consistent mass into the sweeps of M_h's factors. Returns the force of a
+// fused impulse (consistent mass), else 0.
 template <bool viscous, bool loaded>
 double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __restrict u, double* __restrict up,
                                    double penalty) {
   const std::size_t n = mesh_.nodes(), last = n - 1;
   const Tridiagonal &ka = stiffness_a_, &kb = stiffness_b_;
-  const double kd = ka.diag[1], ko = ka.off[0], bd = kb.diag[1], bo = kb.off[0];
   const double* __restrict f = load_.data();
-  const double* __restrict inv_m = inverse_lumped_.data();
-  double* __restrict r = rhs_.data();
   const double inv_dt = 1.0 / dt_, dt2 = dt_ * dt_;
-  auto force = [&](std::size_t j) {
-    if constexpr (loaded) return f[j];
-    (void)j;
-    return 0.0;
-  };
+  const InteriorRow row{ka.diag[1], ka.off[0], kb.diag[1], kb.off[0], inv_dt};
   // Boundary rows.
   double d0 = 0.0, dl = 0.0;
   if constexpr (viscous) {
     d0 = (kb.diag[0] * (u[0] - um[0]) + kb.off[0] * (u[1] - um[1])) * inv_dt;
     dl = (kb.diag[last] * (u[last] - um[last]) + kb.off[last - 1] * (u[last - 1] - um[last - 1])) * inv_dt;
   }
-  r[0] = force(0) - (ka.diag[0] * u[0] + ka.off[0] * u[1]) - d0 + penalty;
-  r[last] = clamped_ ? 0.0 : force(last) - (ka.diag[last] * u[last] + ka.off[last - 1] * u[last - 1]) - dl;
-  auto interior = [&](std::size_t j) {
-    double rj = force(j) - (kd * u[j] + ko * (u[j - 1] + u[j + 1]));
-    if constexpr (viscous)
-      rj -= (bd * (u[j] - um[j]) + bo * ((u[j - 1] - um[j - 1]) + (u[j + 1] - um[j + 1]))) * inv_dt;
-    return rj;
-  };
+  const double f0 = loaded ? f[0] : 0.0, fl = loaded ? f[last] : 0.0;
+  const double r0 = f0 - (ka.diag[0] * u[0] + ka.off[0] * u[1]) - d0 + penalty;
+  const double rl = clamped_ ? 0.0 : fl - (ka.diag[last] * u[last] + ka.off[last - 1] * u[last - 1]) - dl;
   if (lumped_step_) {
+    const double* __restrict inv_m = inverse_lumped_.data();
     const double inv_mi = inv_m[1];
-    for (std::size_t j = 1; j < last; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * (interior(j) * inv_mi);
-    for (std::size_t j : {std::size_t{0}, last}) up[j] = 2.0 * u[j] - um[j] + dt2 * (r[j] * inv_m[j]);
+    for (std::size_t j = 1; j < last; ++j)
+      up[j] = 2.0 * u[j] - um[j] + dt2 * (row.force<viscous, loaded>(f, um, u, j) * inv_mi);
+    up[0] = 2.0 * u[0] - um[0] + dt2 * (r0 * inv_m[0]);
+    up[last] = 2.0 * u[last] - um[last] + dt2 * (rl * inv_m[last]);
     return 0.0;
   }
   // Consistent mass: the right-hand side formed inside the sweep of M_h's
@@ -114,13 +122,13 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
   const FactoredTridiagonal& factor = *mass_factor();
   const double* __restrict inv = factor.inverse_pivots();
   const double* __restrict cp = factor.coupling();
-  double y = r[last];
+  double y = rl;
   up[last] = y;
   for (std::size_t j = last - 1; j > 0; --j) {
-    y = interior(j) - cp[j + 1] * y;
+    y = row.force<viscous, loaded>(f, um, u, j) - cp[j + 1] * y;
     up[j] = y;
   }
-  const double y0 = r[0] - cp[1] * y;
+  const double y0 = r0 - cp[1] * y;
   // next += mu M^{-1} e_0 is r_0 += mu / dt^2.
   const double mu = end_impulse(um[0], 2.0 * u[0] - um[0] + dt2 * (y0 * inv[0]));
   double x = (y0 + mu / dt2) * inv[0];
@@ -133,12 +141,11 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
 }
 
 void ThreeLevelScheme::advance() {
-  const std::size_t n = mesh_.nodes();
   const long long m = n_ + 1;  // the equation at level m gives u^{m+1}
   const double* um = cur_;     // u^{m-1}
   const double* u = next_;     // u^m
   double* up = prev_;          // becomes u^{m+1}
-  load_at(m);
+  if (!load_zero_ && !load_steady_) load_at(m);
   // The penalty force at t_m, its rate by a backward difference (explicit).
   const double penalty = law_.reaction(u[0], (u[0] - um[0]) / dt_);
   const bool viscous = kb_positive_;
@@ -156,12 +163,25 @@ void ThreeLevelScheme::advance() {
   reaction_ = penalty + impulse_force;
 
   // Budget of level m: dW = F^m . (u^{m+1} - u^{m-1}) / 2, dD = viscous force . same.
+  double dw = 0.0, dd = 0.0;
+  if (!load_zero_ || viscous) bar_budget(dw, dd);
+  if (law_.viscosity() > 0.0 && penalty > 0.0) {  // the obstacle's dashpot
+    const double rate = (cur_[0] - prev_[0]) * (1.0 / dt_);
+    dd += law_.viscosity() * rate * 0.5 * (next_[0] - prev_[0]);
+  }
+  work_last_ = dw;
+  dissipation_last_ = dd;
+  work_half_ += dw;
+  dissipation_half_ += dd;
+}
+
+void ThreeLevelScheme::bar_budget(double& dw, double& dd) const {
+  const std::size_t n = mesh_.nodes();
   const auto& kb = stiffness_b_;
   const double inv_dt = 1.0 / dt_;
-  double dw = 0.0, dd = 0.0;
   if (!load_zero_)
     for (std::size_t j = 0; j < n; ++j) dw += load_[j] * 0.5 * (next_[j] - prev_[j]);
-  if (viscous) {
+  if (kb_positive_) {
     for (std::size_t j = 0; j < n; ++j) {
       double d = kb.diag[j] * (cur_[j] - prev_[j]);
       if (j > 0) d += kb.off[j - 1] * (cur_[j - 1] - prev_[j - 1]);
@@ -169,14 +189,6 @@ void ThreeLevelScheme::advance() {
       dd += d * inv_dt * 0.5 * (next_[j] - prev_[j]);
     }
   }
-  if (law_.viscosity() > 0.0 && penalty > 0.0) {  // the obstacle's dashpot
-    const double rate = (cur_[0] - prev_[0]) * inv_dt;
-    dd += law_.viscosity() * rate * 0.5 * (next_[0] - prev_[0]);
-  }
-  work_last_ = dw;
-  dissipation_last_ = dd;
-  work_half_ += dw;
-  dissipation_half_ += dd;
 }
 
 double ThreeLevelScheme::end_velocity() const {

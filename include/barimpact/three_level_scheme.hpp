@@ -71,8 +71,10 @@ class ThreeLevelScheme : public Scheme {
 
  private:
   template <bool viscous, bool loaded>
-  double step_rows(const double* um, const double* u, double* up, double penalty);
+  [[gnu::always_inline]] inline double step_rows(const double* um, const double* u, double* up, double penalty);
   void load_at(long long n);
+  /// Adds the level's load work and the bar's viscous dissipation to dw, dd.
+  void bar_budget(double& dw, double& dd) const;
   void half_step_energy(const double* a, const double* b, double& kinetic, double& strain) const;
 
   std::array<std::vector<double>, 3> levels_;
