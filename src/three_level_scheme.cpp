@@ -8,6 +8,7 @@ ThreeLevelScheme::ThreeLevelScheme(const Case& c, bool consistent_mass)
     : mesh_(c.bar.length, c.bar.elements),
       law_(c.obstacle),
       dt_(c.time.step),
+      inv_dt_(1.0 / c.time.step),
       a_(c.bar.stiffness),
       clamped_(c.bar.far_end == FarEnd::clamped),
       mass_(mesh_.mass(c.bar.density)),
@@ -110,10 +111,10 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
   if (lumped_step_) {
     const double* __restrict inv_m = inverse_lumped_.data();
     const double inv_mi = inv_m[1];
+    up[0] = 2.0 * u[0] - um[0] + dt2 * (r0 * inv_m[0]);  // first: the obstacle acts on it
+    up[last] = 2.0 * u[last] - um[last] + dt2 * (rl * inv_m[last]);
     for (std::size_t j = 1; j < last; ++j)
       up[j] = 2.0 * u[j] - um[j] + dt2 * (row.force<viscous, loaded>(f, um, u, j) * inv_mi);
-    up[0] = 2.0 * u[0] - um[0] + dt2 * (r0 * inv_m[0]);
-    up[last] = 2.0 * u[last] - um[last] + dt2 * (rl * inv_m[last]);
     return 0.0;
   }
   // Consistent mass: the right-hand side formed inside the sweep of M_h's
@@ -147,7 +148,8 @@ void ThreeLevelScheme::advance() {
   double* up = prev_;          // becomes u^{m+1}
   if (!load_zero_ && !load_steady_) load_at(m);
   // The penalty force at t_m, its rate by a backward difference (explicit).
-  const double penalty = law_.reaction(u[0], (u[0] - um[0]) / dt_);
+  // (A multiply by 1/dt, not a division: u_0 carries a chain from step to step.)
+  const double penalty = law_.reaction(u[0], (u[0] - um[0]) * inv_dt_);
   const bool viscous = kb_positive_;
   double impulse_force = 0.0;
   if (viscous)

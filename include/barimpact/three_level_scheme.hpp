@@ -59,7 +59,7 @@ class ThreeLevelScheme : public Scheme {
 
   Mesh mesh_;
   ObstacleLaw law_;
-  double dt_, a_;
+  double dt_, inv_dt_, a_;
   bool clamped_;
   Tridiagonal mass_, stiffness_a_, stiffness_b_;
   std::vector<double> lumped_;   // row sums of M_h (used by the lumped variant)
