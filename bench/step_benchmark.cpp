@@ -69,21 +69,26 @@ void BM_PaperBatch4(benchmark::State& state) {
 }
 
 // The bare loop: the right-hand side B1 z^n + B0 z^{n-1} formed inside the
-// forward sweep, then the backward sweep; constants as for Example 1.
+// first sweep of the two-ended solve (rows 0..k-1 from the top, k+1..M from
+// the bottom, row k = M/2 last; M even here), then the sweep back outwards
+// from row k; constants as for Example 1.
 void BM_BareLoop(benchmark::State& state) {
-  const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1;
-  const double h = 1.0 / static_cast<double>(n - 1), dt = h, alpha = 0.25;
+  const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1, l = n - 1, k = l / 2;
+  const double h = 1.0 / static_cast<double>(l), dt = h, alpha = 0.25;
   const double m_d = 2.0 * h / 3.0, m_o = h / 6.0, k_d = 2.0 / h, k_o = -1.0 / h;
   const double a_o = m_o / (dt * dt) + alpha * k_o, a_d = m_d / (dt * dt) + alpha * k_d;
   const double b1d = 2.0 * m_d / (dt * dt) - 0.5 * k_d, b1o = 2.0 * m_o / (dt * dt) - 0.5 * k_o;
   const double b0d = -m_d / (dt * dt) - alpha * k_d, b0o = -m_o / (dt * dt) - alpha * k_o;
   std::vector<double> inv(n), up(n), z0(n, 0.0), z1(n, -dt), z2(n, 0.0);
-  double pivot = 0.5 * a_d + 50.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    if (j > 0) pivot = (j + 1 == n ? 0.5 * a_d : a_d) - a_o * up[j - 1];
-    inv[j] = 1.0 / pivot;
+  for (std::size_t j = 0; j < k; ++j) {
+    inv[j] = 1.0 / ((j == 0 ? 0.5 * a_d + 50.0 : a_d) - (j > 0 ? a_o * up[j - 1] : 0.0));
     up[j] = a_o * inv[j];
   }
+  for (std::size_t j = l; j > k; --j) {
+    inv[j] = 1.0 / ((j == l ? 0.5 * a_d : a_d) - (j < l ? a_o * up[j + 1] : 0.0));
+    up[j] = a_o * inv[j];
+  }
+  inv[k] = 1.0 / (a_d - a_o * up[k - 1] - a_o * up[k + 1]);
   double* zo = z0.data();
   double* zc = z1.data();
   double* zn = z2.data();
@@ -91,19 +96,26 @@ void BM_BareLoop(benchmark::State& state) {
     const double* __restrict c = zc;
     const double* __restrict o = zo;
     double* __restrict w = zn;
-    double y = (0.5 * b1d * c[0] + b1o * c[1] + 0.5 * b0d * o[0] + b0o * o[1]) * inv[0];
-    w[0] = y;
-    for (std::size_t j = 1; j + 1 < n; ++j) {
-      const double r = b1d * c[j] + b1o * (c[j - 1] + c[j + 1]) + b0d * o[j] + b0o * (o[j - 1] + o[j + 1]);
-      y = r * inv[j] - up[j] * y;
-      w[j] = y;
+    auto r = [&](std::size_t j) {
+      return b1d * c[j] + b1o * (c[j - 1] + c[j + 1]) + b0d * o[j] + b0o * (o[j - 1] + o[j + 1]);
+    };
+    double yt = (0.5 * b1d * c[0] + b1o * c[1] + 0.5 * b0d * o[0] + b0o * o[1]) * inv[0];
+    double yb = (0.5 * b1d * c[l] + b1o * c[l - 1] + 0.5 * b0d * o[l] + b0o * o[l - 1]) * inv[l];
+    w[0] = yt;
+    w[l] = yb;
+    for (std::size_t j = 1; j < k; ++j) {
+      yt = r(j) * inv[j] - up[j] * yt;
+      w[j] = yt;
+      yb = r(l - j) * inv[l - j] - up[l - j] * yb;
+      w[l - j] = yb;
     }
-    const std::size_t l = n - 1;
-    y = (0.5 * b1d * c[l] + b1o * c[l - 1] + 0.5 * b0d * o[l] + b0o * o[l - 1]) * inv[l] - up[l] * y;
-    w[l] = y;
-    for (std::size_t j = l; j-- > 0;) {
-      y = w[j] - up[j] * y;
-      w[j] = y;
+    double xt = (r(k) - a_o * (yt + yb)) * inv[k], xb = xt;
+    w[k] = xt;
+    for (std::size_t i = 1; i <= k; ++i) {
+      xt = w[k - i] - up[k - i] * xt;
+      w[k - i] = xt;
+      xb = w[k + i] - up[k + i] * xb;
+      w[k + i] = xb;
     }
     std::swap(zo, zc);
     std::swap(zc, zn);

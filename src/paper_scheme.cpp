@@ -2,7 +2,60 @@
 
 #include <cmath>
 
+// PaperBatch passes GCC's generic 4-double vectors by value to inlined
+// helpers; their ABI without AVX does not concern us.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace barimpact {
+
+namespace {
+// The two-ended ("twisted") solve of the symmetric tridiagonal A with the
+// factors of PaperScheme: rows 0..k-1 eliminated from row 0 down, rows
+// k+1..M from row M up, row k = M/2 last. Each sweep then carries two
+// independent chains, one per half, which a latency-bound solve runs in the
+// time of one. T is double, or four lanes (PaperBatch): the same operations
+// in the same order. r0, rl: rows 0 and M of the right-hand side; rhs(j) an
+// interior row's; get/put read and write the solution, row by row.
+template <class T, class Rhs, class Inv, class Up, class Get, class Put>
+inline void twisted_solve(std::size_t last, T a, T r0, T rl, Rhs rhs, Inv inv, Up up, Get get, Put put) {
+  const std::size_t k = last / 2;
+  const std::size_t top = k > 0 ? k - 1 : 0;  // interior rows of the upper half: 1..k-1
+  const std::size_t bottom = last - 1 - k;    // of the lower half: k+1..M-1 (top or top + 1)
+  T yt{};
+  if (k > 0) {
+    yt = r0 * inv(0);
+    put(0, yt);
+  }
+  T yb = rl * inv(last);
+  put(last, yb);
+  std::size_t jb = last;
+  for (std::size_t e = top; e < bottom; ++e) {  // the lower half's extra row
+    --jb;
+    yb = rhs(jb) * inv(jb) - up(jb) * yb;
+    put(jb, yb);
+  }
+  for (std::size_t j = 1; j <= top; ++j) {
+    --jb;
+    yt = rhs(j) * inv(j) - up(j) * yt;
+    put(j, yt);
+    yb = rhs(jb) * inv(jb) - up(jb) * yb;
+    put(jb, yb);
+  }
+  T x = ((k > 0 ? rhs(k) : r0) - a * (yt + yb)) * inv(k);  // row k meets both halves
+  put(k, x);
+  T xt = x, xb = x;
+  for (std::size_t i = 1; i <= k; ++i) {
+    xt = get(k - i) - up(k - i) * xt;
+    put(k - i, xt);
+    xb = get(k + i) - up(k + i) * xb;
+    put(k + i, xb);
+  }
+  for (std::size_t j = 2 * k + 1; j <= last; ++j) {  // the lower half's extra row
+    xb = get(j) - up(j) * xb;
+    put(j, xb);
+  }
+}
+}  // namespace
 
 PaperScheme::PaperScheme(const Case& c)
     : mesh_(c.bar.length, c.bar.elements),
@@ -39,33 +92,33 @@ PaperScheme::PaperScheme(const Case& c)
   b1_diag_ = {B1.diag[0], B1.diag[inner], B1.diag[n - 1]};
   b0_diag_ = {B0.diag[0], B0.diag[inner], B0.diag[n - 1]};
 
-  // LU of the symmetric positive definite A, once: pivots p_j and the upper
-  // factor's off-diagonal a_off / p_j, which is also the lower factor's.
-  inv_.resize(n);
-  upper_.resize(n);
-  double pivot = A.diag[0];
-  for (std::size_t j = 0; j < n; ++j) {
-    if (j > 0) pivot = A.diag[j] - a_off_ * upper_[j - 1];
-    inv_[j] = 1.0 / pivot;
+  // The two-ended factorisation of the symmetric positive definite A, once
+  // (see twisted_solve): pivots p_j from row 0 down to row k - 1 and from row
+  // M up to row k + 1, with up_j = a_off / p_j, and row k = M/2's pivot last.
+  const std::size_t last = n - 1, twist = last / 2;
+  inv_.assign(n, 0.0);
+  upper_.assign(n, 0.0);
+  for (std::size_t j = 0; j < twist; ++j) {
+    inv_[j] = 1.0 / (A.diag[j] - (j > 0 ? a_off_ * upper_[j - 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
   // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
-  // exactly that, and u_M = 0 removes the column's coupling.
-  if (c.bar.far_end == FarEnd::clamped) inv_[n - 1] = upper_[n - 1] = 0.0;
+  // exactly that, and its zero up removes the column's coupling.
+  const bool clamped = c.bar.far_end == FarEnd::clamped;
+  for (std::size_t j = last; j > twist; --j) {
+    inv_[j] = clamped && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
+    upper_[j] = a_off_ * inv_[j];
+  }
+  inv_[twist] = 1.0 / (A.diag[twist] - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
 
   if (law_.viscosity() > 0.0) {
     dashpot_sigma_ = law_.viscosity() * (alpha_ * lambda_ + 0.5 / dt_);
     dashpot_response_.assign(n, 0.0);
-    double y = inv_[0];  // forward sweep of e0
-    dashpot_response_[0] = y;
-    for (std::size_t j = 1; j < n; ++j) {
-      y = -upper_[j] * y;
-      dashpot_response_[j] = y;
-    }
-    for (std::size_t j = n - 1; j-- > 0;) {
-      y = dashpot_response_[j] - upper_[j] * y;
-      dashpot_response_[j] = y;
-    }
+    double* w = dashpot_response_.data();
+    twisted_solve(
+        last, a_off_, 1.0, 0.0, [](std::size_t) { return 0.0; }, [&](std::size_t j) { return inv_[j]; },
+        [&](std::size_t j) { return upper_[j]; }, [&](std::size_t j) { return w[j]; },
+        [&](std::size_t j, double v) { w[j] = v; });
   }
 
   for (auto& level : levels_) level.assign(n, 0.0);
@@ -117,8 +170,8 @@ void PaperScheme::start() {
 // One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}
 // (cur_), written over z^{m-2} (prev_). The right-hand side
 // B1 z^m + B0 z^{m-1} + F^{m,alpha} + contact is formed row by row inside
-// the forward sweep of the prefactored Thomas solve, then one backward sweep:
-// two passes over memory, no allocation.
+// the first sweep of the prefactored two-ended solve, then one sweep back:
+// two passes over memory, two chains per pass, no allocation.
 template <PaperScheme::LoadMode mode>
 void PaperScheme::solve_level(long long m) {
   const std::size_t n = mesh_.nodes();
@@ -177,22 +230,16 @@ void PaperScheme::solve_level(long long m) {
   const double b1d = b1_diag_[1], b0d = b0_diag_[1];
   const std::size_t last = n - 1;
 
-  double y = (b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1] + load(0) + contact) * inv[0];
-  zn[0] = y;
-  for (std::size_t j = 1; j < last; ++j) {
-    const double r =
-        b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]) + load(j);
-    y = r * inv[j] - up[j] * y;
-    zn[j] = y;
-  }
+  const double r0 = b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1] + load(0) + contact;
   const double r_last =
       b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1] + load(last);
-  y = r_last * inv[last] - up[last] * y;
-  zn[last] = y;
-  for (std::size_t j = last; j-- > 0;) {
-    y = zn[j] - up[j] * y;
-    zn[j] = y;
-  }
+  twisted_solve(
+      last, a_off_, r0, r_last,
+      [&](std::size_t j) {
+        return b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]) + load(j);
+      },
+      [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
+      [&](std::size_t j, double v) { zn[j] = v; });
   if (dashpot_active_) {
     // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
     const double* __restrict w = dashpot_response_.data();
@@ -363,7 +410,6 @@ bool PaperScheme::batchable(const Case& a, const Case& b) {
 }
 
 // GCC's generic vectors: AVX2 registers with -march=native, emulated elsewhere.
-#pragma GCC diagnostic ignored "-Wpsabi"
 namespace {
 typedef double v4 __attribute__((vector_size(32)));
 inline v4 load4(const double* p) {
@@ -421,7 +467,7 @@ void PaperBatch::start() {
 // order, so that every lane's result is bit-for-bit the scalar kernel's.
 void PaperBatch::advance() {
   const long long m = lanes_.front()->n_ + 1;
-  v4 b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0;
+  v4 b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0, a_off;
   for (std::size_t l = 0; l < width; ++l) {
     const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
     const double em1 = 1.0 / s.scale(m - 1), e0 = 1.0 / s.scale(m), ep1 = 1.0 / s.scale(m + 1);
@@ -432,6 +478,7 @@ void PaperBatch::advance() {
     b1d0[l] = s.b1_diag_[0], b1d[l] = s.b1_diag_[1], b1dl[l] = s.b1_diag_[2];
     b0d0[l] = s.b0_diag_[0], b0d[l] = s.b0_diag_[1], b0dl[l] = s.b0_diag_[2];
     b1o[l] = s.b1_off_, b0o[l] = s.b0_off_;
+    a_off[l] = s.a_off_;
   }
   PaperScheme& first = *lanes_.front();
   const double* __restrict zc = first.next_;  // lane 0's pointers are the interleaved arrays' starts
@@ -445,23 +492,17 @@ void PaperBatch::advance() {
     if (steady_load_) return c0 * load4(f + w * j);
     return v4{0.0, 0.0, 0.0, 0.0};
   };
-  v4 y = (b1d0 * load4(zc) + b1o * load4(zc + w) + b0d0 * load4(zo) + b0o * load4(zo + w) + load(0) + contact) *
-         load4(inv);
-  store4(zn, y);
-  for (std::size_t j = 1; j < last; ++j) {
-    const v4 r = b1d * load4(zc + w * j) + b1o * (load4(zc + w * (j - 1)) + load4(zc + w * (j + 1))) +
-                 b0d * load4(zo + w * j) + b0o * (load4(zo + w * (j - 1)) + load4(zo + w * (j + 1))) + load(j);
-    y = r * load4(inv + w * j) - load4(up + w * j) * y;
-    store4(zn + w * j, y);
-  }
+  const v4 r0 = b1d0 * load4(zc) + b1o * load4(zc + w) + b0d0 * load4(zo) + b0o * load4(zo + w) + load(0) + contact;
   const v4 r_last = b1dl * load4(zc + w * last) + b1o * load4(zc + w * (last - 1)) + b0dl * load4(zo + w * last) +
                     b0o * load4(zo + w * (last - 1)) + load(last);
-  y = r_last * load4(inv + w * last) - load4(up + w * last) * y;
-  store4(zn + w * last, y);
-  for (std::size_t j = last; j-- > 0;) {
-    y = load4(zn + w * j) - load4(up + w * j) * y;
-    store4(zn + w * j, y);
-  }
+  twisted_solve(
+      last, a_off, r0, r_last,
+      [&](std::size_t j) {
+        return b1d * load4(zc + w * j) + b1o * (load4(zc + w * (j - 1)) + load4(zc + w * (j + 1))) +
+               b0d * load4(zo + w * j) + b0o * (load4(zo + w * (j - 1)) + load4(zo + w * (j + 1))) + load(j);
+      },
+      [&](std::size_t j) { return load4(inv + w * j); }, [&](std::size_t j) { return load4(up + w * j); },
+      [&](std::size_t j) { return load4(zn + w * j); }, [&](std::size_t j, v4 v) { store4(zn + w * j, v); });
   for (auto& s : lanes_) s->finish_level(m);
 }
 

@@ -89,8 +89,8 @@ class PaperScheme final : public Scheme {
   // (identical for every element) and the first, inner and last diagonal.
   double a_off_, b1_off_, b0_off_;
   std::array<double, 3> b1_diag_{}, b0_diag_{};
-  std::vector<double> inv_;               // 1 / pivot of A's LU factorisation
-  std::vector<double> upper_;             // a_off / pivot: the U factor's off-diagonal
+  std::vector<double> inv_;               // 1 / pivot of A's two-ended factorisation
+  std::vector<double> upper_;             // a_off / pivot: the factors' off-diagonal
   std::vector<double> dashpot_response_;  // w = A^{-1} e0 (viscoelastic obstacle)
   double dashpot_sigma_ = 0.0;            // l (alpha lambda + 1/(2 dt))
   bool dashpot_active_ = false;           // the contact status used at the last level
@@ -123,8 +123,8 @@ class PaperScheme final : public Scheme {
 /// 4-double SIMD register: their levels, pivots and loads interleaved
 /// (node j of lane l at [4 j + l]), the same arithmetic as PaperScheme's
 /// kernel lane by lane, so that each lane's results are PaperScheme's to the
-/// last bit (tested). The Thomas sweeps are latency-bound; four independent
-/// chains in one register make them nearly four times cheaper per case.
+/// last bit (tested). The sweeps are latency-bound; four independent chains
+/// in one register make them nearly four times cheaper per case.
 /// Each lane stays a PaperScheme: observers see it through the Scheme
 /// interface.
 class PaperBatch {
