@@ -91,8 +91,9 @@ Nanoseconds per node-step (median of 7 repetitions, interleaved at random in
 one run). `paper` is `PaperScheme::advance()` on Example 1's data with M
 elements and dt = h: the library's step with its contact term, load
 dispatch and finiteness check. The bare loop is the same arithmetic written
-flat (stencil right-hand side fused into the forward sweep of the
-prefactored tridiagonal solve, then the backward sweep). Target: ratio <= 1.25.
+flat: the stencil right-hand side fused into the first sweep of the
+prefactored two-ended tridiagonal solve (inwards from both ends), then the
+sweep back outwards from the middle row. Target: ratio <= 1.25.
 
 | M (elements) | paper (ns) | bare loop (ns) | ratio | batch of 4 (ns per case) | batch gain |
 |---:|---:|---:|---:|---:|---:|
@@ -151,16 +152,18 @@ side and `scipy.linalg.cho_solve_banded` with the matrix factored once by
 `cholesky_banded`, timed in the same process as barimpact's Python module.
 The target of 100x is **not** met at M = 10^3 and 10^4: LAPACK's banded
 solve is compiled code too, and SciPy's per-step overhead (about 20 us) only
-dominates on small meshes (M = 100). barimpact's advantage there comes from
-fusing the right-hand side into the sweep, and grows with batching (3x more).
+dominates on small meshes (M = 100). barimpact's advantage comes from fusing
+the right-hand side into the sweeps and from the two-ended solve's two
+chains, and grows by the batch gain above (about 3x) in a sweep.
 
 The implicit loops are latency-bound: each sweep carries a multiply and a
 subtract from node to node (no fused multiply-add: everything is built with
 -ffp-contract=off so that batches reproduce single runs bit for bit), about
-12 cycles, 3.4 ns, per node-step at any size; memory bandwidth is not the
-limit even at M = 10^6. 100x against SciPy at M = 10^4 would be 0.25 ns,
-under one cycle, per node-step for a stencil and two recurrences: beyond
-what one core can do with any algorithm, hence beyond an honest target. Debian's Google
+12 cycles, 3.4 ns, per node-step for a one-ended solve at any size; the
+paper scheme's two-ended solve runs two such chains side by side (2.3-2.6
+ns). 100x against SciPy at M = 10^4 would be about 0.25 ns, under one cycle,
+per node-step for a stencil and two recurrences: beyond what one core does
+with this scheme, batched or not. Debian's Google
 Benchmark prints "Library was built as DEBUG": that concerns the harness,
 not the code measured.
 """

@@ -87,7 +87,7 @@ def test_an_exception_in_the_callback_reaches_the_caller():
 
 def test_the_gil_is_released_during_a_run():
     case = barimpact.Case(EXAMPLES / "paper-example1.toml",
-                          set={"bar.elements": 20000, "time.step": 0.0005, "time.end": 1, "output.every": 100,
+                          set={"bar.elements": 20000, "time.step": 0.0005, "time.end": 4, "output.every": 100,
                                "output.fields_at": []})
     ticks = []
     done = threading.Event()

@@ -59,5 +59,67 @@ TEST(Tridiagonal, MultiplyMatchesTheQuadraticForm) {
   EXPECT_NEAR(xy, M.quadratic_form(x), 1e-15);
 }
 
+// Dense Gaussian elimination of a small tridiagonal system (the reference).
+std::vector<double> dense_solve(const Tridiagonal& t, std::vector<double> r, bool fix_last) {
+  const std::size_t n = t.size();
+  std::vector<std::vector<double>> m(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i) {
+    m[i][i] = t.diag[i];
+    if (i + 1 < n) m[i][i + 1] = m[i + 1][i] = t.off[i];
+  }
+  if (fix_last) {
+    for (std::size_t j = 0; j < n; ++j) m[n - 1][j] = m[j][n - 1] = 0.0;
+    m[n - 1][n - 1] = 1.0;
+    r[n - 1] = 0.0;
+  }
+  for (std::size_t c = 0; c < n; ++c)
+    for (std::size_t i = c + 1; i < n; ++i) {
+      const double f = m[i][c] / m[c][c];
+      for (std::size_t j = c; j < n; ++j) m[i][j] -= f * m[c][j];
+      r[i] -= f * r[c];
+    }
+  std::vector<double> x(n);
+  for (std::size_t i = n; i-- > 0;) {
+    double s = r[i];
+    for (std::size_t j = i + 1; j < n; ++j) s -= m[i][j] * x[j];
+    x[i] = s / m[i][i];
+  }
+  return x;
+}
+
+TEST(FactoredTridiagonal, SolvesLikeDenseEliminationFreeAndClamped) {
+  for (std::size_t n : {2, 3, 4, 7, 8}) {
+    for (bool fix_last : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "n = " << n << (fix_last ? " clamped" : " free"));
+      // A mass-plus-stiffness-like SPD matrix with every entry different.
+      Tridiagonal t{std::vector<double>(n), std::vector<double>(n - 1)};
+      std::vector<double> r(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        t.diag[i] = 3.0 + 0.1 * static_cast<double>(i);
+        if (i + 1 < n) t.off[i] = -1.0 + 0.05 * static_cast<double>(i);
+        r[i] = std::sin(1.0 + static_cast<double>(i));
+      }
+      const FactoredTridiagonal f(t, fix_last);
+      const auto expected = dense_solve(t, r, fix_last);
+      std::vector<double> x = r;
+      f.solve(x);
+      // Tolerance: two eliminations of a well-conditioned (cond < 10) system
+      // differ by a few ulps.
+      for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(x[i], expected[i], 1e-14) << i;
+      if (fix_last) {
+        EXPECT_EQ(x[n - 1], 0.0);
+      }
+      // The answer to a unit force at node 0, whose first entry the kernels
+      // read as inverse_pivots()[0].
+      const auto w = f.response_to_end_force();
+      std::vector<double> e0(n, 0.0);
+      e0[0] = 1.0;
+      const auto w_expected = dense_solve(t, e0, fix_last);
+      for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(w[i], w_expected[i], 1e-14) << i;
+      EXPECT_EQ(w[0], f.inverse_pivots()[0]);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace barimpact

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "../support/run_case.hpp"
@@ -110,17 +111,24 @@ struct DenseReference {
   }
 };
 
-TEST(PaperScheme, MatchesADenseTranscriptionWithEveryTermActive) {
+class PaperDense : public ::testing::TestWithParam<int> {};
+
+// M = 1, 2, 5, 6, 7: the two-ended solve's halves are equal (M even) or the
+// lower one has a row more (M odd), and M = 1 has no upper half at all.
+INSTANTIATE_TEST_SUITE_P(Elements, PaperDense, ::testing::Values(1, 2, 5, 6, 7));
+
+TEST_P(PaperDense, MatchesADenseTranscriptionWithEveryTermActive) {
   // Viscosity, shift, gap, initial displacement, a load f = x t whose hat
   // integrals are known in closed form, and contact during the run.
-  const int M = 6;
+  const int M = GetParam();
   const double L = 1.5, rho = 2.0, a = 3.0, b = 0.05, k = 40.0, g = 0.01, dt = 0.02, alpha = 0.3, lambda = 0.4;
   const Case c = case_from(R"toml([bar]
 length = 1.5
 density = 2
 stiffness = 3
 viscosity = 0.05
-elements = 6
+elements = )toml" + std::to_string(M) +
+                           R"toml(
 [load]
 body_force = "x * t"
 [initial]
