@@ -89,8 +89,8 @@ struct InteriorRow {
 // u^{m+1} = 2 u^m - u^{m-1} + dt^2 M^{-1} r, r = F^m - K_a u^m - K_b (u^m - u^{m-1})/dt
 // (+ the penalty at node 0). Interior rows without branches; with lumped mass
 // the update is fused into the same pass (vectorised over nodes), with
-// consistent mass into the sweeps of M_h's factors. Returns the force of a
-// fused impulse (consistent mass), else 0.
+// consistent mass into the sweeps of M_h's factors. Returns the obstacle's
+// impulse force.
 template <bool viscous, bool loaded>
 double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __restrict u, double* __restrict up,
                                    double penalty) {
@@ -111,11 +111,14 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
   if (lumped_step_) {
     const double* __restrict inv_m = inverse_lumped_.data();
     const double inv_mi = inv_m[1];
-    up[0] = 2.0 * u[0] - um[0] + dt2 * (r0 * inv_m[0]);  // first: the obstacle acts on it
+    // The ends first, and the obstacle on node 0 before the interior pass:
+    // node 0 then leaves the pass's critical path from step to step.
+    up[0] = 2.0 * u[0] - um[0] + dt2 * (r0 * inv_m[0]);
     up[last] = 2.0 * u[last] - um[last] + dt2 * (rl * inv_m[last]);
+    const double impulse_force = enforce_contact(um, u, up);
     for (std::size_t j = 1; j < last; ++j)
       up[j] = 2.0 * u[j] - um[j] + dt2 * (row.force<viscous, loaded>(f, um, u, j) * inv_mi);
-    return 0.0;
+    return impulse_force;
   }
   // Consistent mass: the right-hand side formed inside the sweep of M_h's
   // factors towards x = 0; the obstacle's impulse decided at node 0; the
@@ -157,7 +160,6 @@ void ThreeLevelScheme::advance() {
   else
     impulse_force =
         load_zero_ ? step_rows<false, false>(um, u, up, penalty) : step_rows<false, true>(um, u, up, penalty);
-  if (lumped_step_) impulse_force = enforce_contact(um, u, up);
   prev_ = cur_;
   cur_ = next_;
   next_ = up;

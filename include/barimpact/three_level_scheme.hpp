@@ -50,7 +50,8 @@ class ThreeLevelScheme : public Scheme {
   [[nodiscard]] virtual const FactoredTridiagonal* mass_factor() const { return nullptr; }
   /// Enforces the obstacle on `next` (u^{n+1}) given the free prediction;
   /// returns R^n, the force (impulse / dt) the obstacle put on the bar.
-  /// `prev` is u^{n-1}, `cur` u^n.
+  /// `prev` is u^{n-1}, `cur` u^n. In a lumped step only next[0] is written
+  /// when it is called (the interior rows follow), and only next[0] may change.
   virtual double enforce_contact(const double* prev, const double* cur, double* next) = 0;
   /// With consistent mass, the step asks between its two sweeps for the
   /// displacement impulse mu at node 0 (u^{n+1} += mu M^{-1} e_0) given
