@@ -134,9 +134,12 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
   }
   const double y0 = r0 - cp[1] * y;
   // next += mu M^{-1} e_0 is r_0 += mu / dt^2.
-  const double mu = end_impulse(um[0], 2.0 * u[0] - um[0] + dt2 * (y0 * inv[0]));
+  const double free0 = 2.0 * u[0] - um[0] + dt2 * (y0 * inv[0]);
+  const double mu = end_impulse(um[0], free0);
   double x = (y0 + mu / dt2) * inv[0];
-  up[0] = 2.0 * u[0] - um[0] + dt2 * x;
+  // Node 0 as the projection puts it (w_0 = inv_0), on the constraint to the
+  // last bit rather than through the sweep's roundings.
+  up[0] = mu == 0.0 ? 2.0 * u[0] - um[0] + dt2 * x : free0 + mu * inv[0];
   for (std::size_t j = 1; j < n; ++j) {
     x = up[j] * inv[j] - cp[j] * x;
     up[j] = 2.0 * u[j] - um[j] + dt2 * x;
