@@ -75,9 +75,10 @@ Fields FieldRecorder::take() {
 void ContactMonitor::begin(const Scheme& scheme, long long steps) {
   velocity_.assign(scheme.nodes(), 0.0);
   intervals_.clear();
-  // A stiff penalty can chatter hundreds of times: room for 4096 episodes
-  // (or one per two steps, if fewer) before the vector has to grow.
-  intervals_.reserve(static_cast<std::size_t>(std::min<long long>(steps / 2 + 1, 4096)));
+  // An episode needs a step in contact after one out of it: at most
+  // steps / 2 + 1 of them, all reserved up to 65536 (3 MB), so that the time
+  // loop never allocates unless a run chatters more often than that.
+  intervals_.reserve(static_cast<std::size_t>(std::min<long long>(steps / 2 + 1, 65536)));
   in_contact_ = have_previous_ = false;
   max_penetration_ = max_reaction_ = 0.0;
 }

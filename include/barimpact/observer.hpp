@@ -92,7 +92,7 @@ class ContactMonitor final : public Observer {
  public:
   explicit ContactMonitor(const ObstacleData& obstacle) : law_(obstacle) {}
   void begin(const Scheme& scheme, long long steps) override;
-  /// Allocates only when an episode begins beyond the 4096 reserved.
+  /// Allocates only when an episode begins beyond the 65536 reserved.
   bool observe(const Scheme& scheme) override;
   [[nodiscard]] const std::vector<ContactInterval>& intervals() const { return intervals_; }
   [[nodiscard]] double max_penetration() const { return max_penetration_; }
