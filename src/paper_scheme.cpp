@@ -1,6 +1,9 @@
 #include "barimpact/paper_scheme.hpp"
 
 #include <cmath>
+#include <type_traits>
+
+#include <fmt/format.h>
 
 // PaperBatch passes GCC's generic 4-double vectors by value to inlined
 // helpers; their ABI without AVX does not concern us.
@@ -230,13 +233,22 @@ void PaperScheme::solve_level(long long m) {
   const double b1d = b1_diag_[1], b0d = b0_diag_[1];
   const std::size_t last = n - 1;
 
-  const double r0 = b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1] + load(0) + contact;
+  // A zero load adds nothing, not even the + 0.0 that IEEE rules would keep.
+  auto loaded = [&](double r, std::size_t j) {
+    if constexpr (mode == LoadMode::zero) {
+      (void)j;
+      return r;
+    } else {
+      return r + load(j);
+    }
+  };
+  const double r0 = loaded(b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1], 0) + contact;
   const double r_last =
-      b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1] + load(last);
+      loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);
   twisted_solve(
       last, a_off_, r0, r_last,
       [&](std::size_t j) {
-        return b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]) + load(j);
+        return loaded(b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]), j);
       },
       [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
       [&](std::size_t j, double v) { zn[j] = v; });
@@ -348,12 +360,12 @@ void PaperScheme::half_step_energy(const double* za, double sa, const double* zb
   const double h = mesh_.h();
   const std::size_t st = stride_;
   const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
-  const double extra = (alpha_ - 0.25) * dt_ * dt_;
+  const double extra = (alpha_ - 0.25) * dt_ * dt_, inv_dt = 1.0 / dt_;
   double wm = 0.0, wk = 0.0, mk = 0.0;
-  double w_left = (sb * zb[0] - sa * za[0]) / dt_;
+  double w_left = (sb * zb[0] - sa * za[0]) * inv_dt;
   double m_left = 0.5 * (sb * zb[0] + sa * za[0]);
   for (std::size_t j = 1; j < mesh_.nodes(); ++j) {
-    const double w_right = (sb * zb[j * st] - sa * za[j * st]) / dt_;
+    const double w_right = (sb * zb[j * st] - sa * za[j * st]) * inv_dt;  // a multiply: this runs every row
     const double m_right = 0.5 * (sb * zb[j * st] + sa * za[j * st]);
     wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
     wk += (w_right - w_left) * (w_right - w_left);
@@ -409,21 +421,22 @@ bool PaperScheme::batchable(const Case& a, const Case& b) {
          Expression(a.load.body_force).is_zero() == Expression(b.load.body_force).is_zero();
 }
 
-// GCC's generic vectors: AVX2 registers with -march=native, emulated elsewhere.
+// GCC's generic vectors of PaperBatch::width doubles: one AVX-512 or AVX2
+// register with -march=native, emulated elsewhere.
 namespace {
-typedef double v4 __attribute__((vector_size(32)));
-inline v4 load4(const double* p) {
-  v4 v;
+typedef double lanes __attribute__((vector_size(8 * PaperBatch::width)));
+inline lanes load_lanes(const double* p) {
+  lanes v;
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
-inline void store4(double* p, v4 v) {
+inline void store_lanes(double* p, lanes v) {
   __builtin_memcpy(p, &v, sizeof v);
 }
 }  // namespace
 
 PaperBatch::PaperBatch(const std::vector<const Case*>& cases) {
-  if (cases.empty() || cases.size() > width) throw InputError("PaperBatch: 1 to 4 cases");
+  if (cases.empty() || cases.size() > width) throw InputError(fmt::format("PaperBatch: 1 to {} cases", width));
   for (const auto* c : cases) {
     if (!PaperScheme::batchable(*cases.front(), *c)) throw InputError("PaperBatch: the cases cannot share a batch");
     lanes_.push_back(std::make_unique<PaperScheme>(*c));
@@ -463,11 +476,11 @@ void PaperBatch::start() {
         load_[width * j + l] = lanes_[std::min(l, lanes_.size() - 1)]->loads_[0][j];
 }
 
-// PaperScheme::solve_level with four lanes: the same operations in the same
+// PaperScheme::solve_level with `width` lanes: the same operations in the same
 // order, so that every lane's result is bit-for-bit the scalar kernel's.
 void PaperBatch::advance() {
   const long long m = lanes_.front()->n_ + 1;
-  v4 b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0, a_off;
+  lanes b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0, a_off;
   for (std::size_t l = 0; l < width; ++l) {
     const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
     const double em1 = 1.0 / s.scale(m - 1), e0 = 1.0 / s.scale(m), ep1 = 1.0 / s.scale(m + 1);
@@ -488,21 +501,35 @@ void PaperBatch::advance() {
   const double* __restrict up = up_.data();
   const double* __restrict f = load_.data();
   const std::size_t w = width, last = nodes_ - 1;
-  auto load = [&](std::size_t j) {
-    if (steady_load_) return c0 * load4(f + w * j);
-    return v4{0.0, 0.0, 0.0, 0.0};
+  // The single kernel's operations: a zero load adds nothing.
+  auto solve = [&](auto steady) {
+    auto loaded = [&](lanes r, std::size_t j) {
+      if constexpr (decltype(steady)::value) return r + c0 * load_lanes(f + w * j);
+      (void)j;
+      return r;
+    };
+    const lanes r0 =
+        loaded(b1d0 * load_lanes(zc) + b1o * load_lanes(zc + w) + b0d0 * load_lanes(zo) + b0o * load_lanes(zo + w), 0) +
+        contact;
+    const lanes r_last = loaded(b1dl * load_lanes(zc + w * last) + b1o * load_lanes(zc + w * (last - 1)) +
+                                    b0dl * load_lanes(zo + w * last) + b0o * load_lanes(zo + w * (last - 1)),
+                                last);
+    twisted_solve(
+        last, a_off, r0, r_last,
+        [&](std::size_t j) {
+          return loaded(
+              b1d * load_lanes(zc + w * j) + b1o * (load_lanes(zc + w * (j - 1)) + load_lanes(zc + w * (j + 1))) +
+                  b0d * load_lanes(zo + w * j) + b0o * (load_lanes(zo + w * (j - 1)) + load_lanes(zo + w * (j + 1))),
+              j);
+        },
+        [&](std::size_t j) { return load_lanes(inv + w * j); }, [&](std::size_t j) { return load_lanes(up + w * j); },
+        [&](std::size_t j) { return load_lanes(zn + w * j); },
+        [&](std::size_t j, lanes v) { store_lanes(zn + w * j, v); });
   };
-  const v4 r0 = b1d0 * load4(zc) + b1o * load4(zc + w) + b0d0 * load4(zo) + b0o * load4(zo + w) + load(0) + contact;
-  const v4 r_last = b1dl * load4(zc + w * last) + b1o * load4(zc + w * (last - 1)) + b0dl * load4(zo + w * last) +
-                    b0o * load4(zo + w * (last - 1)) + load(last);
-  twisted_solve(
-      last, a_off, r0, r_last,
-      [&](std::size_t j) {
-        return b1d * load4(zc + w * j) + b1o * (load4(zc + w * (j - 1)) + load4(zc + w * (j + 1))) +
-               b0d * load4(zo + w * j) + b0o * (load4(zo + w * (j - 1)) + load4(zo + w * (j + 1))) + load(j);
-      },
-      [&](std::size_t j) { return load4(inv + w * j); }, [&](std::size_t j) { return load4(up + w * j); },
-      [&](std::size_t j) { return load4(zn + w * j); }, [&](std::size_t j, v4 v) { store4(zn + w * j, v); });
+  if (steady_load_)
+    solve(std::true_type{});
+  else
+    solve(std::false_type{});
   for (auto& s : lanes_) s->finish_level(m);
 }
 

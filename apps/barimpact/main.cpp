@@ -36,6 +36,7 @@
 #ifdef BARIMPACT_HAVE_MPI
 #include <mpi.h>
 #endif
+#include "barimpact/paper_scheme.hpp"
 #include "barimpact/simulate.hpp"
 
 namespace {
@@ -172,7 +173,8 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
         int dummy = 0;
         MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         std::vector<long long> chunk;
-        while (next < todo.size() && chunk.size() < 4) chunk.push_back(static_cast<long long>(todo[next++]));
+        while (next < todo.size() && chunk.size() < barimpact::PaperBatch::width)
+          chunk.push_back(static_cast<long long>(todo[next++]));
         if (chunk.empty()) --active;
         MPI_Send(chunk.data(), static_cast<int>(chunk.size()), MPI_LONG_LONG, status.MPI_SOURCE, tag_case,
                  MPI_COMM_WORLD);
@@ -190,9 +192,10 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
     while (true) {
       int dummy = 0;
       MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
-      long long chunk[4];
+      long long chunk[barimpact::PaperBatch::width];
       MPI_Status status;
-      MPI_Recv(chunk, 4, MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD, &status);
+      MPI_Recv(chunk, static_cast<int>(barimpact::PaperBatch::width), MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD,
+               &status);
       int count = 0;
       MPI_Get_count(&status, MPI_LONG_LONG, &count);
       if (count == 0) break;

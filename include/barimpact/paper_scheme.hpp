@@ -26,6 +26,7 @@
 
 #include <array>
 #include <memory>
+#include <new>
 #include <vector>
 
 #include "barimpact/case.hpp"
@@ -96,7 +97,7 @@ class PaperScheme final : public Scheme {
   bool dashpot_active_ = false;           // the contact status used at the last level
 
   std::array<std::vector<double>, 3> levels_;
-  std::size_t stride_ = 1;  // node j of a level is at [j * stride_] (4 inside a PaperBatch)
+  std::size_t stride_ = 1;  // node j of a level is at [j * stride_] (PaperBatch::width inside one)
   bool batched_ = false;
   double* prev_ = nullptr;  // z^{n-1}
   double* cur_ = nullptr;   // z^n
@@ -119,18 +120,34 @@ class PaperScheme final : public Scheme {
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // increments of level n
 };
 
-/// Up to four paper-scheme cases stepped together, one per lane of a
-/// 4-double SIMD register: their levels, pivots and loads interleaved
-/// (node j of lane l at [4 j + l]), the same arithmetic as PaperScheme's
+/// Up to `width` paper-scheme cases stepped together, one per lane of a
+/// SIMD register: their levels, pivots and loads interleaved
+/// (node j of lane l at [width j + l]), the same arithmetic as PaperScheme's
 /// kernel lane by lane, so that each lane's results are PaperScheme's to the
-/// last bit (tested). The sweeps are latency-bound; four independent chains
-/// in one register make them nearly four times cheaper per case.
+/// last bit (tested). The sweeps are latency-bound; `width` independent
+/// chains in one register make them several times cheaper per case.
 /// Each lane stays a PaperScheme: observers see it through the Scheme
 /// interface.
 class PaperBatch {
  public:
+  /// Cases per register: 4 doubles, one AVX2 register. (Eight, one AVX-512
+  /// register, measured no faster on AMD Zen 4, which runs it as two halves,
+  /// and slower from M = 10^5, where eight cases leave the cache.)
   static constexpr std::size_t width = 4;
-  /// 1 to 4 cases, pairwise batchable. Throws InputError otherwise.
+  /// Storage aligned to a register: every load of all lanes is one aligned access.
+  template <class T>
+  struct RegisterAligned {
+    using value_type = T;
+    RegisterAligned() = default;
+    template <class U>
+    explicit RegisterAligned(const RegisterAligned<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{8 * width})); }
+    void deallocate(T* p, std::size_t) { ::operator delete (p, std::align_val_t{8 * width}); }
+    friend bool operator==(const RegisterAligned&, const RegisterAligned&) = default;
+  };
+  using Lanes = std::vector<double, RegisterAligned<double>>;
+
+  /// 1 to `width` cases, pairwise batchable. Throws InputError otherwise.
   explicit PaperBatch(const std::vector<const Case*>& cases);
   void start();
   void advance();
@@ -139,8 +156,8 @@ class PaperBatch {
 
  private:
   std::vector<std::unique_ptr<PaperScheme>> lanes_;
-  std::array<std::vector<double>, 3> levels_;
-  std::vector<double> inv_, up_, load_;
+  std::array<Lanes, 3> levels_;
+  Lanes inv_, up_, load_;
   std::size_t nodes_ = 0;
   bool steady_load_ = false;
 };
