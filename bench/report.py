@@ -139,7 +139,7 @@ stencils, so a step streams only its state and two factor arrays.
 {sweep}
 
 Produced by `bash bench/sweep_throughput.sh build/release/barimpact` (part of
-`make bench`): the configurations alternate over three rounds and each row
+`make bench`): the configurations alternate over five rounds and each row
 is the median. Wall times include everything a sweep does besides stepping:
 start-up, planning, observers (the energies of every 100th row are computed
 lane by lane, about 6% of a batched sweep) and writing runs/<id>/, which is

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Node-steps per second per core of a sweep, with and without SIMD batches,
 # on two cores, and under mpirun -n 2 (one dispatcher, one worker). The
-# configurations alternate over three rounds (this machine is noisy) and
-# each row is the median of its three wall times:
+# configurations alternate over five rounds (this machine is noisy) and
+# each row is the median of its five wall times:
 #   bash bench/sweep_throughput.sh build/release/barimpact
 set -euo pipefail
 bin=${1:-build/release/barimpact}
@@ -39,7 +39,7 @@ run_config() {  # index
 configs=(0 1 2)
 command -v mpiexec > /dev/null && configs+=(3)
 declare -A times
-for round in 1 2 3; do
+for round in 1 2 3 4 5; do
   for i in "${configs[@]}"; do
     rm -rf "$work/out"
     start=$(date +%s.%N)
@@ -48,8 +48,8 @@ for round in 1 2 3; do
     times[$i]+="$(awk -v s="$start" -v e="$end" 'BEGIN { print e - s }') "
   done
 done
-median() { tr ' ' '\n' <<< "$1" | grep . | sort -g | sed -n 2p; }
-echo "| sweep (16 cases, M = 1000, 32000 steps each; median of 3) | wall s | node-steps/s |"
+median() { tr ' ' '\n' <<< "$1" | grep . | sort -g | sed -n 3p; }
+echo "| sweep (16 cases, M = 1000, 32000 steps each; median of 5) | wall s | node-steps/s |"
 echo "|---|---:|---:|"
 for i in "${configs[@]}"; do
   awk -v l="${labels[$i]}" -v t="$(median "${times[$i]}")" -v n="$node_steps" \
