@@ -9,7 +9,9 @@ namespace barimpact {
 CharacteristicScheme::CharacteristicScheme(const Case& c)
     : CentralDifferenceScheme(c),
       impedance_(c.bar.stiffness / mesh_.h()),
-      exact_boundary_(Expression(c.load.body_force).is_zero()) {}
+      exact_boundary_(Expression(c.load.body_force).is_zero()) {
+  lumped_end_ = LumpedEnd::scheme;  // the end in characteristic variables
+}
 
 void CharacteristicScheme::start() {
   started_ = false;

@@ -69,6 +69,14 @@ void ThreeLevelScheme::start() {
   reaction_ = law_.reaction(u0_[0], v0_[0]) + 2.0 * enforce_contact(prev_, cur_, next_);
 }
 
+double ThreeLevelScheme::clamp_end(double* next) const {
+  const double face = -law_.gap();
+  if (law_.kind() != ObstacleKind::rigid || next[0] >= face) return 0.0;
+  const double force = lumped_[0] * (face - next[0]) / (dt_ * dt_);
+  next[0] = face;
+  return force;
+}
+
 namespace {
 // F_j - (K_a u)_j - (K_b (u - u_old))_j / dt on an interior row, with the
 // uniform mesh's constant stencils.
@@ -115,7 +123,11 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
     // node 0 then leaves the pass's critical path from step to step.
     up[0] = 2.0 * u[0] - um[0] + dt2 * (r0 * inv_m[0]);
     up[last] = 2.0 * u[last] - um[last] + dt2 * (rl * inv_m[last]);
-    const double impulse_force = enforce_contact(um, u, up);
+    double impulse_force = 0.0;
+    if (lumped_end_ == LumpedEnd::clamp)
+      impulse_force = clamp_end(up);
+    else if (lumped_end_ == LumpedEnd::scheme)
+      impulse_force = enforce_contact(um, u, up);
     for (std::size_t j = 1; j < last; ++j)
       up[j] = 2.0 * u[j] - um[j] + dt2 * (row.force<viscous, loaded>(f, um, u, j) * inv_mi);
     return impulse_force;

@@ -14,7 +14,9 @@ namespace barimpact {
 
 class CentralDifferenceScheme : public ThreeLevelScheme {
  public:
-  explicit CentralDifferenceScheme(const Case& c) : ThreeLevelScheme(c, false) {}
+  explicit CentralDifferenceScheme(const Case& c) : ThreeLevelScheme(c, false) {
+    lumped_end_ = law_.kind() == ObstacleKind::rigid ? LumpedEnd::clamp : LumpedEnd::free;
+  }
 
  protected:
   void apply_inverse_mass(std::span<double> r) const override;

@@ -53,6 +53,14 @@ class ThreeLevelScheme : public Scheme {
   /// `prev` is u^{n-1}, `cur` u^n. In a lumped step only next[0] is written
   /// when it is called (the interior rows follow), and only next[0] may change.
   virtual double enforce_contact(const double* prev, const double* cur, double* next) = 0;
+  /// The rigid obstacle's clamp of lumped central differences:
+  /// u_0^{n+1} = max(prediction, -g); returns the force behind it.
+  double clamp_end(double* next) const;
+  /// How a lumped step treats node 0 once predicted: nothing more (no
+  /// obstacle, or a penalty, already in the force), the clamp (inline: no
+  /// virtual call in the step), or the scheme's enforce_contact.
+  enum class LumpedEnd { free, clamp, scheme };
+  LumpedEnd lumped_end_ = LumpedEnd::scheme;
   /// With consistent mass, the step asks between its two sweeps for the
   /// displacement impulse mu at node 0 (u^{n+1} += mu M^{-1} e_0) given
   /// u^{n-1}_0 and the free u^{n+1}_0; 0 when none.
