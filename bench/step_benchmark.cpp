@@ -170,6 +170,35 @@ void BM_BareCentralDifference(benchmark::State& state) {
   per_node_step(state, n);
 }
 
+// The bare loop of the characteristic scheme: the lumped pass at Courant 1
+// and the free end advanced in characteristic variables (G read off the
+// grid, F from the boundary condition), as CharacteristicScheme does.
+void BM_BareCharacteristic(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1, l = n - 1;
+  const double h = 1.0 / static_cast<double>(n - 1), dt = h, dt2 = dt * dt;
+  const double kd = 2.0 / h, ko = -1.0 / h, inv_m = 1.0 / h;
+  std::vector<double> a(n, 0.0), b(n, -dt), c(n, 0.0);
+  double *um = a.data(), *u = b.data(), *up = c.data();
+  double F[2] = {0.0, 0.0}, G[2] = {0.0, 0.0};
+  for (auto _ : state) {
+    const double* __restrict pu = u;
+    const double* __restrict pm = um;
+    double* __restrict pn = up;
+    pn[l] = 2.0 * pu[l] - pm[l] + dt2 * (-(0.5 * kd * pu[l] + ko * pu[l - 1]) * 2.0 * inv_m);
+    const double G_new = pu[1] - F[0], F_new = F[1] + G_new - G[1];
+    pn[0] = F_new + G_new;
+    F[0] = F[1], G[0] = G[1], F[1] = F_new, G[1] = G_new;
+    for (std::size_t j = 1; j < l; ++j)
+      pn[j] = 2.0 * pu[j] - pm[j] + dt2 * (-(kd * pu[j] + ko * (pu[j - 1] + pu[j + 1])) * inv_m);
+    double* t = um;
+    um = u;
+    u = up;
+    up = t;
+    benchmark::DoNotOptimize(u);
+  }
+  per_node_step(state, n);
+}
+
 // The bare loops of the implicit schemes below: the arithmetic of their
 // steps on Example 1 (b = 0, f = 0, dt = h/2) written flat, with factors
 // from the library's FactoredTridiagonal (eliminated from the far end), no
@@ -343,6 +372,7 @@ BENCHMARK(BM_PaperStep)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareLoop)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_PaperBatch)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareCentralDifference)->RangeMultiplier(10)->Range(100, 1'000'000);
+BENCHMARK(BM_BareCharacteristic)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareNewmark)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareMoreauJean)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BarePaoliSchatzman)->RangeMultiplier(10)->Range(100, 1'000'000);
