@@ -154,8 +154,9 @@ is the median. Wall times include everything a sweep does besides stepping:
 start-up, planning, observers (the energies of every 100th row are computed
 lane by lane, about 6% of a batched sweep) and writing runs/<id>/, which is
 why the sweep's batch gain is below the kernel's (first table). The
-`mpirun` line includes Open MPI's start-up (about 0.4 s) and uses one
-worker rank.
+`mpirun` line includes Open MPI's start-up (about 0.4 s); both ranks run
+cases (rank 0 also hands them out, from its main thread, between short
+sleeps).
 
 ## Against the SciPy script a user would write (bench/scipy_baseline.py)
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Node-steps per second per core of a sweep, with and without SIMD batches,
-# on two cores, and under mpirun -n 2 (one dispatcher, one worker). The
+# on two cores, and under mpirun -n 2 (both ranks run cases). The
 # configurations alternate over five rounds (this machine is noisy) and
 # each row is the median of its five wall times:
 #   bash bench/sweep_throughput.sh build/release/barimpact
@@ -27,7 +27,7 @@ TOML
 node_steps=$((16 * 1001 * 32000))
 mpi=(env OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 mpiexec -n 2 --oversubscribe)
 labels=("one core, each case alone (--no-batch --jobs 1)" "one core, SIMD batches of 4 (--jobs 1)"
-  "two cores, SIMD batches (--jobs 2)" "mpirun -n 2 (1 dispatcher + 1 worker rank, chunks of 4 batched)")
+  "two cores, SIMD batches (--jobs 2)" "mpirun -n 2 (two ranks, chunks of 4 batched)")
 run_config() {  # index
   case $1 in
     0) "$bin" sweep "$work/sweep.toml" --out "$work/out" --no-batch --jobs 1 ;;

@@ -24,8 +24,12 @@
 
 #include <sys/wait.h>
 
+#include <chrono>
+#include <exception>
 #include <filesystem>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "barimpact/case.hpp"
 #include "barimpact/convergence.hpp"
@@ -154,27 +158,54 @@ int converge_command(ConvergeArgs& a) {
 }
 
 #ifdef BARIMPACT_HAVE_MPI
-// Under mpirun: rank 0 hands out case indices, four at a time (one SIMD
-// batch), to whichever rank asks (dynamic load balancing) and gathers their
-// rows; the others run them.
+// Under mpirun: rank 0 hands out case indices, a SIMD batch at a time, to
+// whichever rank asks (dynamic load balancing) and gathers their rows; every
+// rank runs cases, rank 0 in a second thread (its main thread makes every
+// MPI call, MPI_THREAD_FUNNELED, and polls with short sleeps instead of
+// spinning on a core the cases need).
 constexpr int tag_request = 1, tag_case = 2, tag_row = 3;
 
 std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
                                            const std::vector<std::size_t>& todo, const barimpact::SweepOptions& o,
                                            int rank, int size) {
   std::vector<barimpact::SweepRow> rows;
+  barimpact::SweepOptions one = o;
+  one.jobs = 1;  // a rank is a core
   if (rank == 0) {
+    std::mutex mutex;  // guards next and rows
     std::size_t next = 0;
+    auto take = [&] {
+      std::lock_guard lock(mutex);
+      std::vector<std::size_t> chunk;
+      while (next < todo.size() && chunk.size() < barimpact::PaperBatch::width) chunk.push_back(todo[next++]);
+      return chunk;
+    };
+    std::exception_ptr local_error;  // rethrown once the other ranks are served
+    std::thread local([&] {
+      try {
+        for (auto chunk = take(); !chunk.empty(); chunk = take()) {
+          auto done = barimpact::run_sweep(plan, dir, chunk, one);
+          std::lock_guard lock(mutex);
+          rows.insert(rows.end(), done.begin(), done.end());
+        }
+      } catch (...) {
+        local_error = std::current_exception();
+      }
+    });
     int active = size - 1;
     while (active > 0) {
       MPI_Status status;
-      MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &status);
+      int arrived = 0;
+      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+      if (!arrived) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        continue;
+      }
       if (status.MPI_TAG == tag_request) {
         int dummy = 0;
         MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
         std::vector<long long> chunk;
-        while (next < todo.size() && chunk.size() < barimpact::PaperBatch::width)
-          chunk.push_back(static_cast<long long>(todo[next++]));
+        for (std::size_t i : take()) chunk.push_back(static_cast<long long>(i));
         if (chunk.empty()) --active;
         MPI_Send(chunk.data(), static_cast<int>(chunk.size()), MPI_LONG_LONG, status.MPI_SOURCE, tag_case,
                  MPI_COMM_WORLD);
@@ -183,12 +214,13 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
         MPI_Get_count(&status, MPI_CHAR, &length);
         std::string text(static_cast<std::size_t>(length), '\0');
         MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, tag_row, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        std::lock_guard lock(mutex);
         rows.push_back(barimpact::row_from_json(text));
       }
     }
+    local.join();
+    if (local_error) std::rethrow_exception(local_error);
   } else {
-    barimpact::SweepOptions one = o;
-    one.jobs = 1;
     while (true) {
       int dummy = 0;
       MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
@@ -215,7 +247,8 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 #ifdef BARIMPACT_HAVE_MPI
   const bool distributed = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr;
   if (distributed) {
-    MPI_Init(nullptr, nullptr);
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
   }
@@ -262,7 +295,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   std::filesystem::rename(staging, dir / "sweep.csv");
   const auto batched = std::count_if(done.begin(), done.end(), [](const auto& r) { return r.batched; });
   fmt::print("{} cases: {} run{} ({} in SIMD batches), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
-             done.size(), size > 1 ? fmt::format(" on {} ranks", size - 1) : "", batched, resumed, failed, out_dir);
+             done.size(), size > 1 ? fmt::format(" on {} ranks", size) : "", batched, resumed, failed, out_dir);
   return 0;
 }
 

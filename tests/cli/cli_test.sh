@@ -189,7 +189,7 @@ expect_refused "unknown key bar.lenght" sweep "$work/badsweep.toml" --out "$work
 if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
   OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 "$BARIMPACT_MPIEXEC" -n 2 --oversubscribe \
     "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-mpi" > "$work/out" 2> "$work/err" && ok || bad "mpi sweep: $(cat "$work/err")"
-  grep -q "on 1 ranks" "$work/out" && ok || bad "mpi sweep did not run distributed: $(cat "$work/out")"
+  grep -q "on 2 ranks" "$work/out" && ok || bad "mpi sweep did not run distributed: $(cat "$work/out")"
   cmp -s <(cut -d, -f1-14 "$work/sweep-mpi/sweep.csv") "$work/first.csv" && ok || bad "mpi sweep.csv differs"
 fi
 
