@@ -255,14 +255,16 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
       refused(i, e.what());
     }
   }
-  // Groups of up to four cases that can share a SIMD batch; the rest alone.
+  // Groups of up to four cases that can share a SIMD batch (on a mesh small
+  // enough for a batch to pay); the rest alone.
   std::vector<std::vector<std::size_t>> groups;
   std::vector<bool> taken(todo.size(), false);
   for (std::size_t i = 0; i < todo.size(); ++i) {
     if (!cases[i] || taken[i]) continue;
     std::vector<std::size_t> g{i};
     taken[i] = true;
-    if (options.batch && PaperScheme::batchable(*cases[i], *cases[i]))
+    if (options.batch && cases[i]->bar.elements <= PaperBatch::largest_mesh &&
+        PaperScheme::batchable(*cases[i], *cases[i]))
       for (std::size_t k = i + 1; k < todo.size() && g.size() < PaperBatch::width; ++k)
         if (cases[k] && !taken[k] && PaperScheme::batchable(*cases[i], *cases[k])) {
           g.push_back(k);

@@ -134,6 +134,10 @@ class PaperBatch {
   /// register, measured no faster on AMD Zen 4, which runs it as two halves,
   /// and slower from M = 10^5, where eight cases leave the cache.)
   static constexpr std::size_t width = 4;
+  /// The largest mesh worth batching: beyond it the lanes' levels and
+  /// factors leave the cache and a batch is no faster per case than single
+  /// runs (measured 2.0-2.4x at M = 10^5, 0.8-1.3x at 10^6; docs/benchmarks.md).
+  static constexpr int largest_mesh = 200'000;
   /// Storage aligned to a register: every load of all lanes is one aligned access.
   template <class T>
   struct RegisterAligned {

@@ -176,6 +176,11 @@ cmp -s <(cut -d, -f1-14 "$work/sweep/sweep.csv") "$work/first.csv" && ok || bad 
 grep -q "(0 in SIMD batches)" "$work/out" && ok || bad "no-batch still batched"
 cmp -s <(cut -d, -f1-14 "$work/sweep-nobatch/sweep.csv") "$work/first.csv" && ok || bad "batched and unbatched rows differ"
 cmp -s "$work/sweep-nobatch/runs/0009/history.csv" "$work/sweep/runs/0009/history.csv" && ok || bad "batched history differs"
+# A mesh too large for a batch to pay is run case by case.
+printf 'case = "%s"\n[set]\nbar.elements = 300000\ntime.step = 0.0001\ntime.end = 0.0002\noutput.fields_at = []\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0]\n' \
+  "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/bigsweep.toml"
+"$bin" sweep "$work/bigsweep.toml" --out "$work/sweep-big" > "$work/out" && ok || bad "large-mesh sweep"
+grep -q "2 run (0 in SIMD batches)" "$work/out" && ok || bad "large meshes batched: $(cat "$work/out")"
 # Failures: recorded in their rows, the others run.
 "$bin" sweep "$sweeps/with-failures.toml" --out "$work/sweep-fail" > "$work/out" && ok || bad "sweep with failures"
 grep -q "^0000,.*,non-finite," "$work/sweep-fail/sweep.csv" && ok || bad "non-finite row"
