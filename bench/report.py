@@ -175,8 +175,8 @@ The implicit loops are latency-bound: each sweep carries a multiply and a
 subtract from node to node (no fused multiply-add: everything is built with
 -ffp-contract=off so that batches reproduce single runs bit for bit), about
 12 cycles, 3.4 ns, per node-step for a one-ended solve at any size; the
-paper scheme's two-ended solve runs two such chains side by side (2.3-2.6
-ns). 100x against SciPy at M = 10^4 would be about 0.25 ns, under one cycle,
+paper scheme's two-ended solve runs two such chains side by side (first
+table). 100x against SciPy at M = 10^4 would be about 0.25 ns, under one cycle,
 per node-step for a stencil and two recurrences: beyond what one core does
 with this scheme, batched or not. Debian's Google
 Benchmark prints "Library was built as DEBUG": that concerns the harness,
