@@ -167,7 +167,7 @@ constexpr int tag_request = 1, tag_case = 2, tag_row = 3;
 
 std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
                                            const std::vector<std::size_t>& todo, const barimpact::SweepOptions& o,
-                                           int rank, int size) {
+                                           int rank, int size, bool threads) {
   std::vector<barimpact::SweepRow> rows;
   barimpact::SweepOptions one = o;
   one.jobs = 1;  // a rank is a core
@@ -181,7 +181,7 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
       return chunk;
     };
     std::exception_ptr local_error;  // rethrown once the other ranks are served
-    std::thread local([&] {
+    auto run_here = [&] {
       try {
         for (auto chunk = take(); !chunk.empty(); chunk = take()) {
           auto done = barimpact::run_sweep(plan, dir, chunk, one);
@@ -191,7 +191,9 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
       } catch (...) {
         local_error = std::current_exception();
       }
-    });
+    };
+    // Without MPI_THREAD_FUNNELED from the library, rank 0 only dispatches.
+    std::thread local = threads ? std::thread(run_here) : std::thread();
     int active = size - 1;
     while (active > 0) {
       MPI_Status status;
@@ -218,7 +220,7 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
         rows.push_back(barimpact::row_from_json(text));
       }
     }
-    local.join();
+    if (local.joinable()) local.join();
     if (local_error) std::rethrow_exception(local_error);
   } else {
     while (true) {
@@ -245,9 +247,9 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
 int sweep_command(const std::string& sweep_path, const std::string& out_dir, const barimpact::SweepOptions& o) {
   int rank = 0, size = 1;
 #ifdef BARIMPACT_HAVE_MPI
+  int provided = 0;
   const bool distributed = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr;
   if (distributed) {
-    int provided = 0;
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
@@ -279,7 +281,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 #ifdef BARIMPACT_HAVE_MPI
   if (size > 1) {
     MPI_Barrier(MPI_COMM_WORLD);  // the directory exists before any rank writes
-    done = mpi_sweep(plan, dir, todo, o, rank, size);
+    done = mpi_sweep(plan, dir, todo, o, rank, size, provided >= MPI_THREAD_FUNNELED);
     if (rank != 0) return 0;
   } else
 #endif
