@@ -152,7 +152,7 @@ Produced by `bash bench/sweep_throughput.sh build/release/barimpact` (part of
 `make bench`): the configurations alternate over five rounds and each row
 is the median. Wall times include everything a sweep does besides stepping:
 start-up, planning, observers (the energies of every 100th row are computed
-lane by lane, about 6% of a batched sweep) and writing runs/<id>/, which is
+lane by lane, 5-6% of a batched sweep) and writing runs/<id>/, which is
 why the sweep's batch gain is below the kernel's (first table). The
 `mpirun` line includes Open MPI's start-up (about 0.4 s); both ranks run
 cases (rank 0 also hands them out, from its main thread, between short

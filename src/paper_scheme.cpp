@@ -354,27 +354,52 @@ void PaperScheme::velocity(std::span<double> out) const {
     out[j] = (sp * next_[j * stride_] - sm * prev_[j * stride_]) / (2.0 * dt_);
 }
 
-void PaperScheme::half_step_energy(const double* za, double sa, const double* zb, double sb, double& kinetic,
-                                   double& strain) const {
-  // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
-  const double h = mesh_.h();
-  const std::size_t st = stride_;
-  const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
-  const double extra = (alpha_ - 0.25) * dt_ * dt_, inv_dt = 1.0 / dt_;
-  double wm = 0.0, wk = 0.0, mk = 0.0;
-  double w_left = (sb * zb[0] - sa * za[0]) * inv_dt;
-  double m_left = 0.5 * (sb * zb[0] + sa * za[0]);
-  for (std::size_t j = 1; j < mesh_.nodes(); ++j) {
-    const double w_right = (sb * zb[j * st] - sa * za[j * st]) * inv_dt;  // a multiply: this runs every row
-    const double m_right = 0.5 * (sb * zb[j * st] + sa * za[j * st]);
+namespace {
+// One half-step's energy sums, element by element: the levels' values at a
+// node come in as (a, b), already scaled.
+struct HalfStepSums {
+  double inv_dt, wm = 0.0, wk = 0.0, mk = 0.0, w_left = 0.0, m_left = 0.0;
+  void first(double a, double b) {
+    w_left = (b - a) * inv_dt;  // a multiply: this runs on every history row
+    m_left = 0.5 * (b + a);
+  }
+  void next(double a, double b) {
+    const double w_right = (b - a) * inv_dt, m_right = 0.5 * (b + a);
     wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
     wk += (w_right - w_left) * (w_right - w_left);
     mk += (m_right - m_left) * (m_right - m_left);
     w_left = w_right;
     m_left = m_right;
   }
-  kinetic = 0.5 * mass_c * wm;
-  strain = 0.5 * stiff_c * (mk + extra * wk);
+};
+}  // namespace
+
+void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
+                                     double sc, double (&kinetic)[2], double (&strain)[2]) const {
+  // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
+  const double h = mesh_.h();
+  const std::size_t st = stride_, n = mesh_.nodes();
+  const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
+  const double extra = (alpha_ - 0.25) * dt_ * dt_, inv_dt = 1.0 / dt_;
+  HalfStepSums ab{inv_dt}, bc{inv_dt};
+  auto pass = [&](auto both) {
+    ab.first(sa * za[0], sb * zb[0]);
+    if constexpr (decltype(both)::value) bc.first(sb * zb[0], sc * zc[0]);
+    for (std::size_t j = 1; j < n; ++j) {
+      const double b = sb * zb[j * st];
+      ab.next(sa * za[j * st], b);
+      if constexpr (decltype(both)::value) bc.next(b, sc * zc[j * st]);
+    }
+  };
+  if (zc != nullptr)
+    pass(std::true_type{});
+  else
+    pass(std::false_type{});
+  const HalfStepSums* sums[2] = {&ab, &bc};
+  for (int i = 0; i < 2; ++i) {
+    kinetic[i] = 0.5 * mass_c * sums[i]->wm;
+    strain[i] = 0.5 * stiff_c * (sums[i]->mk + extra * sums[i]->wk);
+  }
 }
 
 Energies PaperScheme::energies() const {
@@ -385,14 +410,16 @@ Energies PaperScheme::energies() const {
     e.strain = 0.5 * mesh_.stiffness_form(a_, u0_, u0_);
     return e;
   }
-  double k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
+  double k[2] = {0.0, 0.0}, s[2] = {0.0, 0.0}, k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
   if (cached_.n == n_ - 1) {  // the previous row's n + 1/2 is this row's n - 1/2
     k1 = cached_.kinetic;
     s1 = cached_.strain;
-  } else {
-    half_step_energy(prev_, scale(n_ - 1), cur_, scale(n_), k1, s1);
+    half_step_energies(cur_, scale(n_), next_, scale(n_ + 1), nullptr, 0.0, k, s);
+    k2 = k[0], s2 = s[0];
+  } else {  // both half-steps in one pass
+    half_step_energies(prev_, scale(n_ - 1), cur_, scale(n_), next_, scale(n_ + 1), k, s);
+    k1 = k[0], s1 = s[0], k2 = k[1], s2 = s[1];
   }
-  half_step_energy(cur_, scale(n_), next_, scale(n_ + 1), k2, s2);
   cached_ = {n_, k2, s2};
   e.kinetic = 0.5 * (k1 + k2);
   e.strain = 0.5 * (s1 + s2);

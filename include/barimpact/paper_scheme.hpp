@@ -77,8 +77,10 @@ class PaperScheme final : public Scheme {
   /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
   /// (1/2)|w|_M^2 + (1/2)|m|_Ka^2 + (alpha - 1/4)(dt^2/2)|w|_Ka^2, w = (u^b - u^a)/dt,
   /// m = (u^b + u^a)/2; the identity (7.1) makes it telescope when lambda = 0.
-  void half_step_energy(const double* za, double sa, const double* zb, double sb, double& kinetic,
-                        double& strain) const;
+  /// Level i is z_i scaled by s_i; with z_c, also the half-step (b, c), in
+  /// the same pass over the nodes.
+  void half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc, double sc,
+                          double (&kinetic)[2], double (&strain)[2]) const;
   void accumulate_budget(long long m);
 
   Mesh mesh_;
