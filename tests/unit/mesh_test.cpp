@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "../support/dense.hpp"
 #include "barimpact/expression.hpp"
 
 namespace barimpact {
@@ -59,10 +60,10 @@ TEST(Tridiagonal, MultiplyMatchesTheQuadraticForm) {
   EXPECT_NEAR(xy, M.quadratic_form(x), 1e-15);
 }
 
-// Dense Gaussian elimination of a small tridiagonal system (the reference).
-std::vector<double> dense_solve(const Tridiagonal& t, std::vector<double> r, bool fix_last) {
+// The tridiagonal system written dense, and solved by elimination (the reference).
+std::vector<double> dense_reference(const Tridiagonal& t, std::vector<double> r, bool fix_last) {
   const std::size_t n = t.size();
-  std::vector<std::vector<double>> m(n, std::vector<double>(n, 0.0));
+  testing::DenseMatrix m(n, std::vector<double>(n, 0.0));
   for (std::size_t i = 0; i < n; ++i) {
     m[i][i] = t.diag[i];
     if (i + 1 < n) m[i][i + 1] = m[i + 1][i] = t.off[i];
@@ -72,25 +73,13 @@ std::vector<double> dense_solve(const Tridiagonal& t, std::vector<double> r, boo
     m[n - 1][n - 1] = 1.0;
     r[n - 1] = 0.0;
   }
-  for (std::size_t c = 0; c < n; ++c)
-    for (std::size_t i = c + 1; i < n; ++i) {
-      const double f = m[i][c] / m[c][c];
-      for (std::size_t j = c; j < n; ++j) m[i][j] -= f * m[c][j];
-      r[i] -= f * r[c];
-    }
-  std::vector<double> x(n);
-  for (std::size_t i = n; i-- > 0;) {
-    double s = r[i];
-    for (std::size_t j = i + 1; j < n; ++j) s -= m[i][j] * x[j];
-    x[i] = s / m[i][i];
-  }
-  return x;
+  return testing::dense_solve(m, r);
 }
 
 TEST(FactoredTridiagonal, SolvesLikeDenseEliminationFreeAndClamped) {
   for (std::size_t n : {2, 3, 4, 7, 8}) {
     for (bool fix_last : {false, true}) {
-      SCOPED_TRACE(testing::Message() << "n = " << n << (fix_last ? " clamped" : " free"));
+      SCOPED_TRACE(::testing::Message() << "n = " << n << (fix_last ? " clamped" : " free"));
       // A mass-plus-stiffness-like SPD matrix with every entry different.
       Tridiagonal t{std::vector<double>(n), std::vector<double>(n - 1)};
       std::vector<double> r(n);
@@ -100,7 +89,7 @@ TEST(FactoredTridiagonal, SolvesLikeDenseEliminationFreeAndClamped) {
         r[i] = std::sin(1.0 + static_cast<double>(i));
       }
       const FactoredTridiagonal f(t, fix_last);
-      const auto expected = dense_solve(t, r, fix_last);
+      const auto expected = dense_reference(t, r, fix_last);
       std::vector<double> x = r;
       f.solve(x);
       // Tolerance: two eliminations of a well-conditioned (cond < 10) system
@@ -114,7 +103,7 @@ TEST(FactoredTridiagonal, SolvesLikeDenseEliminationFreeAndClamped) {
       const auto w = f.response_to_end_force();
       std::vector<double> e0(n, 0.0);
       e0[0] = 1.0;
-      const auto w_expected = dense_solve(t, e0, fix_last);
+      const auto w_expected = dense_reference(t, e0, fix_last);
       for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(w[i], w_expected[i], 1e-14) << i;
       EXPECT_EQ(w[0], f.inverse_pivots()[0]);
     }

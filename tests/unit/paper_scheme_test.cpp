@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/dense.hpp"
 #include "../support/run_case.hpp"
 
 namespace barimpact {
@@ -66,7 +67,7 @@ TEST(PaperScheme, FirstStepsOfTwoElementsMatchTheHandComputation) {
 // A dense, independent transcription of THE-PAPER.md's matrix form: full
 // matrices assembled element by element, Gaussian elimination every step.
 struct DenseReference {
-  using Matrix = std::vector<std::vector<double>>;
+  using Matrix = testing::DenseMatrix;
   std::size_t n;
   Matrix A, B1, B0;
 
@@ -92,22 +93,6 @@ struct DenseReference {
         B1[i][j] = 2 * Mh[i][j] / (dt * dt) - (1 - 2 * alpha) * S;
         B0[i][j] = -Mh[i][j] / (dt * dt) - alpha * S + D / (2 * dt);
       }
-  }
-
-  std::vector<double> solve(Matrix m, std::vector<double> r) const {
-    for (std::size_t c = 0; c < n; ++c)
-      for (std::size_t i = c + 1; i < n; ++i) {
-        const double f = m[i][c] / m[c][c];
-        for (std::size_t j = c; j < n; ++j) m[i][j] -= f * m[c][j];
-        r[i] -= f * r[c];
-      }
-    std::vector<double> x(n);
-    for (std::size_t i = n; i-- > 0;) {
-      double s = r[i];
-      for (std::size_t j = i + 1; j < n; ++j) s -= m[i][j] * x[j];
-      x[i] = s / m[i][i];
-    }
-    return x;
   }
 };
 
@@ -176,7 +161,7 @@ lambda = 0.4
     }
     r[0] += 0.5 * k * (std::abs(z[0] + g * e) - g * ebar);
     touched = touched || z[0] + g * e < 0;
-    const auto zp = ref.solve(ref.A, r);
+    const auto zp = testing::dense_solve(ref.A, r);
     s.advance();
     // Tolerance: the two solvers round differently; 1e-12 relative is far
     // below any modelling change (a dropped term moves the answer by > 1e-6).
