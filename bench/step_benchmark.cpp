@@ -144,6 +144,21 @@ void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigi
   per_node_step(state, s->nodes());
 }
 
+// The three-level bare loops' shared pieces: u^{n+1} over u^{n-1}, and the
+// interior rows of the lumped pass (constant stencils, vectorised).
+void rotate_levels(double*& um, double*& u, double*& up) {
+  double* oldest = um;
+  um = u;
+  u = up;
+  up = oldest;
+}
+
+inline void lumped_interior(const double* __restrict pm, const double* __restrict pu, double* __restrict pn,
+                            std::size_t l, double kd, double ko, double dt2, double inv_m) {
+  for (std::size_t j = 1; j < l; ++j)
+    pn[j] = 2.0 * pu[j] - pm[j] + dt2 * (-(kd * pu[j] + ko * (pu[j - 1] + pu[j + 1])) * inv_m);
+}
+
 // The bare loop of lumped central differences: one fused, vectorisable pass
 // u^{n+1}_j = 2u_j - u^{n-1}_j - (dt^2/m_j) (K u)_j, interior stencils constant.
 void BM_BareCentralDifference(benchmark::State& state) {
@@ -156,15 +171,11 @@ void BM_BareCentralDifference(benchmark::State& state) {
     const double* __restrict pu = u;
     const double* __restrict pm = um;
     double* __restrict pn = up;
-    for (std::size_t j = 1; j < l; ++j)
-      pn[j] = 2.0 * pu[j] - pm[j] + dt2 * (-(kd * pu[j] + ko * (pu[j - 1] + pu[j + 1])) * inv_m);
+    lumped_interior(pm, pu, pn, l, kd, ko, dt2, inv_m);
     pn[0] = 2.0 * pu[0] - pm[0] + dt2 * (-(0.5 * kd * pu[0] + ko * pu[1]) * 2.0 * inv_m);
     pn[l] = 2.0 * pu[l] - pm[l] + dt2 * (-(0.5 * kd * pu[l] + ko * pu[l - 1]) * 2.0 * inv_m);
     if (pn[0] < 0.0) pn[0] = 0.0;
-    double* t = um;
-    um = u;
-    u = up;
-    up = t;
+    rotate_levels(um, u, up);
     benchmark::DoNotOptimize(u);
   }
   per_node_step(state, n);
@@ -188,12 +199,8 @@ void BM_BareCharacteristic(benchmark::State& state) {
     const double G_new = pu[1] - F[0], F_new = F[1] + G_new - G[1];
     pn[0] = F_new + G_new;
     F[0] = F[1], G[0] = G[1], F[1] = F_new, G[1] = G_new;
-    for (std::size_t j = 1; j < l; ++j)
-      pn[j] = 2.0 * pu[j] - pm[j] + dt2 * (-(kd * pu[j] + ko * (pu[j - 1] + pu[j + 1])) * inv_m);
-    double* t = um;
-    um = u;
-    u = up;
-    up = t;
+    lumped_interior(pm, pu, pn, l, kd, ko, dt2, inv_m);
+    rotate_levels(um, u, up);
     benchmark::DoNotOptimize(u);
   }
   per_node_step(state, n);
@@ -315,10 +322,7 @@ void BM_BarePaoliSchatzman(benchmark::State& state) {
       x = pn[j] * inv[j] - cp[j] * x;
       pn[j] = 2.0 * pu[j] - pm[j] + dt2 * x;
     }
-    double* t = um;
-    um = u;
-    u = up;
-    up = t;
+    rotate_levels(um, u, up);
     benchmark::DoNotOptimize(u);
   }
   per_node_step(state, n);
