@@ -106,7 +106,7 @@ void NewmarkScheme::step() {
   // Away from x = 0: the solve with R e_0, and a, u, v in the same pass.
   double x = (y0 + R) * inv[0];
   auto update = [&](std::size_t j) {
-    const double uj = u_pred(j), vj = v_pred(j);
+    const double uj = u_pred(j), vj = v_pred(j);  // recomputed, not stored: one stream less
     acc[j] = x;
     u[j] = uj + bdt2 * x;
     v[j] = vj + gdt * x;

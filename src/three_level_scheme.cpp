@@ -105,7 +105,7 @@ double ThreeLevelScheme::step_rows(const double* __restrict um, const double* __
   const std::size_t n = mesh_.nodes(), last = n - 1;
   const Tridiagonal &ka = stiffness_a_, &kb = stiffness_b_;
   const double* __restrict f = load_.data();
-  const double inv_dt = 1.0 / dt_, dt2 = dt_ * dt_;
+  const double inv_dt = inv_dt_, dt2 = dt_ * dt_;
   const InteriorRow row{ka.diag[1], ka.off[0], kb.diag[1], kb.off[0], inv_dt};
   // Boundary rows.
   double d0 = 0.0, dl = 0.0;
@@ -185,7 +185,7 @@ void ThreeLevelScheme::advance() {
   double dw = 0.0, dd = 0.0;
   if (!load_zero_ || viscous) bar_budget(dw, dd);
   if (law_.viscosity() > 0.0 && penalty > 0.0) {  // the obstacle's dashpot
-    const double rate = (cur_[0] - prev_[0]) * (1.0 / dt_);
+    const double rate = (cur_[0] - prev_[0]) * inv_dt_;
     dd += law_.viscosity() * rate * 0.5 * (next_[0] - prev_[0]);
   }
   work_last_ = dw;
@@ -197,7 +197,7 @@ void ThreeLevelScheme::advance() {
 void ThreeLevelScheme::bar_budget(double& dw, double& dd) const {
   const std::size_t n = mesh_.nodes();
   const auto& kb = stiffness_b_;
-  const double inv_dt = 1.0 / dt_;
+  const double inv_dt = inv_dt_;
   if (!load_zero_)
     for (std::size_t j = 0; j < n; ++j) dw += load_[j] * 0.5 * (next_[j] - prev_[j]);
   if (kb_positive_) {
