@@ -11,9 +11,12 @@
 
 #include "barimpact/exact.hpp"
 #include "barimpact/executor.hpp"
+#include "barimpact/output.hpp"
 #include "barimpact/simulate.hpp"
 
 namespace barimpact {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -47,6 +50,7 @@ double number(const std::string& text, const std::string& where) {
 }
 
 struct Task {
+  std::string id;  // runs/<id>
   std::string scheme;
   int level = 0;
   double scale = 1.0;  // 1/h growth factor, or the varied value
@@ -56,6 +60,45 @@ struct Task {
   std::string status, message;
   double cpu = 0.0;
 };
+
+// One run of the study: read back from its directory when a previous
+// (interrupted) study left it there for this very case, else run and kept.
+void run_task(Task& t, const StudyOptions& o) {
+  if (!t.c) return;
+  const bool keep = !o.runs.empty();
+  const std::string case_toml = keep ? t.c->to_toml() : std::string();
+  if (keep) {
+    if (auto done = read_run_directory(o.runs / t.id, case_toml);
+        done && done->summary.status != RunStatus::interrupted) {
+      t.result = std::move(*done);
+      t.status = std::string(to_string(t.result.summary.status));
+      t.message = t.result.summary.message;
+      t.cpu = t.result.summary.run_seconds;  // a timing column: the earlier run's wall time
+      return;
+    }
+  }
+  if (o.interrupt != nullptr && o.interrupt->load()) {
+    t.status = "interrupted";
+    t.message = "interrupted before it began";
+    return;
+  }
+  const double start = thread_cpu_seconds();
+  try {
+    RunOptions options;
+    options.interrupt = o.interrupt;
+    t.result = run(*t.c, options);
+    t.status = std::string(to_string(t.result.summary.status));
+    t.message = t.result.summary.message;
+    t.cpu = thread_cpu_seconds() - start;
+    if (keep && t.result.summary.status != RunStatus::interrupted) {
+      RunDirectory dir(o.runs / t.id, false, "converge");
+      dir.commit(*t.c, t.result);
+    }
+  } catch (const std::exception& e) {
+    t.status = "refused";
+    t.message = e.what();
+  }
+}
 
 // Linear interpolation of a history column at t (rows sorted by t).
 double interpolate(const std::vector<HistoryRow>& rows, double HistoryRow::*column, double t) {
@@ -118,12 +161,26 @@ double observed_order(double e_prev, double e, double s_prev, double s) {
   return std::log(e_prev / e) / std::log(s / s_prev);
 }
 
-Study converge(const Case& base, const StudyOptions& o) {
+void check_study(const Case& base, const StudyOptions& o) {
   if (o.ratio < 2) throw InputError("--ratio: must be an integer >= 2");
   const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
   if (levels < 2 || levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", levels));
   if (!o.vary && o.refine == Refine::none)
     throw InputError("--refine none: without --vary there is nothing to change between levels");
+  if (o.reference == Reference::rigid) {
+    Case rigid = base;
+    rigid.obstacle.kind = ObstacleKind::rigid;
+    if (!exact::for_case(rigid))
+      throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
+  }
+}
+
+Study converge(const Case& base, const StudyOptions& o) {
+  check_study(base, o);
+  const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
+  std::error_code ec;
+  if (!o.runs.empty() && !fs::create_directories(o.runs, ec) && ec)
+    throw InputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()));
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
   const double c = std::sqrt(base.bar.stiffness / base.bar.density);
@@ -132,6 +189,7 @@ Study converge(const Case& base, const StudyOptions& o) {
   for (const auto& scheme : schemes) {
     for (int i = 0; i < levels; ++i) {
       Task t;
+      t.id = fmt::format("{}-{:02}", scheme, i);
       t.scheme = scheme;
       t.level = i;
       const long long f = static_cast<long long>(std::llround(std::pow(o.ratio, i)));
@@ -167,21 +225,7 @@ Study converge(const Case& base, const StudyOptions& o) {
     }
   }
 
-  // Independent runs through the shared executor.
-  run_parallel(tasks.size(), o.jobs, [&](std::size_t i) {
-    Task& t = tasks[i];
-    if (!t.c) return;
-    const double start = thread_cpu_seconds();
-    try {
-      t.result = run(*t.c);
-      t.status = std::string(to_string(t.result.summary.status));
-      t.message = t.result.summary.message;
-    } catch (const std::exception& e) {
-      t.status = "refused";
-      t.message = e.what();
-    }
-    t.cpu = thread_cpu_seconds() - start;
-  });
+  run_parallel(tasks.size(), o.jobs, [&](std::size_t i) { run_task(tasks[i], o); });
 
   // References and errors.
   Study study;
@@ -192,11 +236,13 @@ Study converge(const Case& base, const StudyOptions& o) {
     if (t.level == levels - 1 && t.status == "complete") finest[t.scheme] = &t;
   for (const auto& t : tasks) {
     StudyRun r;
+    r.id = t.id;
     r.scheme = t.scheme;
     r.level = t.level;
     r.value = t.value;
     r.status = t.status;
     r.message = t.message;
+    r.warnings = t.result.summary.warnings;
     r.cpu_seconds = t.cpu;
     r.error_U_max = r.error_R_l1 = r.energy_error_end = r.first_contact = r.lift_off = nan;
     r.order_U = r.order_R = nan;
@@ -206,7 +252,7 @@ Study converge(const Case& base, const StudyOptions& o) {
       r.step = t.c->time.step;
     }
     const auto& h = t.result.history;
-    if (t.c && !h.empty()) {
+    if (t.c && !h.empty() && t.status == "complete") {  // no error is measured on a run cut short
       const auto& s = t.result.summary;
       r.contact_episodes = static_cast<int>(s.contacts.size());
       if (!s.contacts.empty()) {
@@ -279,13 +325,17 @@ std::string quoted(const std::string& s) {
 std::string study_csv(const Study& study) {
   std::string out =
       "scheme,level,value,elements,h,step,status,error_U_max,error_R_l1,energy_error_end,first_contact,lift_off,"
-      "contact_episodes,cpu_seconds,order_U,order_R,message\n";
-  for (const auto& r : study.runs)
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.scheme, r.level, quoted(r.value),
+      "contact_episodes,cpu_seconds,order_U,order_R,message,warnings\n";
+  for (const auto& r : study.runs) {
+    std::string joined;
+    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : "; ") + w;
+    const std::string& warnings = joined;
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.scheme, r.level, quoted(r.value),
                        r.elements, cell(r.h, "{}"), cell(r.step, "{}"), r.status, cell(r.error_U_max, "{}"),
                        cell(r.error_R_l1, "{}"), cell(r.energy_error_end, "{}"), cell(r.first_contact, "{}"),
                        cell(r.lift_off, "{}"), r.contact_episodes, cell(r.cpu_seconds, "{}"), cell(r.order_U, "{}"),
-                       cell(r.order_R, "{}"), quoted(r.message));
+                       cell(r.order_R, "{}"), quoted(r.message), quoted(warnings));
+  }
   return out;
 }
 

@@ -1,28 +1,30 @@
 #include "barimpact/output.hpp"
 
+#include "barimpact/output_directory.hpp"
+
 #include <fmt/format.h>
 #include <fmt/os.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 namespace barimpact {
 
 namespace fs = std::filesystem;
 
-RunDirectory::RunDirectory(fs::path target) : target_(std::move(target)) {
-  std::error_code ec;
-  if (target_.empty()) throw InputError("--out: the output directory is empty");
+RunDirectory::RunDirectory(fs::path target, bool force, std::string command)
+    : target_(std::move(target)), command_(std::move(command)) {
+  beside_ = check_output_directory(target_, force) == OutputMode::beside;
   if (!target_.has_filename()) target_ = target_.parent_path();
   const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
-  if (!fs::is_directory(parent, ec))
-    throw InputError(
-        fmt::format("--out {}: the parent directory {} does not exist", target_.string(), parent.string()));
-  if (fs::exists(target_, ec) && !fs::is_directory(target_, ec))
-    throw InputError(fmt::format("--out {}: exists and is not a directory", target_.string()));
+  remove_stale_staging(parent, target_.filename().string());
   staging_ = parent / fmt::format(".{}.partial-{}", target_.filename().string(), ::getpid());
+  std::error_code ec;
   fs::remove_all(staging_, ec);
   if (!fs::create_directory(staging_, ec) || ec)
     throw InputError(fmt::format("--out {}: cannot write in {} ({})", target_.string(), parent.string(),
@@ -69,6 +71,12 @@ void write_text(const fs::path& path, const std::string& text) {
   out.close();
 }
 
+void replace_text(const fs::path& path, const std::string& text) {
+  const auto staging = path.parent_path() / fmt::format(".{}.partial-{}", path.filename().string(), ::getpid());
+  write_text(staging, text);
+  fs::rename(staging, path);
+}
+
 void RunDirectory::commit(const Case& c, const RunResult& result) {
   commit([&](const fs::path& dir) {
     write_history(dir / "history.csv", result.history);
@@ -81,10 +89,17 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
 void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
   try {
     write(staging_);
+    write_output_marker(staging_, command_, directory_entries(staging_));
   } catch (const std::system_error& e) {
     throw InputError(fmt::format("--out {}: cannot write the results: {}", target_.string(), e.what()));
   }
+  // The target is judged again now: it may have changed during the run.
   std::error_code ec;
+  if (fs::is_directory(target_, ec) && fs::is_empty(target_, ec)) fs::remove(target_, ec);
+  if (beside_ || (fs::exists(target_, ec) && !written_by_barimpact(target_))) {
+    move_beside();
+    return;
+  }
   fs::path old;
   if (fs::exists(target_, ec)) {
     old = staging_.parent_path() / fmt::format(".{}.old-{}", target_.filename().string(), ::getpid());
@@ -97,7 +112,110 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
   if (ec)
     throw InputError(fmt::format("--out {}: cannot move the results into place: {}", target_.string(), ec.message()));
   committed_ = true;
-  if (!old.empty()) fs::remove_all(old, ec);
+  if (!old.empty()) fs::remove_all(old, ec);  // barimpact's own files only (written_by_barimpact)
+}
+
+// --force on a directory that holds someone else's files: each of
+// barimpact's files replaces only the file of its own name.
+void RunDirectory::move_beside() {
+  const auto names = directory_entries(staging_);
+  for (const auto& name : names) {
+    std::error_code ec;
+    if (name == output_marker) continue;
+    if (fs::is_directory(target_ / name, ec))
+      throw InputError(fmt::format("--out {}: holds a directory {} where barimpact writes a file of that name",
+                                   target_.string(), name));
+    fs::rename(staging_ / name, target_ / name, ec);
+    if (ec)
+      throw InputError(fmt::format("--out {}: cannot move {} into place: {}", target_.string(), name, ec.message()));
+  }
+  try {
+    write_output_marker(target_, command_, names);
+  } catch (const std::exception& e) {
+    throw InputError(fmt::format("--out {}: cannot write its marker: {}", target_.string(), e.what()));
+  }
+  std::error_code ec;
+  fs::remove_all(staging_, ec);
+  committed_ = true;
+}
+
+namespace {
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return in ? text.str() : std::string();
+}
+
+std::vector<HistoryRow> read_history(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  if (!std::getline(in, line) || line != "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc")
+    throw std::runtime_error("not a history.csv");
+  std::vector<HistoryRow> rows;
+  while (std::getline(in, line)) {
+    HistoryRow r{};
+    double* cells[] = {&r.t, &r.U, &r.V, &r.R, &r.E_kin, &r.E_strain, &r.E_obstacle, &r.W_ext, &r.D_visc};
+    std::size_t at = 0;
+    for (double* cell : cells) {
+      const std::size_t end = std::min(line.find(',', at), line.size());
+      *cell = std::stod(line.substr(at, end - at));  // "nan" and "inf" read back too
+      at = end + 1;
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+double number_or_nan(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+RunStatus status_from(const std::string& text) {
+  for (auto s : {RunStatus::complete, RunStatus::non_finite, RunStatus::stopped, RunStatus::interrupted})
+    if (to_string(s) == text) return s;
+  throw std::runtime_error("unknown status " + text);
+}
+
+}  // namespace
+
+std::optional<RunResult> read_run_directory(const fs::path& dir, const std::string& case_toml) {
+  if (!case_toml.empty() && read_text(dir / "case.toml") != case_toml) return std::nullopt;
+  try {
+    std::ifstream in(dir / "summary.json");
+    const auto j = nlohmann::json::parse(in);
+    RunResult r;
+    Summary& s = r.summary;
+    s.method = j.at("scheme").get<std::string>();
+    s.status = status_from(j.at("status").get<std::string>());
+    s.complete = s.status == RunStatus::complete;
+    s.message = j.value("message", "");
+    s.steps = j.at("steps").get<long long>();
+    s.steps_done = j.at("steps_done").get<long long>();
+    s.t_end = number_or_nan(j, "t_end");
+    for (const auto& e : j.at("contacts")) {
+      ContactInterval ci;
+      ci.start = e.at("start").get<double>();
+      ci.end = e.at("end").get<double>();
+      ci.closed = e.at("closed").get<bool>();
+      ci.exit_velocity = number_or_nan(e, "exit_velocity");
+      ci.rebound_velocity = number_or_nan(e, "rebound_velocity");
+      ci.max_reaction = e.at("max_reaction").get<double>();
+      s.contacts.push_back(ci);
+    }
+    s.max_penetration = number_or_nan(j, "max_penetration");
+    s.max_reaction = number_or_nan(j, "max_reaction");
+    s.energy_initial = number_or_nan(j, "energy_initial");
+    s.energy_final = number_or_nan(j, "energy_final");
+    s.energy_error_max = number_or_nan(j, "energy_error_max");
+    s.run_seconds = number_or_nan(j, "run_seconds");
+    s.warnings = j.value("warnings", std::vector<std::string>{});
+    r.history = read_history(dir / "history.csv");
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;  // not a run directory barimpact wrote whole: run it again
+  }
 }
 
 std::string summary_json(const Case& c, const Summary& s) {
@@ -129,6 +247,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"energy_error_max", number_or_null(s.energy_error_max)},
       {"energy_error_relative", number_or_null(rel)},
       {"run_seconds", s.run_seconds},
+      {"warnings", s.warnings},
   };
   return j.dump(2) + "\n";
 }

@@ -9,11 +9,13 @@
 
 #include <cmath>
 #include "barimpact/exact.hpp"
+#include "barimpact/health.hpp"
 #include "barimpact/paper_scheme.hpp"
 
 namespace barimpact {
 
-LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers) {
+LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers,
+                    const std::atomic<bool>* interrupt) {
   LoopResult result;
   for (auto* o : observers) o->begin(scheme, steps);
   scheme.start();
@@ -44,6 +46,11 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
       result.message = fmt::format("stopped by an observer at step {} (t = {})", n, scheme.time());
       return result;
     }
+    if (interrupt != nullptr && interrupt->load(std::memory_order_relaxed) && n < steps) {
+      result.status = RunStatus::interrupted;
+      result.message = fmt::format("interrupted at step {} (t = {})", n, scheme.time());
+      return result;
+    }
   }
   return result;
 }
@@ -71,7 +78,7 @@ RunResult run(const Case& c, const RunOptions& options) {
   return run_scheme(c, *scheme, c.step_count(), options);
 }
 
-std::vector<RunResult> run_batch(const std::vector<const Case*>& cases) {
+std::vector<RunResult> run_batch(const std::vector<const Case*>& cases, const std::atomic<bool>* interrupt) {
   const auto started = std::chrono::steady_clock::now();
   PaperBatch batch(cases);
   const long long steps = cases.front()->step_count();
@@ -103,6 +110,14 @@ std::vector<RunResult> run_batch(const std::vector<const Case*>& cases) {
     batch.advance();
     for (std::size_t l = 0; l < cases.size(); ++l)
       if (live[l]) observe(l);
+    if (interrupt != nullptr && interrupt->load(std::memory_order_relaxed) && n < steps) {
+      for (std::size_t l = 0; l < cases.size(); ++l)
+        if (live[l]) {
+          loops[l].status = RunStatus::interrupted;
+          loops[l].message = fmt::format("interrupted at step {} (t = {})", n, batch.lane(l).time());
+        }
+      break;
+    }
   }
   std::vector<RunResult> out;
   for (std::size_t l = 0; l < cases.size(); ++l) {
@@ -138,7 +153,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   Recorders rec(c);
   std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact};
   if (options.progress) observers.push_back(&progress);
-  const LoopResult loop = simulate(scheme_ref, steps, observers);
+  const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
   return collect(c, loop, steps, rec, started);
 }
 
@@ -165,6 +180,7 @@ RunResult collect(const Case& c, const LoopResult& loop, long long steps, Record
       s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
   }
   r.fields = rec.fields.take();
+  s.warnings = check_health(c, s, r.history);
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
@@ -179,6 +195,8 @@ std::string_view to_string(RunStatus status) {
       return "non-finite";
     case RunStatus::stopped:
       return "stopped";
+    case RunStatus::interrupted:
+      return "interrupted";
   }
   return "?";
 }

@@ -58,6 +58,7 @@ SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
   r.energy_error_relative =
       s.energy_initial != 0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   r.run_seconds = s.run_seconds;
+  r.warnings = s.warnings;
   return r;
 }
 
@@ -198,51 +199,31 @@ Case SweepPlan::case_at(const SweepPoint& p) const {
 
 bool read_row(const SweepPlan& plan, const fs::path& dir, std::size_t point, SweepRow& row) {
   const auto& p = plan.points()[point];
-  const fs::path summary = dir / "runs" / p.id / "summary.json";
-  std::ifstream in(summary);
-  if (!in) return false;
+  const fs::path run_dir = dir / "runs" / p.id;
+  if (!fs::exists(run_dir / "summary.json")) return false;
+  std::string case_toml;
   try {
-    const auto j = nlohmann::json::parse(in);
-    row = SweepRow{};
-    row.id = p.id;
-    for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
-    auto num = [&](const char* key) {
-      return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
-    };
-    row.status = j.at("status").get<std::string>();
-    row.message = j.value("message", "");
-    row.steps_done = j.at("steps_done").get<long long>();
-    row.t_end = num("t_end");
-    row.contacts = j.at("contact_count").get<int>();
-    const auto& contacts = j.at("contacts");
-    row.first_contact =
-        contacts.empty() ? std::numeric_limits<double>::quiet_NaN() : contacts[0]["start"].get<double>();
-    row.lift_off = contacts.empty() || !contacts[0]["closed"].get<bool>() ? std::numeric_limits<double>::quiet_NaN()
-                                                                          : contacts[0]["end"].get<double>();
-    row.rebound_velocity = std::numeric_limits<double>::quiet_NaN();
-    for (const auto& c : contacts)
-      if (c["closed"].get<bool>() && c["rebound_velocity"].is_number()) row.rebound_velocity = c["rebound_velocity"];
-    row.max_penetration = num("max_penetration");
-    row.max_reaction = num("max_reaction");
-    row.energy_error_relative = num("energy_error_relative");
-    row.run_seconds = num("run_seconds");
-    row.resumed = true;
-    return true;
-  } catch (const std::exception&) {
-    return false;  // not a complete run directory: run it again
+    case_toml = plan.case_at(p).to_toml();
+  } catch (const InputError&) {
+    return false;  // a refused case has no run directory to resume
   }
+  const auto run = read_run_directory(run_dir, case_toml);
+  if (!run || run->summary.status == RunStatus::interrupted) return false;
+  row = row_from_summary(p, run->summary);
+  row.resumed = true;
+  return true;
 }
 
 std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, const std::vector<std::size_t>& todo,
                                 const SweepOptions& options) {
   std::vector<SweepRow> rows(todo.size());
-  auto refused = [&](std::size_t i, const std::string& why) {
+  auto refused = [&](std::size_t i, const std::string& why, const char* status = "refused") {
     const auto& p = plan.points()[todo[i]];
     SweepRow& row = rows[i];
     row = SweepRow{};
     row.id = p.id;
     for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
-    row.status = "refused";
+    row.status = status;
     row.message = why;
     row.t_end = row.first_contact = row.lift_off = row.rebound_velocity = row.max_penetration = row.max_reaction =
         row.energy_error_relative = row.run_seconds = std::numeric_limits<double>::quiet_NaN();
@@ -272,16 +253,23 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
         }
     groups.push_back(std::move(g));
   }
+  auto interrupted = [&] { return options.interrupt != nullptr && options.interrupt->load(); };
   run_parallel(groups.size(), options.jobs, [&](std::size_t gi) {
     const auto& g = groups[gi];
     std::vector<RunResult> results;
     try {
+      if (interrupted()) {
+        for (auto i : g) refused(i, "interrupted before it began", "interrupted");
+        return;
+      }
       if (g.size() == 1) {
-        results.push_back(run(*cases[g.front()]));
+        RunOptions one;
+        one.interrupt = options.interrupt;
+        results.push_back(run(*cases[g.front()], one));
       } else {
         std::vector<const Case*> ptrs;
         for (auto i : g) ptrs.push_back(&*cases[i]);
-        results = run_batch(ptrs);
+        results = run_batch(ptrs, options.interrupt);
       }
     } catch (const std::exception& e) {
       for (auto i : g) refused(i, e.what());
@@ -289,6 +277,10 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
     }
     for (std::size_t k = 0; k < g.size(); ++k) {
       const auto& p = plan.points()[todo[g[k]]];
+      if (results[k].summary.status == RunStatus::interrupted) {
+        refused(g[k], results[k].summary.message, "interrupted");  // not kept: a rerun runs it whole
+        continue;
+      }
       try {
         RunDirectory out(dir / "runs" / p.id);
         out.commit(*cases[g[k]], results[k]);
@@ -321,16 +313,20 @@ std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) 
   }
   out +=
       ",status,steps_done,t_end,contacts,first_contact,lift_off,rebound_velocity,max_penetration,max_reaction,"
-      "energy_error_relative,run_seconds,message\n";
+      "energy_error_relative,run_seconds,message,warnings\n";
   for (const auto& r : rows) {
     out += r.id;
     for (const auto& v : r.values) {
       out += ',';
       out += quoted(v);
     }
-    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, cell(r.t_end), r.contacts,
+    std::string joined;
+    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : "; ") + w;
+    const std::string& warnings = joined;
+    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, cell(r.t_end), r.contacts,
                        cell(r.first_contact), cell(r.lift_off), cell(r.rebound_velocity), cell(r.max_penetration),
-                       cell(r.max_reaction), cell(r.energy_error_relative), cell(r.run_seconds), quoted(r.message));
+                       cell(r.max_reaction), cell(r.energy_error_relative), cell(r.run_seconds), quoted(r.message),
+                       quoted(warnings));
   }
   return out;
 }
@@ -350,7 +346,8 @@ std::string row_to_json(const SweepRow& r) {
                         {"max_penetration", num(r.max_penetration)},
                         {"max_reaction", num(r.max_reaction)},
                         {"energy_error_relative", num(r.energy_error_relative)},
-                        {"run_seconds", num(r.run_seconds)}}
+                        {"run_seconds", num(r.run_seconds)},
+                        {"warnings", r.warnings}}
       .dump();
 }
 
@@ -374,6 +371,7 @@ SweepRow row_from_json(const std::string& text) {
   r.max_reaction = num("max_reaction");
   r.energy_error_relative = num("energy_error_relative");
   r.run_seconds = num("run_seconds");
+  r.warnings = j["warnings"].get<std::vector<std::string>>();
   return r;
 }
 

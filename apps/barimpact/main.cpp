@@ -9,13 +9,17 @@
 //
 // Exit status: 0 done, 2 bad input (one line on stderr, nothing written),
 // 3 the state became non-finite (rows so far kept, summary.json marks them
-// incomplete), 1 anything else.
+// incomplete; for converge and sweep: no run produced a result), 4 warnings
+// under --strict (results written), 130 / 143 interrupted by SIGINT / SIGTERM
+// (results so far written), 1 anything else.
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -34,6 +38,7 @@
 #include "barimpact/case.hpp"
 #include "barimpact/convergence.hpp"
 #include "barimpact/output.hpp"
+#include "barimpact/output_directory.hpp"
 #include "barimpact/scheme.hpp"
 #include "barimpact/sweep.hpp"
 
@@ -47,14 +52,57 @@ namespace {
 
 constexpr int exit_bad_input = 2;
 constexpr int exit_non_finite = 3;
+constexpr int exit_warnings = 4;
+
+// SIGINT and SIGTERM end the step under way; the command then writes what
+// it has and exits 128 + the signal's number (it is not killed by it).
+std::atomic<bool> interrupted{false};
+volatile std::sig_atomic_t received_signal = 0;
+static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+
+extern "C" void on_signal(int signal) {
+  received_signal = signal;
+  interrupted.store(true);
+}
+
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int exit_interrupted() {
+  return 128 + static_cast<int>(received_signal);
+}
+
+// --force and --strict, as every command that writes results takes them.
+struct WriteFlags {
+  bool force = false;
+  bool strict = false;
+};
+
+void add_write_flags(CLI::App* command, WriteFlags& flags) {
+  command->add_flag("--force", flags.force,
+                    "Write into a directory that holds other files (or the working directory): barimpact's files "
+                    "go beside them, nothing else is touched; never the home directory, / or a parent of the "
+                    "working directory");
+  command->add_flag("--strict", flags.strict, "Exit 4 when the run's health checks give any warning");
+}
+
+void print_warnings(const std::vector<std::string>& warnings, const std::string& prefix = "") {
+  for (const auto& w : warnings) fmt::print(stderr, "barimpact: warning: {}{}\n", prefix, w);
+}
 
 int run_command(const std::string& case_path, const std::string& out_dir, const std::vector<std::string>& sets,
-                bool exact) {
+                bool exact, const WriteFlags& flags) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
   const auto c = barimpact::Case::from_file(case_path, overrides);
-  barimpact::RunDirectory dir(out_dir);
+  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run");
   barimpact::RunOptions options;
+  options.interrupt = &interrupted;
   bool reported = false;
   if (isatty(STDERR_FILENO)) {
     // A run longer than about two seconds shows where it stands on a terminal.
@@ -75,10 +123,16 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   if (exact) fmt::print("exact solution: {}\n", result.summary.message);
   fmt::print("{}", barimpact::summary_text(c, result.summary));
   fmt::print("  results in {}\n", dir.target().string());
+  print_warnings(result.summary.warnings);
+  if (result.summary.status == barimpact::RunStatus::interrupted) {
+    fmt::print(stderr, "barimpact: {} (results so far kept in {})\n", result.summary.message, dir.target().string());
+    return exit_interrupted();
+  }
   if (!result.summary.complete) {
     fmt::print(stderr, "barimpact: {} (results so far kept in {})\n", result.summary.message, dir.target().string());
     return exit_non_finite;
   }
+  if (flags.strict && !result.summary.warnings.empty()) return exit_warnings;
   return 0;
 }
 
@@ -102,12 +156,58 @@ bool run_python(std::vector<std::string> args) {
   return pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+// How a study (converge, sweep) of many runs ended, and its exit status:
+// interrupted first (a rerun finishes it), then no result at all (3), then
+// warnings under --strict (4).
+struct StudyEnd {
+  const char* runs;    // "runs" or "cases"
+  const char* report;  // the file whose rows say more
+  std::size_t total;
+  long results, stopped, warned;
+};
+
+int study_exit(const StudyEnd& e, const WriteFlags& flags) {
+  if (e.warned > 0)
+    fmt::print(stderr, "barimpact: warning: {} of {} {} have warnings (the warnings column of {})\n", e.warned, e.total,
+               e.runs, e.report);
+  if (e.stopped > 0) {
+    fmt::print(stderr, "barimpact: interrupted: {} {} not done; rerun the same command to finish them\n", e.stopped,
+               e.runs);
+    return exit_interrupted();
+  }
+  if (e.results == 0) {
+    fmt::print(stderr, "barimpact: no {} produced a result; see the status and message columns of {}\n",
+               e.runs == std::string_view("runs") ? "run" : "case", e.report);
+    return exit_non_finite;
+  }
+  return flags.strict && e.warned > 0 ? exit_warnings : 0;
+}
+
+// What converge writes into its directory (the marker lists them).
+const std::vector<std::string> study_entries{"runs",
+                                             "convergence.csv",
+                                             "convergence.md",
+                                             "convergence.png",
+                                             "convergence.svg",
+                                             "work_precision.png",
+                                             "work_precision.svg"};
+
+// Run directories in runs/ that barimpact wrote for an earlier, other study.
+void remove_other_runs(const std::filesystem::path& runs, const barimpact::Study& study) {
+  for (const auto& name : barimpact::directory_entries(runs)) {
+    const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
+    std::error_code ec;
+    if (!ours && barimpact::written_by_barimpact(runs / name)) std::filesystem::remove_all(runs / name, ec);
+  }
+}
+
 struct ConvergeArgs {
   std::string case_path, out, refine, vary, schemes, reference = "auto";
   std::vector<std::string> sets;
   barimpact::StudyOptions options;
   bool refine_given = false;
   std::string command;
+  WriteFlags flags;
 };
 
 int converge_command(ConvergeArgs& a) {
@@ -138,23 +238,29 @@ int converge_command(ConvergeArgs& a) {
   o.reference = a.reference == "rigid"    ? barimpact::Reference::rigid
                 : a.reference == "finest" ? barimpact::Reference::finest
                                           : barimpact::Reference::automatic;
-  barimpact::RunDirectory dir(a.out);
+  barimpact::check_study(c, o);
+  const std::filesystem::path dir(a.out);
+  barimpact::prepare_output_directory(dir, "converge", study_entries, a.flags.force);
+  o.runs = dir / "runs";
+  o.interrupt = &interrupted;
   const auto study = barimpact::converge(c, o);
+  remove_other_runs(o.runs, study);
   const std::string markdown = barimpact::study_markdown(study, a.command);
-  bool plotted = false;
-  dir.commit([&](const std::filesystem::path& staging) {
-    barimpact::write_text(staging / "convergence.csv", barimpact::study_csv(study));
-    barimpact::write_text(staging / "convergence.md", markdown);
-    plotted = run_python({"converge-plot", staging.string()});
-  });
+  barimpact::replace_text(dir / "convergence.csv", barimpact::study_csv(study));
+  barimpact::replace_text(dir / "convergence.md", markdown);
   fmt::print("{}\n", markdown);
-  fmt::print("results in {}{}\n", dir.target().string(), plotted ? " (with convergence and work-precision plots)" : "");
-  if (!plotted) fmt::print(stderr, "barimpact: note: plots skipped (the Python module is not built here)\n");
-  const auto failed = std::count_if(study.runs.begin(), study.runs.end(),
-                                    [](const auto& r) { return r.status != "complete" && r.status != "reference"; });
-  if (failed > 0)
-    fmt::print(stderr, "barimpact: {} of {} runs did not complete; see their rows\n", failed, study.runs.size());
-  return 0;
+  auto count = [&](auto&& pred) { return std::count_if(study.runs.begin(), study.runs.end(), pred); };
+  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
+  const auto results = count([](const auto& r) { return r.status == "complete" || r.status == "reference"; });
+  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
+  const bool plotted = stopped == 0 && results > 0 && run_python({"converge-plot", dir.string()});
+  fmt::print("results in {}{}\n", dir.string(), plotted ? " (with convergence and work-precision plots)" : "");
+  if (stopped == 0 && results > 0 && !plotted)
+    fmt::print(stderr, "barimpact: note: plots skipped (the Python module is not built here)\n");
+  if (results < static_cast<long>(study.runs.size()) && stopped == 0)
+    fmt::print(stderr, "barimpact: {} of {} runs did not complete; see their rows\n",
+               static_cast<long>(study.runs.size()) - results, study.runs.size());
+  return study_exit({"runs", "convergence.csv", study.runs.size(), results, stopped, warned}, a.flags);
 }
 
 #ifdef BARIMPACT_HAVE_MPI
@@ -244,7 +350,8 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
 }
 #endif
 
-int sweep_command(const std::string& sweep_path, const std::string& out_dir, const barimpact::SweepOptions& o) {
+int sweep_command(const std::string& sweep_path, const std::string& out_dir, const barimpact::SweepOptions& o,
+                  const WriteFlags& flags) {
   int rank = 0, size = 1;
 #ifdef BARIMPACT_HAVE_MPI
   int provided = 0;
@@ -265,6 +372,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   const std::filesystem::path dir(out_dir);
   std::error_code ec;
   if (rank == 0) {
+    barimpact::prepare_output_directory(dir, "sweep", {"runs", "sweep.csv"}, flags.force);
     std::filesystem::create_directories(dir / "runs", ec);
     if (ec) throw barimpact::InputError(fmt::format("--out {}: cannot create it ({})", out_dir, ec.message()));
   }
@@ -282,23 +390,24 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   if (size > 1) {
     MPI_Barrier(MPI_COMM_WORLD);  // the directory exists before any rank writes
     done = mpi_sweep(plan, dir, todo, o, rank, size, provided >= MPI_THREAD_FUNNELED);
-    if (rank != 0) return 0;
+    if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
   } else
 #endif
     done = barimpact::run_sweep(plan, dir, todo, o);
-  std::size_t failed = 0;
   for (auto& r : done) {
     const auto at = static_cast<std::size_t>(std::stoll(r.id));
     rows[at] = r;
   }
-  for (const auto& r : rows) failed += r.status != "complete";
-  const auto staging = dir / ".sweep.csv.partial";
-  barimpact::write_text(staging, barimpact::sweep_csv(plan, rows));
-  std::filesystem::rename(staging, dir / "sweep.csv");
+  barimpact::replace_text(dir / "sweep.csv", barimpact::sweep_csv(plan, rows));
+  auto count = [&](auto&& pred) { return std::count_if(rows.begin(), rows.end(), pred); };
   const auto batched = std::count_if(done.begin(), done.end(), [](const auto& r) { return r.batched; });
+  const auto complete = count([](const auto& r) { return r.status == "complete"; });
+  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
+  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
   fmt::print("{} cases: {} run{} ({} in SIMD batches), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
-             done.size(), size > 1 ? fmt::format(" on {} ranks", size) : "", batched, resumed, failed, out_dir);
-  return 0;
+             done.size() - static_cast<std::size_t>(stopped), size > 1 ? fmt::format(" on {} ranks", size) : "",
+             batched, resumed, static_cast<long>(rows.size()) - complete, out_dir);
+  return study_exit({"cases", "sweep.csv", rows.size(), complete, stopped, warned}, flags);
 }
 
 // The figures are drawn by the Python package (matplotlib): hand over to it.
@@ -330,7 +439,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   auto* run = app.add_subcommand("run", "Run one case and write history.csv, fields.csv, case.toml, summary.json");
   run->add_option("case", case_path, "Case file (TOML)")->required();
-  run->add_option("--out", out_dir, "Output directory (replaced when the run completes)")->required();
+  WriteFlags run_flags, exact_flags, sweep_flags;
+  run->add_option("--out", out_dir, "Output directory: a new or empty one, or one barimpact wrote (replaced)")
+      ->required();
+  add_write_flags(run, run_flags);
   run->add_option("--set", sets, "Override a case key: section.key=value (value read as TOML, a bare word as a string)")
       ->take_all()
       ->allow_extra_args(false);
@@ -347,7 +459,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> exact_sets;
   auto* exact = app.add_subcommand("exact", "Tabulate the exact solution the case admits (same files as run)");
   exact->add_option("case", exact_case, "Case file (TOML)")->required();
-  exact->add_option("--out", exact_out, "Output directory (replaced when complete)")->required();
+  exact->add_option("--out", exact_out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")
+      ->required();
+  add_write_flags(exact, exact_flags);
   exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
 
   std::string sweep_file, sweep_out;
@@ -355,7 +469,9 @@ int main(int argc, char** argv) {
   bool no_batch = false;
   auto* sweep = app.add_subcommand("sweep", "Run every case of a sweep file (runs/<id>/ and sweep.csv); resumes");
   sweep->add_option("sweep", sweep_file, "Sweep file (TOML)")->required();
-  sweep->add_option("--out", sweep_out, "Output directory (created; rerunning resumes)")->required();
+  sweep->add_option("--out", sweep_out, "Output directory: a new or empty one, or a sweep's (rerunning resumes)")
+      ->required();
+  add_write_flags(sweep, sweep_flags);
   sweep->add_option("--jobs", sweep_options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--no-batch", no_batch, "Run every case alone (no SIMD batches)");
 
@@ -363,7 +479,9 @@ int main(int argc, char** argv) {
   auto* conv =
       app.add_subcommand("converge", "Convergence and work-precision study of a case (convergence.csv/.md, plots)");
   conv->add_option("case", conv_args.case_path, "Case file (TOML)")->required();
-  conv->add_option("--out", conv_args.out, "Output directory (replaced when complete)")->required();
+  conv->add_option("--out", conv_args.out, "Output directory: a new or empty one, or a study's (rerunning resumes)")
+      ->required();
+  add_write_flags(conv, conv_args.flags);
   conv->add_option("--set", conv_args.sets, "Override a case key: section.key=value")
       ->take_all()
       ->allow_extra_args(false);
@@ -397,12 +515,14 @@ int main(int argc, char** argv) {
     return exit_bad_input;
   }
 
+  install_signal_handlers();
   try {
-    if (run->parsed()) return run_command(case_path, out_dir, sets, false);
-    if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true);
+    if (run->parsed()) return run_command(case_path, out_dir, sets, false, run_flags);
+    if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true, exact_flags);
     if (sweep->parsed()) {
       sweep_options.batch = !no_batch;
-      return sweep_command(sweep_file, sweep_out, sweep_options);
+      sweep_options.interrupt = &interrupted;
+      return sweep_command(sweep_file, sweep_out, sweep_options, sweep_flags);
     }
     if (conv->parsed()) {
       conv_args.refine_given = conv->count("--refine") > 0;

@@ -3,9 +3,14 @@
 // several schemes, each measured against a reference: the exact solution
 // the case admits (exact.hpp), the rigid obstacle's exact solution, or the
 // finest run. The runs are independent and go to a pool of threads; a run
-// that fails is recorded in its row, not fatal.
+// that fails is recorded in its row, not fatal. With a runs directory, each
+// run is kept there as it finishes (the files of `barimpact run`) and a
+// rerun reads back the runs it finds for the same case instead of running
+// them again: an interrupted study, rerun, ends as an uninterrupted one.
 #pragma once
 
+#include <atomic>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,17 +38,25 @@ struct StudyOptions {
   std::vector<std::string> schemes;  ///< empty: the case's scheme
   Reference reference = Reference::automatic;
   int jobs = 0;  ///< threads; 0: all cores
+  /// Where each run is kept as runs/<scheme>-<level>/ (and read back from
+  /// on a rerun); empty: nowhere.
+  std::filesystem::path runs;
+  /// When it becomes true, runs under way end after their step and are not
+  /// kept, runs not begun are not run; their rows say "interrupted".
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 /// One run of the study and what it measured.
 struct StudyRun {
+  std::string id;  ///< <scheme>-<level>: its directory under StudyOptions::runs
   std::string scheme;
   int level = 0;
   std::string value;  ///< the varied key's value (empty without variation)
   int elements = 0;
   double h = 0.0;
   double step = 0.0;
-  std::string status;  ///< complete, non-finite, refused
+  std::string status;                 ///< complete, reference, non-finite, refused, interrupted
+  std::vector<std::string> warnings;  ///< the run's health checks (health.hpp)
   std::string message;
   double error_U_max = 0.0;       ///< max_n |U - U_ref|
   double error_R_l1 = 0.0;        ///< sum_n |R - R_ref| dt
@@ -62,7 +75,11 @@ struct Study {
   std::vector<StudyRun> runs;
 };
 
-/// Runs the study. Throws InputError for bad options (before any run).
+/// Checks the options against the case; throws InputError naming the option.
+void check_study(const Case& base, const StudyOptions& options);
+
+/// Runs the study. Throws InputError for bad options (check_study), before any run.
+/// Errors and orders are measured on complete runs only (NaN elsewhere).
 [[nodiscard]] Study converge(const Case& base, const StudyOptions& options);
 
 /// log(e_prev / e) / log(s / s_prev): the observed order between two levels

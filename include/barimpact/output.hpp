@@ -1,11 +1,13 @@
 // The run directory: history.csv, fields.csv, case.toml, summary.json,
 // written into a hidden staging directory beside the target and renamed into
-// place only when complete, so that no half-written result ever carries the
-// target's name.
+// place only when written whole, so that no half-written result ever carries
+// the target's name. Which targets may be written, and how, is the rule of
+// output_directory.hpp: nothing barimpact did not write is ever deleted.
 #pragma once
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "barimpact/case.hpp"
@@ -15,28 +17,44 @@ namespace barimpact {
 
 class RunDirectory {
  public:
-  /// Checks that `target` can be written and creates the staging directory.
-  /// Throws InputError naming `--out` when it cannot.
-  explicit RunDirectory(std::filesystem::path target);
+  /// Checks `target` against the output rule (`force` as --force) and
+  /// creates the staging directory. Throws InputError naming `--out`.
+  explicit RunDirectory(std::filesystem::path target, bool force = false, std::string command = "run");
   /// Removes the staging directory unless `commit` succeeded.
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
 
-  /// Writes the four files into staging, then replaces `target` with it.
+  /// Writes the four files into staging, then moves them into place.
   void commit(const Case& c, const RunResult& result);
-  /// Lets `write` fill the staging directory, then replaces `target` with it.
+  /// Lets `write` fill the staging directory with files, marks them as
+  /// barimpact's, then moves them into place: `target` is created, or
+  /// replaced if barimpact wrote it, or else receives the files beside its own.
   void commit(const std::function<void(const std::filesystem::path& staging)>& write);
 
   [[nodiscard]] const std::filesystem::path& target() const { return target_; }
 
  private:
+  void move_beside();
+
   std::filesystem::path target_, staging_;
+  std::string command_;
+  bool beside_ = false;  // --force on someone else's directory
   bool committed_ = false;
 };
 
 /// Writes `text` to `path` (throws std::system_error).
 void write_text(const std::filesystem::path& path, const std::string& text);
+/// The same, through a hidden file beside it renamed over `path`: a reader
+/// (or an interruption) never sees half of it.
+void replace_text(const std::filesystem::path& path, const std::string& text);
+
+/// Reads back what `commit` wrote (history.csv and summary.json; not the
+/// fields): the same doubles, as every number is written in its shortest
+/// exact form. Empty when `dir` holds no readable run, or one whose case.toml
+/// is not `case_toml` (when given).
+[[nodiscard]] std::optional<RunResult> read_run_directory(const std::filesystem::path& dir,
+                                                          const std::string& case_toml = {});
 
 /// summary.json's text.
 [[nodiscard]] std::string summary_json(const Case& c, const Summary& s);

@@ -2,6 +2,7 @@
 // observers. `simulate` is the only loop in barimpact.
 #pragma once
 
+#include <atomic>
 #include <span>
 #include <string>
 #include <vector>
@@ -12,7 +13,7 @@
 
 namespace barimpact {
 
-enum class RunStatus { complete, non_finite, stopped };
+enum class RunStatus { complete, non_finite, stopped, interrupted };
 
 struct LoopResult {
   RunStatus status = RunStatus::complete;
@@ -22,8 +23,10 @@ struct LoopResult {
 
 /// Starts `scheme`, then advances it `steps` times; every observer sees steps
 /// 0..steps. Stops early, with the observers' data so far, when the state
-/// turns non-finite or an observer returns false.
-LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers);
+/// turns non-finite, an observer returns false, or `interrupt` (set from a
+/// signal handler, say) becomes true: the step under way ends first.
+LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers,
+                    const std::atomic<bool>* interrupt = nullptr);
 
 struct Summary {
   std::string method;  ///< the scheme's name, or "exact"
@@ -40,6 +43,8 @@ struct Summary {
   double energy_final = 0.0;      ///< E_total at the last history row
   double energy_error_max = 0.0;  ///< max over rows of |E_total - E_total(0)|
   double run_seconds = 0.0;
+  /// What the run's own health checks found (health.hpp): one line each.
+  std::vector<std::string> warnings;
 };
 
 struct RunResult {
@@ -54,6 +59,9 @@ struct RunOptions {
   ProgressMonitor::Report progress;
   double progress_interval = 0.5;
   double progress_delay = 0.0;
+  /// When it becomes true the run ends after the step under way, its rows
+  /// so far kept, with RunStatus::interrupted. Null: never.
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 /// Runs `c` with its scheme and the history, field and contact observers.
@@ -63,7 +71,8 @@ struct RunOptions {
 /// Runs up to four batchable paper-scheme cases together in a PaperBatch
 /// (PaperScheme::batchable): the same results as run() on each, bit for
 /// bit, for about a third of the cost per case.
-[[nodiscard]] std::vector<RunResult> run_batch(const std::vector<const Case*>& cases);
+[[nodiscard]] std::vector<RunResult> run_batch(const std::vector<const Case*>& cases,
+                                               const std::atomic<bool>* interrupt = nullptr);
 
 /// Tabulates the exact solution the case admits (exact.hpp) on its time
 /// grid, through the same observers: same history columns as `run`, rows up

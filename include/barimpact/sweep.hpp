@@ -1,8 +1,9 @@
 // Parameter sweeps: a base case, axes over any case key (lists or ranges,
 // linear or logarithmic), optional zips of axes; every case runs once and
 // keeps its run directory (runs/<id>/, the files of `barimpact run`), and
-// one row of sweep.csv. Rerunning skips cases whose directory is complete
-// (directories appear only when complete: see output.hpp).
+// one row of sweep.csv. Rerunning skips cases whose directory holds their
+// run (directories appear only when written whole: see output.hpp), so an
+// interrupted sweep, rerun, ends as an uninterrupted one.
 //
 // The sweep file:
 //   case = "paper-example1.toml"          # relative to the sweep file
@@ -20,6 +21,7 @@
 //   zip = [["obstacle.stiffness", "bar.elements"]]   # axes that move together
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -62,8 +64,9 @@ class SweepPlan {
 struct SweepRow {
   std::string id;
   std::vector<std::string> values;  ///< in SweepPlan::keys() order, as plain text
-  std::string status;               ///< complete, non-finite, refused
+  std::string status;               ///< complete, non-finite, refused, interrupted (not run or cut short)
   std::string message;
+  std::vector<std::string> warnings;  ///< the run's health checks (health.hpp)
   long long steps_done = 0;
   double t_end = 0, first_contact = 0, lift_off = 0, rebound_velocity = 0, max_penetration = 0, max_reaction = 0,
          energy_error_relative = 0, run_seconds = 0;
@@ -75,6 +78,10 @@ struct SweepRow {
 struct SweepOptions {
   int jobs = 0;       ///< threads (0: all cores)
   bool batch = true;  ///< run compatible paper-scheme cases 4 to a SIMD register
+  /// When it becomes true, cases under way end after their step and are not
+  /// kept, cases not begun are not run: their rows say "interrupted", and a
+  /// rerun resumes them. Null: never.
+  const std::atomic<bool>* interrupt = nullptr;
 };
 
 /// Runs (or resumes) the points `todo` (indices into plan.points()) into
@@ -82,7 +89,8 @@ struct SweepOptions {
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepPlan& plan, const std::filesystem::path& dir,
                                               const std::vector<std::size_t>& todo, const SweepOptions& options);
 
-/// The row of a point whose run directory is complete, if it is.
+/// The row of a point whose run directory holds its run, written whole for
+/// this very case (its case.toml is the point's), if it does.
 [[nodiscard]] bool read_row(const SweepPlan& plan, const std::filesystem::path& dir, std::size_t point, SweepRow& row);
 
 [[nodiscard]] std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows);

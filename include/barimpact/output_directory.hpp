@@ -1,0 +1,59 @@
+// Where barimpact may put its results (`--out`), and the marker that says a
+// directory is barimpact's. The rule: barimpact never deletes what it did
+// not write.
+//   - a new path, or an empty directory: written;
+//   - a directory barimpact wrote (the marker lists every entry in it, and it
+//     holds nothing else): replaced, or resumed by sweep and converge;
+//   - any other non-empty directory, and the working directory: refused,
+//     unless --force, which writes barimpact's files beside the others and
+//     replaces only files of the same names;
+//   - "/", the home directory and any parent of the working directory:
+//     refused, --force or not.
+// This header owns the rule and the marker; output.hpp writes the files.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace barimpact {
+
+/// The marker file barimpact writes into every output directory.
+inline constexpr std::string_view output_marker = ".barimpact";
+
+/// What writing into a checked `--out` does.
+enum class OutputMode {
+  create,   ///< the path does not exist, or is an empty directory
+  replace,  ///< a directory barimpact wrote: replaced (run, exact) or resumed
+  beside,   ///< --force on someone else's directory: only barimpact's own names are written
+};
+
+/// Checks `target` against the rule above. Throws InputError naming
+/// `option` (e.g. "--out") and the rule it breaks.
+[[nodiscard]] OutputMode check_output_directory(const std::filesystem::path& target, bool force,
+                                                std::string_view option = "--out");
+
+/// True when `dir` holds barimpact's marker and nothing the marker does not list.
+[[nodiscard]] bool written_by_barimpact(const std::filesystem::path& dir);
+
+/// Writes (replaces) the marker of `dir`, listing `entries` and what the
+/// marker already listed; `command` is the command that wrote them.
+void write_output_marker(const std::filesystem::path& dir, std::string_view command,
+                         const std::vector<std::string>& entries);
+
+/// The names of the entries of `dir` (not recursive), sorted; empty if it does not exist.
+[[nodiscard]] std::vector<std::string> directory_entries(const std::filesystem::path& dir);
+
+/// Removes the staging directories (`.<name>.partial-<pid>`) that a killed
+/// barimpact process left in `parent` for `name`; those of live processes stay.
+void remove_stale_staging(const std::filesystem::path& parent, const std::string& name);
+
+/// For a command that fills its directory bit by bit and resumes (sweep,
+/// converge): checks `target` (check_output_directory), creates it if need
+/// be and marks it as the command's, listing `entries` (the names it will
+/// write). Throws InputError naming `option`.
+void prepare_output_directory(const std::filesystem::path& target, std::string_view command,
+                              const std::vector<std::string>& entries, bool force, std::string_view option = "--out");
+
+}  // namespace barimpact

@@ -1,0 +1,171 @@
+#include "barimpact/output_directory.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "barimpact/case.hpp"
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The absolute, symlink-resolved form of `p`, with no trailing separator.
+fs::path resolved(const fs::path& p) {
+  std::error_code ec;
+  fs::path full = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  if (ec) full = fs::absolute(p).lexically_normal();
+  if (!full.has_filename() && full != full.root_path()) full = full.parent_path();
+  return full;
+}
+
+// True when `a` is a proper ancestor of `b` (both resolved).
+bool is_parent_of(const fs::path& a, const fs::path& b) {
+  if (a == b) return false;
+  auto ai = a.begin(), bi = b.begin();
+  for (; ai != a.end(); ++ai, ++bi)
+    if (bi == b.end() || *ai != *bi) return false;
+  return true;
+}
+
+std::vector<std::string> marker_entries(const fs::path& dir) {
+  std::ifstream in(dir / output_marker);
+  if (!in) return {};
+  try {
+    const auto j = nlohmann::json::parse(in);
+    if (j.value("written_by", "") != "barimpact") return {};
+    return j.at("entries").get<std::vector<std::string>>();
+  } catch (const std::exception&) {
+    return {};  // unreadable: not a marker barimpact wrote
+  }
+}
+
+std::string some_names(const std::vector<std::string>& names) {
+  constexpr std::size_t shown = 3;
+  std::string out;
+  for (std::size_t i = 0; i < std::min(shown, names.size()); ++i) out += (i ? ", " : "") + names[i];
+  if (names.size() > shown) out += fmt::format(" and {} more", names.size() - shown);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> directory_entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    names.push_back(it->path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+namespace {
+
+// The entries of `dir` that its marker does not list (all of them without one).
+std::vector<std::string> foreign_entries(const fs::path& dir) {
+  const auto listed = marker_entries(dir);
+  const std::set<std::string> ours(listed.begin(), listed.end());
+  std::vector<std::string> foreign;
+  for (const auto& name : directory_entries(dir))
+    if (listed.empty() || (name != output_marker && !ours.count(name))) foreign.push_back(name);
+  return foreign;
+}
+
+}  // namespace
+
+bool written_by_barimpact(const fs::path& dir) {
+  return !marker_entries(dir).empty() && foreign_entries(dir).empty();
+}
+
+OutputMode check_output_directory(const fs::path& target, bool force, std::string_view option) {
+  if (target.empty()) throw InputError(fmt::format("{}: the output directory is empty", option));
+  auto refuse = [&](std::string_view why) { throw InputError(fmt::format("{} {}: {}", option, target.string(), why)); };
+  const fs::path full = resolved(target);
+  std::error_code ec;
+  const fs::path cwd = resolved(fs::current_path(ec));
+  if (full == full.root_path()) refuse("is the root directory; barimpact never writes its results there");
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0' && full == resolved(home))
+    refuse("is your home directory; barimpact never writes its results there (choose a new directory inside it)");
+  if (is_parent_of(full, cwd)) refuse("is a parent of the working directory; barimpact never writes its results there");
+  if (!fs::exists(full, ec)) {
+    if (!fs::is_directory(full.parent_path(), ec))
+      refuse(fmt::format("the parent directory {} does not exist", full.parent_path().string()));
+    return OutputMode::create;
+  }
+  if (!fs::is_directory(full, ec)) refuse("exists and is not a directory");
+  if (full == cwd) {
+    if (!force)
+      refuse(
+          "is the working directory; choose a new directory, or add --force to write barimpact's files beside yours "
+          "(nothing of yours is deleted)");
+    return OutputMode::beside;
+  }
+  if (directory_entries(full).empty()) return OutputMode::create;
+  const auto foreign = foreign_entries(full);
+  if (foreign.empty()) return OutputMode::replace;
+  if (!force)
+    refuse(fmt::format(
+        "holds files barimpact did not write ({}); choose a new or empty directory, or add --force to write "
+        "barimpact's files beside them (nothing of yours is deleted)",
+        some_names(foreign)));
+  return OutputMode::beside;
+}
+
+void write_output_marker(const fs::path& dir, std::string_view command, const std::vector<std::string>& entries) {
+  std::set<std::string> all(entries.begin(), entries.end());
+  for (const auto& e : marker_entries(dir)) all.insert(e);
+  all.erase(std::string(output_marker));
+  const nlohmann::json j = {{"written_by", "barimpact"},
+                            {"version", BARIMPACT_VERSION},
+                            {"command", std::string(command)},
+                            {"note",
+                             "barimpact replaces or resumes this directory; it never touches what is not "
+                             "listed in entries"},
+                            {"entries", std::vector<std::string>(all.begin(), all.end())}};
+  const fs::path temporary = dir / fmt::format("{}.{}", output_marker, ::getpid());
+  {
+    std::ofstream out(temporary);
+    out << j.dump(2) << '\n';
+    if (!out) throw std::system_error(errno, std::generic_category(), temporary.string());
+  }
+  fs::rename(temporary, dir / output_marker);
+}
+
+void remove_stale_staging(const fs::path& parent, const std::string& name) {
+  for (const auto& entry : directory_entries(parent)) {
+    for (const std::string_view kind : {".partial-", ".old-"}) {
+      const std::string prefix = fmt::format(".{}{}", name, kind);
+      if (entry.size() <= prefix.size() || entry.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string digits = entry.substr(prefix.size());
+      if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+      const auto pid = static_cast<pid_t>(std::stol(digits));
+      if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+      std::error_code ec;
+      fs::remove_all(parent / entry, ec);
+    }
+  }
+}
+
+void prepare_output_directory(const fs::path& target, std::string_view command, const std::vector<std::string>& entries,
+                              bool force, std::string_view option) {
+  (void)check_output_directory(target, force, option);
+  std::error_code ec;
+  fs::create_directories(target, ec);
+  if (ec) throw InputError(fmt::format("{} {}: cannot create it ({})", option, target.string(), ec.message()));
+  try {
+    write_output_marker(target, command, entries);
+  } catch (const std::exception& e) {
+    throw InputError(fmt::format("{} {}: cannot write in it ({})", option, target.string(), e.what()));
+  }
+}
+
+}  // namespace barimpact

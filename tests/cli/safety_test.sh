@@ -1,0 +1,213 @@
+#!/usr/bin/env bash
+# The command line's promises about the user's data and the runs' health:
+# the output-directory rule (nothing barimpact did not write is deleted),
+# warnings and --strict, interruption by SIGINT / SIGTERM and resumption,
+# exit 3 for studies with no result. Usage: safety_test.sh BARIMPACT EXAMPLES_DIR
+set -u
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
+examples=$(cd "$2" && pwd)
+work=$(mktemp -d)
+trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
+check() {  # description, then a command that must succeed
+  local what=$1
+  shift
+  if "$@"; then ok; else bad "$what"; fi
+}
+ex1="$examples/paper-example1.toml"
+fast=(--set time.end=0.5 --set output.fields_at=[])
+
+# A user's directory: three files and a subdirectory.
+make_user_dir() {
+  mkdir -p "$1/data" && echo "my notes" > "$1/notes.txt" && echo 1 > "$1/data/raw.csv" && echo x > "$1/.hidden"
+}
+user_dir_intact() {
+  [ "$(cat "$1/notes.txt" 2> /dev/null)" = "my notes" ] && [ -f "$1/data/raw.csv" ] && [ -f "$1/.hidden" ]
+}
+# Exit 2, one line on stderr holding the text; the given directory unchanged.
+# The command runs in the directory $in (default: the test's own).
+in=.
+expect_refusal() {  # text, listing-before file, directory, then the arguments
+  local want=$1 before=$2 dir=$3
+  shift 3
+  (cd "$in" && "$bin" "$@") > "$work/out" 2> "$work/err"
+  local code=$?
+  [ $code -eq 2 ] || { bad "exit $code, not 2, for: $* ($(cat "$work/err"))"; return; }
+  [ "$(wc -l < "$work/err")" -eq 1 ] || { bad "not one line for: $*: $(cat "$work/err")"; return; }
+  grep -qF -- "$want" "$work/err" || { bad "'$want' not in: $(cat "$work/err")"; return; }
+  [ "$(cd "$dir" && ls -laR --time-style=+ . | md5sum)" = "$before" ] || { bad "$dir changed for: $*"; return; }
+  ok
+}
+listing() { (cd "$1" && ls -laR --time-style=+ . | md5sum); }
+
+# 1. Output directories.
+# A new path and an empty directory are written, with barimpact's marker.
+check "new path" "$bin" run "$ex1" --out "$work/new" "${fast[@]}" > /dev/null
+check "marker" test -f "$work/new/.barimpact"
+mkdir "$work/empty"
+check "empty directory" "$bin" run "$ex1" --out "$work/empty" "${fast[@]}" > /dev/null
+check "empty directory written" test -f "$work/empty/history.csv"
+# A directory barimpact wrote is replaced.
+check "replace own" "$bin" run "$examples/paper-example2.toml" --out "$work/new" "${fast[@]}" > /dev/null
+check "replaced" grep -q 'body_force = .-1.' "$work/new/case.toml"
+# A new subdirectory of a user's directory is fine; the user's files stay.
+make_user_dir "$work/mine"
+check "subdirectory of a user's directory" "$bin" run "$ex1" --out "$work/mine/run1" "${fast[@]}" > /dev/null
+check "user's files beside a new subdirectory" user_dir_intact "$work/mine"
+# A user's non-empty directory: refused for every command, nothing touched.
+make_user_dir "$work/theirs"
+before=$(listing "$work/theirs")
+expect_refusal "did not write" "$before" "$work/theirs" run "$ex1" --out "$work/theirs"
+expect_refusal "--force" "$before" "$work/theirs" exact "$examples/clamped-periodic.toml" --out "$work/theirs"
+expect_refusal "did not write" "$before" "$work/theirs" converge "$ex1" --out "$work/theirs" --levels 2
+expect_refusal "did not write" "$before" "$work/theirs" sweep "$examples/sweeps/penalty-to-rigid.toml" \
+  --out "$work/theirs"
+# --force writes beside the user's files and deletes none of them.
+check "--force beside a user's files" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
+check "user's files kept under --force" user_dir_intact "$work/theirs"
+check "results written under --force" test -s "$work/theirs/history.csv"
+# ... and the directory stays the user's: without --force it is still refused.
+before=$(listing "$work/theirs")
+expect_refusal "did not write" "$before" "$work/theirs" run "$ex1" --out "$work/theirs"
+# A user's file put into a run directory makes it the user's too.
+echo "mine" > "$work/new/notes.txt"
+before=$(listing "$work/new")
+expect_refusal "notes.txt" "$before" "$work/new" run "$ex1" --out "$work/new"
+check "--force keeps the note" "$bin" run "$ex1" --out "$work/new" --force "${fast[@]}" > /dev/null
+check "note kept" grep -q mine "$work/new/notes.txt"
+# The working directory: refused; with --force, written beside.
+make_user_dir "$work/cwd"
+before=$(listing "$work/cwd")
+in="$work/cwd" expect_refusal "working directory" "$before" "$work/cwd" run "$ex1" --out .
+(cd "$work/cwd" && "$bin" run "$ex1" --out . --force "${fast[@]}" > /dev/null) && ok || bad "--out . --force"
+check "cwd files kept" user_dir_intact "$work/cwd"
+check "cwd results" test -s "$work/cwd/summary.json"
+# "/", the home directory and the working directory's parents: refused even with --force.
+mkdir -p "$work/home/me/project/deep"
+make_user_dir "$work/home/me"
+home_before=$(listing "$work/home")
+deep="$work/home/me/project/deep"
+for force in "" --force; do
+  HOME="$work/home/me" in=$deep expect_refusal "home directory" "$home_before" "$work/home" \
+    run "$ex1" --out "$work/home/me" $force
+  HOME="$work/home/me/" in=$deep expect_refusal "home directory" "$home_before" "$work/home" \
+    run "$ex1" --out "$work/home/me/project/.." $force
+  in=$deep expect_refusal "parent of the working directory" "$home_before" "$work/home" run "$ex1" --out .. $force
+  in=$deep expect_refusal "parent of the working directory" "$home_before" "$work/home" \
+    run "$ex1" --out "$work/home/me/project" $force
+  in=$deep expect_refusal "parent of the working directory" "$home_before" "$work/home" \
+    sweep "$examples/sweeps/penalty-to-rigid.toml" --out ../.. $force
+  in=$deep expect_refusal "parent of the working directory" "$home_before" "$work/home" \
+    converge "$ex1" --out ../../.. $force
+  "$bin" run "$ex1" --out / $force > /dev/null 2> "$work/err"
+  [ $? -eq 2 ] && grep -q "root directory" "$work/err" && ok || bad "--out / $force: $(cat "$work/err")"
+done
+# A staging directory left by a killed process is cleaned up; none is left behind.
+mkdir "$work/stale" && mkdir "$work/.kept.partial-999999999"
+check "run beside stale staging" "$bin" run "$ex1" --out "$work/kept" "${fast[@]}" > /dev/null
+ls -a "$work" | grep -q partial && bad "stale staging left" || ok
+
+# 2. Warnings and --strict.
+"$bin" run "$ex1" --out "$work/stiff" --set obstacle.stiffness=1e4 --set time.step=0.001 --set output.fields_at=[] \
+  > /dev/null 2> "$work/err"
+code=$?
+[ $code -eq 0 ] && ok || bad "unresolved run exit $code"
+grep -q "^barimpact: warning: energy-balance" "$work/err" && ok || bad "energy warning: $(cat "$work/err")"
+grep -q "^barimpact: warning: penalty-unresolved" "$work/err" && ok || bad "penalty warning: $(cat "$work/err")"
+/usr/bin/python3 -c "import json,sys; w=json.load(open(sys.argv[1]))['warnings']; sys.exit(0 if {x.split(':')[0] for x in w} == {'energy-balance', 'penalty-unresolved', 'contact-chatter'} else 1)" \
+  "$work/stiff/summary.json" && ok || bad "summary warnings"
+"$bin" run "$ex1" --out "$work/stiff" --strict --set obstacle.stiffness=1e4 --set time.step=0.001 \
+  --set output.fields_at=[] > /dev/null 2>&1
+[ $? -eq 4 ] && ok || bad "--strict exit"
+check "--strict keeps the results" test -s "$work/stiff/history.csv"
+"$bin" run "$ex1" --out "$work/healthy" --strict > /dev/null 2> "$work/err" && ok || bad "healthy --strict"
+[ ! -s "$work/err" ] && ok || bad "healthy run warned: $(cat "$work/err")"
+grep -q '"warnings": \[\]' "$work/healthy/summary.json" && ok || bad "empty warnings list"
+# Contact chatter: the paper's Example 2 leaves its obstacle in a burst of step-long contacts.
+"$bin" run "$examples/paper-example2.toml" --out "$work/chatter" > /dev/null 2> "$work/err"
+grep -q "contact-chatter" "$work/err" && ok || bad "chatter warning: $(cat "$work/err")"
+
+# 3. Studies with no result: the report is written, orders are nan, exit 3.
+blow=(--set time.alpha=0 --set time.step=0.1 --set time.end=40)
+"$bin" converge "$ex1" --out "$work/conv-blow" --levels 3 "${blow[@]}" > /dev/null 2> "$work/err"
+[ $? -eq 3 ] && ok || bad "converge with no result: exit $?"
+check "converge report written" test -s "$work/conv-blow/convergence.csv"
+/usr/bin/python3 - "$work/conv-blow/convergence.csv" << 'EOF' && ok || bad "converge orders of failed runs"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert rows and all(r["status"] == "non-finite" for r in rows), rows
+assert all(r["order_U"] == "nan" and r["error_U_max"] == "nan" for r in rows), rows
+EOF
+grep -q "partial" "$work/conv-blow/convergence.md" && bad "converge names staging paths" || ok
+printf 'case = "%s"\n[set]\ntime.alpha = 0.0\ntime.step = 0.1\ntime.end = 40.0\n[[axis]]\nkey = "bar.elements"\nvalues = [100, 200]\n' \
+  "$ex1" > "$work/blow-sweep.toml"
+"$bin" sweep "$work/blow-sweep.toml" --out "$work/sweep-blow" > /dev/null 2>&1
+[ $? -eq 3 ] && ok || bad "sweep with no result: exit $?"
+check "sweep report written" test -s "$work/sweep-blow/sweep.csv"
+
+# 4. Interruption: the step under way ends, what was done is written, exit 128 + signal.
+long=(--set bar.elements=1000 --set time.step=0.001 --set time.end=100000 --set output.every=1000
+  --set output.fields_at=[])
+for signal in INT TERM; do
+  "$bin" run "$ex1" --out "$work/stop-$signal" "${long[@]}" > /dev/null 2> "$work/err" &
+  pid=$!
+  sleep 1
+  kill -s $signal $pid
+  wait $pid 2> /dev/null
+  code=$?
+  want=$([ $signal = INT ] && echo 130 || echo 143)
+  [ $code -eq "$want" ] && ok || bad "SIG$signal: exit $code, not $want"
+  grep -q '"status": "interrupted"' "$work/stop-$signal/summary.json" && ok || bad "SIG$signal: status"
+  grep -q '"complete": false' "$work/stop-$signal/summary.json" && ok || bad "SIG$signal: complete"
+  [ "$(wc -l < "$work/stop-$signal/history.csv")" -gt 2 ] && ok || bad "SIG$signal: rows kept"
+  ls -a "$work" | grep -q partial && bad "SIG$signal: staging left" || ok
+done
+
+# A sweep or converge interrupted (SIGINT, SIGTERM or SIGKILL) and rerun ends as an uninterrupted one.
+printf 'case = "%s"\n[set]\ntime.end = 40.0\ntime.step = 1e-4\noutput.fields_at = []\noutput.every = 100\n[[axis]]\nkey = "bar.elements"\nvalues = [400, 500, 600, 700, 800, 900]\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0]\n' \
+  "$ex1" > "$work/slow-sweep.toml"
+"$bin" sweep "$work/slow-sweep.toml" --out "$work/sweep-whole" --jobs 2 > /dev/null 2>&1 || bad "whole sweep"
+without_timing() {  # sweep.csv or convergence.csv less its timing column
+  /usr/bin/python3 -c "
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+for r in rows:
+    r.pop('run_seconds', None); r.pop('cpu_seconds', None)
+print(rows)" "$1"
+}
+for signal in INT TERM KILL; do
+  "$bin" sweep "$work/slow-sweep.toml" --out "$work/sweep-$signal" --jobs 2 > /dev/null 2>&1 &
+  pid=$!
+  sleep 0.7
+  kill -s $signal $pid
+  wait $pid 2> /dev/null
+  code=$?
+  case $signal in INT) want=130 ;; TERM) want=143 ;; KILL) want=137 ;; esac
+  [ $code -eq $want ] && ok || bad "sweep SIG$signal: exit $code"
+  "$bin" sweep "$work/slow-sweep.toml" --out "$work/sweep-$signal" --jobs 2 > /dev/null 2>&1 && ok ||
+    bad "sweep rerun after SIG$signal"
+  [ "$(without_timing "$work/sweep-$signal/sweep.csv")" = "$(without_timing "$work/sweep-whole/sweep.csv")" ] &&
+    ok || bad "sweep after SIG$signal differs from the uninterrupted one"
+  find "$work/sweep-$signal" -name '*partial*' | grep -q . && bad "sweep SIG$signal: leftovers" || ok
+done
+study=(converge "$ex1" --levels 4 --refine both --set time.end=4 --set bar.elements=1000 --set time.step=5e-4 --jobs 2)
+"$bin" "${study[@]}" --out "$work/conv-whole" > /dev/null 2>&1 || bad "whole converge"
+for signal in INT KILL; do
+  "$bin" "${study[@]}" --out "$work/conv-$signal" > /dev/null 2>&1 &
+  pid=$!
+  sleep 0.5
+  kill -s $signal $pid
+  wait $pid 2> /dev/null
+  code=$?
+  [ $code -eq $([ $signal = INT ] && echo 130 || echo 137) ] && ok || bad "converge SIG$signal: exit $code"
+  "$bin" "${study[@]}" --out "$work/conv-$signal" > /dev/null 2>&1 && ok || bad "converge rerun after SIG$signal"
+  [ "$(without_timing "$work/conv-$signal/convergence.csv")" = "$(without_timing "$work/conv-whole/convergence.csv")" ] &&
+    ok || bad "converge after SIG$signal differs from the uninterrupted one"
+  find "$work/conv-$signal" -name '*partial*' | grep -q . && bad "converge SIG$signal: leftovers" || ok
+done
+
+echo "safety: $passed passed, $failed failed"
+[ $failed -eq 0 ]
