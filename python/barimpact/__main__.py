@@ -2,7 +2,7 @@
 import argparse
 import sys
 
-from .plot import load, plot
+from .plot import load, mark_figures, plot
 
 
 def main(argv=None):
@@ -26,6 +26,8 @@ def main(argv=None):
         return 2
     for path in plot(data, args.out if args.out else f"{args.dir}/figures"):
         print(path)
+    if not args.out:
+        mark_figures(args.dir)
     return 0
 
 

@@ -14,6 +14,7 @@ directory written by `barimpact run`:
 """
 import csv
 import json
+import os
 import tomllib
 from pathlib import Path
 
@@ -104,13 +105,32 @@ def _shade_contacts(ax, summary):
         ax.axvspan(c["start"], c["end"], color="tab:orange", alpha=0.15, lw=0, label="contact" if i == 0 else None)
 
 
+def mark_figures(run_dir):
+    """List figures/ in the run directory's marker (.barimpact), so that the
+    figures count as barimpact's when the directory is replaced by a rerun."""
+    marker = Path(run_dir) / ".barimpact"
+    try:
+        data = json.loads(marker.read_text())
+    except (OSError, ValueError):
+        return  # not a directory barimpact wrote: nothing to mark
+    if data.get("written_by") != "barimpact" or "figures" in data.get("entries", []):
+        return
+    data["entries"] = sorted(data.get("entries", []) + ["figures"])
+    staging = marker.with_name(f".barimpact.{os.getpid()}")
+    staging.write_text(json.dumps(data, indent=2) + "\n")
+    staging.replace(marker)
+
+
 def plot(source, out=None, formats=("png", "svg")):
     """Write the figures of `source` (a Result, a RunData or a run directory)
     into `out` (default: DIR/figures for a directory, else ./figures).
     Returns the paths written."""
     if isinstance(source, (str, Path)):
         data = load(source)
-        out = Path(out) if out is not None else Path(source) / "figures"
+        if out is None:
+            out = Path(source) / "figures"
+            mark_figures(source)
+        out = Path(out)
     else:
         data = source if isinstance(source, RunData) else _from_result(source)
         out = Path(out) if out is not None else Path("figures")

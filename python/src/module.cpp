@@ -163,11 +163,14 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("case", [](const PyResult& p) { return p.c; })
       .def(
           "write",
-          [](const PyResult& p, const std::string& dir) {
-            RunDirectory out(dir);
+          [](const PyResult& p, const std::string& dir, bool force) {
+            RunDirectory out(dir, force);
             out.commit(p.c, p.r);
           },
-          py::arg("dir"), "Write history.csv, fields.csv, case.toml, summary.json as `barimpact run` does");
+          py::arg("dir"), py::kw_only(), py::arg("force") = false,
+          "Write history.csv, fields.csv, case.toml, summary.json as `barimpact run --out dir` does, by the same "
+          "rule: a new or empty directory, or one barimpact wrote (replaced); force=True writes beside someone "
+          "else's files and deletes none of them");
 
   for (std::size_t i = 0; i < columns.size(); ++i) {
     result.def_property_readonly(

@@ -136,3 +136,25 @@ def test_write_gives_the_run_directory(tmp_path, cli_runs):
     r.write(str(tmp_path / "run"))
     for f in ("history.csv", "fields.csv", "case.toml"):
         assert (tmp_path / "run" / f).read_bytes() == (cli_runs["paper-example1"] / f).read_bytes()
+
+
+def test_write_follows_the_output_rule(tmp_path):
+    r = barimpact.run(barimpact.Case(EXAMPLES / "paper-example1.toml", set={"time.end": 0.5, "output.fields_at": []}))
+    mine = tmp_path / "mine"
+    mine.mkdir()
+    (mine / "notes.txt").write_text("my notes")
+    with pytest.raises(barimpact.InputError, match="did not write"):
+        r.write(str(mine))
+    assert sorted(p.name for p in mine.iterdir()) == ["notes.txt"]
+    r.write(str(mine), force=True)
+    assert (mine / "notes.txt").read_text() == "my notes"
+    assert (mine / "history.csv").exists()
+
+
+def test_summary_lists_warnings():
+    healthy = barimpact.run(EXAMPLES / "paper-example1.toml")
+    assert healthy.summary["warnings"] == []
+    stiff = barimpact.run(barimpact.Case(EXAMPLES / "paper-example1.toml",
+                                         set={"obstacle.stiffness": 1e4, "time.step": 1e-3}))
+    kinds = {w.split(":")[0] for w in stiff.summary["warnings"]}
+    assert {"energy-balance", "penalty-unresolved"} <= kinds

@@ -64,3 +64,22 @@ def test_converge_draws_convergence_and_work_precision(tmp_path):
     for name in ("convergence", "work_precision"):
         assert png_size(out / f"{name}.png") == (960, 540)
         assert (out / f"{name}.svg").stat().st_size > 5_000
+    # The paths it prints are the ones that exist, and a rerun replaces the study.
+    assert all((out / f"{name}.png").exists() for name in ("convergence", "work_precision"))
+    assert ".partial" not in p.stdout
+    again = subprocess.run([CLI, "converge", str(EXAMPLES / "paper-example1-rigid.toml"), "--out", str(out),
+                            "--levels", "2", "--schemes", "central-difference,characteristic"],
+                           capture_output=True, text=True)
+    assert again.returncode == 0, again.stderr
+
+
+def test_figures_of_a_run_are_barimpacts_and_go_with_it(tmp_path):
+    run = tmp_path / "run"
+    case = [str(EXAMPLES / "paper-example1.toml"), "--out", str(run), "--set", "time.end=0.5", "--set", "output.fields_at=[0.25]"]
+    assert subprocess.run([CLI, "run", *case], capture_output=True).returncode == 0
+    assert subprocess.run([CLI, "plot", str(run)], capture_output=True).returncode == 0
+    assert (run / "figures" / "impacts.png").exists()
+    # figures/ is listed in the marker, so a rerun may replace the directory.
+    p = subprocess.run([CLI, "run", *case], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert not (run / "figures").exists()

@@ -1,0 +1,61 @@
+#include "barimpact/health.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+
+#include "../support/run_case.hpp"
+
+namespace barimpact {
+namespace {
+
+bool has(const std::vector<std::string>& warnings, const std::string& kind) {
+  return std::any_of(warnings.begin(), warnings.end(), [&](const auto& w) { return w.rfind(kind + ":", 0) == 0; });
+}
+
+TEST(Health, TheResolvedExampleIsHealthy) {
+  const auto r = run(testing::example("paper-example1.toml"));
+  EXPECT_TRUE(r.summary.warnings.empty()) << r.summary.warnings.front();
+}
+
+TEST(Health, AnUnresolvedPenaltyIsNamed) {
+  // The README's stiff case: Z/k = 1e-4 below dt = 1e-3, a 64% budget error.
+  const auto r = run(testing::example("paper-example1.toml", {"obstacle.stiffness=1e4", "time.step=0.001"}));
+  EXPECT_TRUE(r.summary.complete);
+  EXPECT_TRUE(has(r.summary.warnings, "penalty-unresolved"));
+  EXPECT_TRUE(has(r.summary.warnings, "energy-balance"));
+  EXPECT_TRUE(has(r.summary.warnings, "contact-chatter"));
+}
+
+TEST(Health, ChatterIsManyEpisodesOfAStepOrTwo) {
+  const auto c = testing::example("paper-example1-rigid.toml");
+  Summary s;
+  s.method = "moreau-jean";
+  for (int i = 0; i < 12; ++i) s.contacts.push_back({i * 0.1, i * 0.1 + c.time.step, true, 0, 0, 1});
+  EXPECT_TRUE(has(check_health(c, s, {}), "contact-chatter"));
+  s.contacts.resize(9);  // few episodes: a bounce or two is not chatter
+  EXPECT_FALSE(has(check_health(c, s, {}), "contact-chatter"));
+}
+
+TEST(Health, TheEnergyScaleOfARunFromRestIsItsWork) {
+  std::vector<HistoryRow> rows{{0, 0, 0, 0, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 1.5, 0.5, 0, 2.0, 0}};
+  EXPECT_EQ(energy_scale(rows), 2.0);
+  rows[1].W_ext = 0.0;
+  EXPECT_EQ(energy_scale(rows), 2.0);  // no work either: the largest stored energy
+}
+
+TEST(Simulate, AnInterruptEndsTheRunAfterTheStepUnderWay) {
+  const auto c = testing::example("paper-example1.toml", {"output.fields_at=[]"});
+  std::atomic<bool> interrupt{true};
+  RunOptions options;
+  options.interrupt = &interrupt;
+  const auto r = run(c, options);
+  EXPECT_EQ(r.summary.status, RunStatus::interrupted);
+  EXPECT_FALSE(r.summary.complete);
+  EXPECT_EQ(r.summary.steps_done, 1);
+  EXPECT_EQ(r.history.size(), 2u);
+}
+
+}  // namespace
+}  // namespace barimpact

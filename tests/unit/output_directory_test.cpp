@@ -1,0 +1,144 @@
+#include "barimpact/output_directory.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <fstream>
+
+#include "../support/run_case.hpp"
+#include "barimpact/output.hpp"
+
+namespace barimpact {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh directory per test, the working directory moved into it.
+class OutputDirectory : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    old_cwd_ = fs::current_path();
+    root_ = fs::temp_directory_path() / ("barimpact-outdir-" + std::to_string(::getpid()) + "-" +
+                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "cwd");
+    fs::current_path(root_ / "cwd");
+  }
+  void TearDown() override {
+    fs::current_path(old_cwd_);
+    fs::remove_all(root_);
+  }
+  static void touch(const fs::path& p, const std::string& text = "x") { std::ofstream(p) << text; }
+  fs::path root_, old_cwd_;
+};
+
+TEST_F(OutputDirectory, NewPathsAndEmptyDirectoriesAreCreated) {
+  EXPECT_EQ(check_output_directory(root_ / "new", false), OutputMode::create);
+  fs::create_directory(root_ / "empty");
+  EXPECT_EQ(check_output_directory(root_ / "empty", false), OutputMode::create);
+  EXPECT_EQ(check_output_directory("sub", false), OutputMode::create);  // inside the working directory
+}
+
+TEST_F(OutputDirectory, SomeoneElsesFilesAreRefusedWithoutForce) {
+  fs::create_directory(root_ / "theirs");
+  touch(root_ / "theirs" / "notes.txt");
+  EXPECT_THROW((void)check_output_directory(root_ / "theirs", false), InputError);
+  EXPECT_EQ(check_output_directory(root_ / "theirs", true), OutputMode::beside);
+}
+
+TEST_F(OutputDirectory, OnlyWhatTheMarkerListsCountsAsBarimpacts) {
+  const fs::path d = root_ / "run";
+  fs::create_directory(d);
+  touch(d / "history.csv");
+  write_output_marker(d, "run", {"history.csv"});
+  EXPECT_TRUE(written_by_barimpact(d));
+  EXPECT_EQ(check_output_directory(d, false), OutputMode::replace);
+  touch(d / "notes.txt");
+  EXPECT_FALSE(written_by_barimpact(d));
+  EXPECT_THROW((void)check_output_directory(d, false), InputError);
+  touch(d / output_marker, "not json");  // a marker barimpact did not write is no marker
+  fs::remove(d / "notes.txt");
+  EXPECT_FALSE(written_by_barimpact(d));
+}
+
+TEST_F(OutputDirectory, RootHomeAndParentsOfTheWorkingDirectoryAreRefusedEvenWithForce) {
+  for (bool force : {false, true}) {
+    EXPECT_THROW((void)check_output_directory("/", force), InputError);
+    EXPECT_THROW((void)check_output_directory("..", force), InputError);
+    EXPECT_THROW((void)check_output_directory(root_, force), InputError);
+    EXPECT_THROW((void)check_output_directory(root_ / "cwd" / ".." / "..", force), InputError);
+    const char* home = std::getenv("HOME");
+    const std::string saved = home ? home : "";
+    ::setenv("HOME", (root_ / "cwd" / "h").c_str(), 1);
+    fs::create_directories(root_ / "cwd" / "h");
+    EXPECT_THROW((void)check_output_directory(root_ / "cwd" / "h", force), InputError);
+    EXPECT_THROW((void)check_output_directory(root_ / "cwd" / "h" / "", force), InputError);
+    ::setenv("HOME", saved.c_str(), 1);
+  }
+  // The working directory itself: refused, or written beside with --force.
+  EXPECT_THROW((void)check_output_directory(".", false), InputError);
+  EXPECT_EQ(check_output_directory(".", true), OutputMode::beside);
+}
+
+TEST_F(OutputDirectory, ErrorsNameTheOptionAndTheRule) {
+  fs::create_directory(root_ / "theirs");
+  touch(root_ / "theirs" / "notes.txt");
+  try {
+    (void)check_output_directory(root_ / "theirs", false, "--out");
+    FAIL();
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--out"), std::string::npos);
+    EXPECT_NE(what.find("notes.txt"), std::string::npos);
+    EXPECT_NE(what.find("--force"), std::string::npos);
+  }
+}
+
+TEST_F(OutputDirectory, StaleStagingOfDeadProcessesIsRemovedOnly) {
+  fs::create_directory(root_ / ".out.partial-999999999");  // no such process
+  fs::create_directory(root_ / ".out.partial-1");          // init: alive
+  fs::create_directory(root_ / ".other.partial-999999999");
+  remove_stale_staging(root_, "out");
+  EXPECT_FALSE(fs::exists(root_ / ".out.partial-999999999"));
+  EXPECT_TRUE(fs::exists(root_ / ".out.partial-1"));
+  EXPECT_TRUE(fs::exists(root_ / ".other.partial-999999999"));
+}
+
+TEST_F(OutputDirectory, ForceWritesBesideAndDeletesNothing) {
+  const fs::path d = root_ / "theirs";
+  fs::create_directory(d);
+  touch(d / "notes.txt", "mine");
+  touch(d / "history.csv", "an old file of the user's, replaced by name");
+  const auto c = testing::example("paper-example1.toml", {"time.end=0.1", "output.fields_at=[]"});
+  RunDirectory out(d, true);
+  out.commit(c, run(c));
+  EXPECT_EQ(directory_entries(d), (std::vector<std::string>{".barimpact", "case.toml", "fields.csv", "history.csv",
+                                                            "notes.txt", "summary.json"}));
+  std::ifstream notes(d / "notes.txt");
+  std::string text;
+  notes >> text;
+  EXPECT_EQ(text, "mine");
+  EXPECT_FALSE(written_by_barimpact(d));  // still the user's directory
+}
+
+TEST_F(OutputDirectory, ARunDirectoryReadsBackBitForBit) {
+  const auto c = testing::example("paper-example2.toml", {"output.fields_at=[]"});
+  const auto result = run(c);
+  RunDirectory out(root_ / "run");
+  out.commit(c, result);
+  const auto back = read_run_directory(root_ / "run", c.to_toml());
+  ASSERT_TRUE(back);
+  ASSERT_EQ(back->history.size(), result.history.size());
+  for (std::size_t i = 0; i < result.history.size(); ++i) {
+    EXPECT_EQ(back->history[i].U, result.history[i].U);
+    EXPECT_EQ(back->history[i].D_visc, result.history[i].D_visc);
+  }
+  ASSERT_EQ(back->summary.contacts.size(), result.summary.contacts.size());
+  EXPECT_EQ(back->summary.contacts.back().end, result.summary.contacts.back().end);
+  EXPECT_EQ(back->summary.warnings, result.summary.warnings);
+  EXPECT_FALSE(read_run_directory(root_ / "run", "another case"));
+}
+
+}  // namespace
+}  // namespace barimpact
