@@ -411,7 +411,18 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 }
 
 // The figures are drawn by the Python package (matplotlib): hand over to it.
-int plot_command(const std::string& run_dir, const std::string& figures) {
+int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
+  // The figures' directory follows the output rule too, and is marked as
+  // barimpact's before the Python package fills it.
+  const std::filesystem::path target =
+      figures.empty() ? std::filesystem::path(run_dir) / "figures" : std::filesystem::path(figures);
+  if (!std::filesystem::is_regular_file(std::filesystem::path(run_dir) / "history.csv"))
+    throw barimpact::InputError(
+        fmt::format("plot: {} holds no history.csv (give a directory written by barimpact run)", run_dir));
+  std::vector<std::string> names;
+  for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts"})
+    for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
+  barimpact::prepare_output_directory(target, "plot", names, force);
   std::string path = BARIMPACT_PYTHON_DIR;
   if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0') path += std::string(":") + old;
   setenv("PYTHONPATH", path.c_str(), 1);
@@ -500,7 +511,11 @@ int main(int argc, char** argv) {
   std::string plot_dir, plot_out;
   auto* plot = app.add_subcommand("plot", "Draw the figures of a run directory (PNG and SVG) with matplotlib");
   plot->add_option("dir", plot_dir, "A directory written by barimpact run")->required();
-  plot->add_option("--out", plot_out, "Where the figures go (default: DIR/figures)");
+  bool plot_force = false;
+  plot->add_option("--out", plot_out, "Where the figures go (default: DIR/figures), by the output rule of run");
+  plot->add_flag("--force", plot_force,
+                 "Write the figures beside other files (never in $HOME, / or a parent of the "
+                 "working directory)");
 
   try {
     app.parse(argc, argv);
@@ -533,7 +548,7 @@ int main(int argc, char** argv) {
       }
       return converge_command(conv_args);
     }
-    if (plot->parsed()) return plot_command(plot_dir, plot_out);
+    if (plot->parsed()) return plot_command(plot_dir, plot_out, plot_force);
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());
     return exit_bad_input;

@@ -65,6 +65,9 @@ expect_refusal "--force" "$before" "$work/theirs" exact "$examples/clamped-perio
 expect_refusal "did not write" "$before" "$work/theirs" converge "$ex1" --out "$work/theirs" --levels 2
 expect_refusal "did not write" "$before" "$work/theirs" sweep "$examples/sweeps/penalty-to-rigid.toml" \
   --out "$work/theirs"
+# plot's --out follows the same rule.
+"$bin" run "$ex1" --out "$work/for-plot" "${fast[@]}" > /dev/null || bad "run for plot"
+expect_refusal "did not write" "$before" "$work/theirs" plot "$work/for-plot" --out "$work/theirs"
 # --force writes beside the user's files and deletes none of them.
 check "--force beside a user's files" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
 check "user's files kept under --force" user_dir_intact "$work/theirs"
