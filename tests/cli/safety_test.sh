@@ -38,10 +38,10 @@ expect_refusal() {  # text, listing-before file, directory, then the arguments
   [ $code -eq 2 ] || { bad "exit $code, not 2, for: $* ($(cat "$work/err"))"; return; }
   [ "$(wc -l < "$work/err")" -eq 1 ] || { bad "not one line for: $*: $(cat "$work/err")"; return; }
   grep -qF -- "$want" "$work/err" || { bad "'$want' not in: $(cat "$work/err")"; return; }
-  [ "$(cd "$dir" && ls -laR --time-style=+ . | md5sum)" = "$before" ] || { bad "$dir changed for: $*"; return; }
+  [ "$(cd "$dir" && ls -lAR --time-style=+ . | md5sum)" = "$before" ] || { bad "$dir changed for: $*"; return; }
   ok
 }
-listing() { (cd "$1" && ls -laR --time-style=+ . | md5sum); }
+listing() { (cd "$1" && ls -lAR --time-style=+ . | md5sum); }
 
 # 1. Output directories.
 # A new path and an empty directory are written, with barimpact's marker.
