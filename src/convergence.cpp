@@ -12,6 +12,7 @@
 #include "barimpact/exact.hpp"
 #include "barimpact/executor.hpp"
 #include "barimpact/output.hpp"
+#include "barimpact/output_directory.hpp"
 #include "barimpact/simulate.hpp"
 
 namespace barimpact {
@@ -91,7 +92,7 @@ void run_task(Task& t, const StudyOptions& o) {
     t.message = t.result.summary.message;
     t.cpu = thread_cpu_seconds() - start;
     if (keep && t.result.summary.status != RunStatus::interrupted) {
-      RunDirectory dir(o.runs / t.id, false, "converge");
+      RunDirectory dir(o.runs / t.id, false, "converge", false);  // runs/ is cleaned once, in converge()
       dir.commit(*t.c, t.result);
     }
   } catch (const std::exception& e) {
@@ -179,8 +180,12 @@ Study converge(const Case& base, const StudyOptions& o) {
   check_study(base, o);
   const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
   std::error_code ec;
-  if (!o.runs.empty() && !fs::create_directories(o.runs, ec) && ec)
-    throw InputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()));
+  if (!o.runs.empty()) {
+    if (!fs::create_directories(o.runs, ec) && ec)
+      throw InputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()));
+    remove_stale_staging(o.runs, "");  // what a killed study left
+    remove_stale_staging(o.runs.parent_path(), "");
+  }
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
   const double c = std::sqrt(base.bar.stiffness / base.bar.density);

@@ -17,12 +17,12 @@ namespace barimpact {
 
 namespace fs = std::filesystem;
 
-RunDirectory::RunDirectory(fs::path target, bool force, std::string command)
+RunDirectory::RunDirectory(fs::path target, bool force, std::string command, bool remove_stale)
     : target_(std::move(target)), command_(std::move(command)) {
   beside_ = check_output_directory(target_, force) == OutputMode::beside;
   if (!target_.has_filename()) target_ = target_.parent_path();
   const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
-  remove_stale_staging(parent, target_.filename().string());
+  if (remove_stale) remove_stale_staging(parent, target_.filename().string());
   staging_ = parent / fmt::format(".{}.partial-{}", target_.filename().string(), ::getpid());
   std::error_code ec;
   fs::remove_all(staging_, ec);

@@ -142,11 +142,13 @@ void write_output_marker(const fs::path& dir, std::string_view command, const st
 
 void remove_stale_staging(const fs::path& parent, const std::string& name) {
   for (const auto& entry : directory_entries(parent)) {
+    if (entry.size() < 2 || entry[0] != '.') continue;
     for (const std::string_view kind : {".partial-", ".old-"}) {
-      const std::string prefix = fmt::format(".{}{}", name, kind);
-      if (entry.size() <= prefix.size() || entry.compare(0, prefix.size(), prefix) != 0) continue;
-      const std::string digits = entry.substr(prefix.size());
-      if (digits.find_first_not_of("0123456789") != std::string::npos || digits.size() > 9) continue;
+      const auto at = name.empty() ? entry.rfind(kind) : name.size() + 1;
+      if (at == std::string::npos || at == 0 || entry.compare(at, kind.size(), kind) != 0) continue;
+      if (!name.empty() && entry.compare(1, name.size(), name) != 0) continue;
+      const std::string digits = entry.substr(at + kind.size());
+      if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
       const auto pid = static_cast<pid_t>(std::stol(digits));
       if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
       std::error_code ec;

@@ -12,6 +12,7 @@
 
 #include "barimpact/executor.hpp"
 #include "barimpact/output.hpp"
+#include "barimpact/output_directory.hpp"
 #include "barimpact/paper_scheme.hpp"
 #include "barimpact/simulate.hpp"
 
@@ -282,7 +283,7 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
         continue;
       }
       try {
-        RunDirectory out(dir / "runs" / p.id);
+        RunDirectory out(dir / "runs" / p.id, false, "sweep", false);  // the caller cleans runs/ once
         out.commit(*cases[g[k]], results[k]);
         rows[g[k]] = row_from_summary(p, results[k].summary);
         rows[g[k]].batched = g.size() > 1;

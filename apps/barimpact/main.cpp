@@ -375,6 +375,8 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
     barimpact::prepare_output_directory(dir, "sweep", {"runs", "sweep.csv"}, flags.force);
     std::filesystem::create_directories(dir / "runs", ec);
     if (ec) throw barimpact::InputError(fmt::format("--out {}: cannot create it ({})", out_dir, ec.message()));
+    barimpact::remove_stale_staging(dir / "runs", "");  // what a killed sweep left
+    barimpact::remove_stale_staging(dir, "");
   }
   std::vector<barimpact::SweepRow> rows(plan.points().size());
   std::vector<std::size_t> todo;

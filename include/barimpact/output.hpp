@@ -18,8 +18,11 @@ namespace barimpact {
 class RunDirectory {
  public:
   /// Checks `target` against the output rule (`force` as --force) and
-  /// creates the staging directory. Throws InputError naming `--out`.
-  explicit RunDirectory(std::filesystem::path target, bool force = false, std::string command = "run");
+  /// creates the staging directory, first removing what killed processes
+  /// left beside it (unless the caller cleans the parent once for many
+  /// targets: a sweep's runs/). Throws InputError naming `--out`.
+  explicit RunDirectory(std::filesystem::path target, bool force = false, std::string command = "run",
+                        bool remove_stale = true);
   /// Removes the staging directory unless `commit` succeeded.
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;

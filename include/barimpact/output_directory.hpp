@@ -45,8 +45,9 @@ void write_output_marker(const std::filesystem::path& dir, std::string_view comm
 /// The names of the entries of `dir` (not recursive), sorted; empty if it does not exist.
 [[nodiscard]] std::vector<std::string> directory_entries(const std::filesystem::path& dir);
 
-/// Removes the staging directories (`.<name>.partial-<pid>`) that a killed
-/// barimpact process left in `parent` for `name`; those of live processes stay.
+/// Removes the staging directories and files (`.<name>.partial-<pid>`,
+/// `.<name>.old-<pid>`) that a killed barimpact process left in `parent` for
+/// `name` (for any name when `name` is empty); those of live processes stay.
 void remove_stale_staging(const std::filesystem::path& parent, const std::string& name);
 
 /// For a command that fills its directory bit by bit and resumes (sweep,

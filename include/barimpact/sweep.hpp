@@ -85,7 +85,8 @@ struct SweepOptions {
 };
 
 /// Runs (or resumes) the points `todo` (indices into plan.points()) into
-/// `dir`/runs/<id>/ and returns their rows. `dir` must exist.
+/// `dir`/runs/<id>/ and returns their rows. `dir` must exist, with no stale
+/// staging left in runs/ by a killed sweep (remove_stale_staging).
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepPlan& plan, const std::filesystem::path& dir,
                                               const std::vector<std::size_t>& todo, const SweepOptions& options);
 

@@ -103,6 +103,16 @@ TEST_F(OutputDirectory, StaleStagingOfDeadProcessesIsRemovedOnly) {
   EXPECT_FALSE(fs::exists(root_ / ".out.partial-999999999"));
   EXPECT_TRUE(fs::exists(root_ / ".out.partial-1"));
   EXPECT_TRUE(fs::exists(root_ / ".other.partial-999999999"));
+  // Every name at once (a sweep's runs/), files too; nothing else.
+  touch(root_ / ".sweep.csv.partial-999999999");
+  touch(root_ / ".hidden");
+  touch(root_ / ".a.partial-12x");
+  remove_stale_staging(root_, "");
+  EXPECT_FALSE(fs::exists(root_ / ".other.partial-999999999"));
+  EXPECT_FALSE(fs::exists(root_ / ".sweep.csv.partial-999999999"));
+  EXPECT_TRUE(fs::exists(root_ / ".hidden"));
+  EXPECT_TRUE(fs::exists(root_ / ".a.partial-12x"));
+  EXPECT_TRUE(fs::exists(root_ / ".out.partial-1"));
 }
 
 TEST_F(OutputDirectory, ForceWritesBesideAndDeletesNothing) {
