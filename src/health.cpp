@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
+
+#include "barimpact/mesh.hpp"
 
 namespace barimpact {
 
@@ -59,6 +62,56 @@ void check_penalty(const Case& c, std::vector<std::string>& out) {
         tau, c.time.step, tau));
 }
 
+// omega_max^2, the largest eigenvalue of K x = omega^2 M x (consistent mass,
+// the penalty k at x = 0, a clamped end fixed), by power iteration from the
+// sawtooth (-1)^j, which is nearly the top mode already: the Rayleigh
+// quotient settles to a few digits in tens of iterations.
+double largest_frequency_squared(const Case& c) {
+  const Mesh mesh(c.bar.length, c.bar.elements);
+  const Tridiagonal M = mesh.mass(c.bar.density);
+  Tridiagonal K = mesh.stiffness(c.bar.stiffness);
+  const auto kind = c.obstacle.kind;
+  if (kind == ObstacleKind::elastic || kind == ObstacleKind::viscoelastic) K.diag[0] += c.obstacle.stiffness;
+  const bool clamped = c.bar.far_end == FarEnd::clamped;
+  const FactoredTridiagonal solver(M, clamped);
+  std::vector<double> x(M.size()), y(M.size());
+  for (std::size_t j = 0; j < x.size(); ++j) x[j] = j % 2 == 0 ? 1.0 : -1.0;
+  if (clamped) x.back() = 0.0;
+  double lambda = 0.0;
+  for (int iteration = 0; iteration < 60; ++iteration) {
+    K.multiply(x, y);
+    lambda = std::inner_product(x.begin(), x.end(), y.begin(), 0.0) / M.quadratic_form(x);
+    solver.solve(y);
+    const double norm = std::sqrt(std::inner_product(y.begin(), y.end(), y.begin(), 0.0));
+    if (!(norm > 0.0)) break;
+    for (std::size_t j = 0; j < x.size(); ++j) x[j] = y[j] / norm;
+  }
+  return lambda;
+}
+
+// The implicit schemes below the trapezoidal rule are only conditionally
+// stable: Newmark (gamma >= 1/2) needs omega_max dt <= (gamma/2 - beta)^(-1/2),
+// the paper's alpha-scheme the same with beta = alpha, gamma = 1/2 (its shift
+// lambda and the explicit half of its penalty aside).
+void check_stability(const Case& c, std::vector<std::string>& out) {
+  double beta = 0.0, gamma = 0.5;
+  if (c.time.scheme == "paper") {
+    beta = c.time.alpha;
+  } else if (c.time.scheme == "newmark") {
+    beta = c.time.beta;
+    gamma = c.time.gamma;
+  } else {
+    return;  // the explicit schemes are refused beyond their limit before the run
+  }
+  if (gamma < 0.5 || 2.0 * beta >= gamma) return;  // unconditionally stable (or not this family's rule)
+  const double limit = 1.0 / std::sqrt(largest_frequency_squared(c) * (0.5 * gamma - beta));
+  if (c.time.step > limit)
+    out.push_back(fmt::format(
+        "unstable-step: time.step = {:.3g} is above {}'s stable step {:.3g} for this mesh and obstacle (with these "
+        "parameters the scheme is only conditionally stable)",
+        c.time.step, c.time.scheme, limit));
+}
+
 void check_chatter(const Case& c, const Summary& s, std::vector<std::string>& out) {
   // Chatter: many episodes, most of them a step or two long.
   constexpr std::size_t many = 10;
@@ -81,6 +134,7 @@ std::vector<std::string> check_health(const Case& c, const Summary& s, const std
   if (s.method == "exact") return out;
   check_energy(c, s, history, out);
   check_penalty(c, out);
+  check_stability(c, out);
   check_chatter(c, s, out);
   return out;
 }

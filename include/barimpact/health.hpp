@@ -6,9 +6,13 @@
 //   - penalty-unresolved: the penalty obstacle's time constant Z / k (Z =
 //     rho c = sqrt(rho a), the bar's impedance) is below the time step, so a
 //     contact lasts less than a step and its force is not resolved;
+//   - unstable-step: the paper scheme with alpha < 1/4, or Newmark with
+//     2 beta < gamma, at a step beyond its stable one (such a run may still
+//     end before it blows up);
 //   - contact-chatter: most contact episodes last a step or two (the
 //     contact switches on and off numerically).
-// An explicit step beyond the stable one is refused before the run (scheme.hpp).
+// An explicit scheme's step beyond its stable one is refused before the run
+// (scheme.hpp).
 #pragma once
 
 #include <string>
