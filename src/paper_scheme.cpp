@@ -221,13 +221,7 @@ void PaperScheme::solve_level(long long m) {
   // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
   const double k = law_.stiffness(), g = law_.gap();
   double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
-  if (dashpot_sigma_ > 0.0) {
-    // Explicit status: in contact and pushing at t_m, dd/dt from u^m and u^{m-1}.
-    const double l = law_.viscosity();
-    const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
-    dashpot_active_ = d > 0.0 && k * d + l * d_rate > 0.0;
-    if (dashpot_active_) contact += l * (zo[0] * 0.5 / dt_ - lambda_ * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]));
-  }
+  const double sigma = dashpot_sigma_ > 0.0 ? viscoelastic_row(zc, zo, e0, em1, contact) : 0.0;
 
   const double b1o = b1_off_, b0o = b0_off_;
   const double b1d = b1_diag_[1], b0d = b0_diag_[1];
@@ -252,12 +246,36 @@ void PaperScheme::solve_level(long long m) {
       },
       [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
       [&](std::size_t j, double v) { zn[j] = v; });
-  if (dashpot_active_) {
+  if (sigma != 0.0) {
     // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
     const double* __restrict w = dashpot_response_.data();
-    const double s = dashpot_sigma_ * zn[0] / (1.0 + dashpot_sigma_ * w[0]);
+    const double s = sigma * zn[0] / (1.0 + sigma * w[0]);
     for (std::size_t j = 0; j < n; ++j) zn[j] -= s * w[j];
   }
+}
+
+// The viscoelastic obstacle at level m, its status explicit (d^m and dd/dt^m
+// by a backward difference): pushing, the dashpot joins the spring; clipped
+// (d > 0, k d + l dd/dt <= 0: R = 0), neither acts, so that the force in the
+// equation is the law's. Adjusts row 0's `contact`; returns sigma, the change
+// of A's (0, 0) entry, applied by Sherman-Morrison.
+double PaperScheme::viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact) {
+  const double k = law_.stiffness(), l = law_.viscosity(), g = law_.gap();
+  const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
+  contact_ = d <= 0.0 ? Contact::apart : k * d + l * d_rate > 0.0 ? Contact::pushing : Contact::clipped;
+  if (contact_ == Contact::pushing) {
+    contact += l * (zo[0] * 0.5 / dt_ - lambda_ * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]));
+    return dashpot_sigma_;
+  }
+  if (contact_ == Contact::clipped) {
+    // Drop the explicit half and the gap's share; cancel the implicit half
+    // (k/2) z_0^{m,alpha}: its z^m, z^{m-1} parts (in B1, B0) here, its
+    // alpha z^{m+1} part (in A) by sigma. A - alpha (k/2) e0 e0^T stays
+    // positive definite: it is A without the spring.
+    contact = 0.5 * k * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]);
+    return -0.5 * alpha_ * k;
+  }
+  return 0.0;
 }
 
 void PaperScheme::advance() {
@@ -320,9 +338,14 @@ void PaperScheme::accumulate_budget(long long m) {
     }
     dd *= dt_ * b_ / mesh_.h();
   }
-  if (dashpot_active_) {  // the obstacle's dashpot: dt l (du_0/dt)^2
+  if (contact_ == Contact::pushing) {  // the obstacle's dashpot: dt l (du_0/dt)^2
     const double rate = (sp * next_[0] - sm * prev_[0]) / (2.0 * dt_);
     dd += dt_ * law_.viscosity() * rate * rate;
+  } else if (contact_ == Contact::clipped) {
+    // The spring lets go unloaded: what k d^2 / 2 loses is dissipated, as
+    // k d^m (d^{m-1} - d^{m+1}) / 2, the centred form that telescopes to it.
+    const double d = law_.penetration(scale(m) * cur_[0]);
+    dd += law_.stiffness() * d * 0.5 * (sp * next_[0] - sm * prev_[0]);
   }
   work_last_ = dw;
   dissipation_last_ = dd;
