@@ -184,10 +184,11 @@ void ThreeLevelScheme::advance() {
   // Budget of level m: dW = F^m . (u^{m+1} - u^{m-1}) / 2, dD = viscous force . same.
   double dw = 0.0, dd = 0.0;
   if (!load_zero_ || viscous) bar_budget(dw, dd);
-  if (law_.viscosity() > 0.0 && penalty > 0.0) {  // the obstacle's dashpot
-    const double rate = (cur_[0] - prev_[0]) * inv_dt_;
-    dd += law_.viscosity() * rate * 0.5 * (next_[0] - prev_[0]);
-  }
+  // The viscoelastic obstacle's force beyond its spring's, R - k d, tested
+  // like the rest: the dashpot's l dd/dt while pushing, and -k d while the
+  // law clips (R = 0), the spring's energy k d^2 / 2 released.
+  if (law_.viscosity() > 0.0)
+    dd += (penalty - law_.stiffness() * law_.penetration(cur_[0])) * 0.5 * (prev_[0] - next_[0]);
   work_last_ = dw;
   dissipation_last_ = dd;
   work_half_ += dw;
