@@ -69,6 +69,7 @@ PaperScheme::PaperScheme(const Case& c)
       density_(c.bar.density),
       a_(c.bar.stiffness),
       b_(c.bar.viscosity),
+      clamped_(c.bar.far_end == FarEnd::clamped),
       mass_(mesh_.mass(density_)),
       stiffness_a_(mesh_.stiffness(a_)),
       stiffness_b_(mesh_.stiffness(b_)) {
@@ -107,9 +108,8 @@ PaperScheme::PaperScheme(const Case& c)
   }
   // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
   // exactly that, and its zero up removes the column's coupling.
-  const bool clamped = c.bar.far_end == FarEnd::clamped;
   for (std::size_t j = last; j > twist; --j) {
-    inv_[j] = clamped && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
+    inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
   inv_[twist] = 1.0 / (A.diag[twist] - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
@@ -153,21 +153,41 @@ void PaperScheme::start() {
     cur_ = levels_[0].data();
     next_ = levels_[1].data();
   }
-  const std::size_t st = stride_;
-  // (6.3)(ii)-(iii) with erratum 2: z^1 = u0 + dt (v0 - lambda u0) at the nodes.
-  for (std::size_t j = 0; j < n; ++j) {
-    cur_[j * st] = u0_[j];
-    next_[j * st] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]);
-    prev_[j * st] = u0_[j];
-  }
   if (load_mode_ == LoadMode::steady) mesh_.load(*body_force_, 0.0, loads_[0]);
   if (load_mode_ == LoadMode::unsteady) {
     mesh_.load(*body_force_, 0.0, loads_[0]);
     mesh_.load(*body_force_, dt_, loads_[1]);
   }
+  // A Taylor start, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with (6.1)
+  // z' = v0 - lambda u0 and z'' = a0 - 2 lambda v0 + lambda^2 u0: second
+  // order. The paper's z^1 = u0 + dt (v0 - lambda u0) (erratum 2) drops the
+  // dt^2 term and is first order when a0 is not zero (a load, u0 strained).
+  const std::vector<double> a0 = initial_acceleration();
+  const std::size_t st = stride_;
+  const double half_dt2 = 0.5 * dt_ * dt_;
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j * st] = u0_[j];
+    next_[j * st] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]) +
+                    half_dt2 * (a0[j] - 2.0 * lambda_ * v0_[j] + lambda_ * lambda_ * u0_[j]);
+    prev_[j * st] = u0_[j];
+  }
   n_ = 0;
   cached_ = {};
   work_half_ = dissipation_half_ = work_last_ = dissipation_last_ = 0.0;
+}
+
+// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0), R(0) the obstacle's law at
+// (u0, v0); F(0) is in loads_[0]. Called by start() only: it may allocate.
+std::vector<double> PaperScheme::initial_acceleration() const {
+  const std::size_t n = mesh_.nodes();
+  std::vector<double> a(n, 0.0), viscous(n, 0.0);
+  stiffness_a_.multiply(u0_, a);
+  stiffness_b_.multiply(v0_, viscous);
+  for (std::size_t j = 0; j < n; ++j) a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - a[j] - viscous[j];
+  a[0] += law_.reaction(u0_[0], v0_[0]);
+  if (clamped_) a[n - 1] = 0.0;
+  FactoredTridiagonal(mass_, clamped_).solve(a);
+  return a;
 }
 
 // One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}

@@ -19,6 +19,7 @@
 // computed once, so the matrix is still factored once. Where the law clips
 // (d^n > 0, k d^n + l dd/dt^n <= 0, R = 0) the spring's split is cancelled
 // too, its share of A by sigma = -alpha k/2: no obstacle force acts.
+// Start: z^1 by Taylor with the initial acceleration, second order.
 // Clamped far end: the last row of A becomes the identity, u_M = 0.
 //
 // Velocity and energies at t_n (docs/methods.md): V^n = (u^{n+1} - u^{n-1}) / (2 dt);
@@ -77,6 +78,8 @@ class PaperScheme final : public Scheme {
   /// The viscoelastic obstacle's status at level m and its terms in row 0;
   /// returns the change sigma of A's (0, 0) entry.
   double viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact);
+  /// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0).
+  [[nodiscard]] std::vector<double> initial_acceleration() const;
   /// exp(lambda t_m): u^m = scale(m) z^m (Remark 6.2).
   [[nodiscard]] double scale(long long m) const;
   /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
@@ -91,6 +94,7 @@ class PaperScheme final : public Scheme {
   Mesh mesh_;
   ObstacleLaw law_;
   double dt_, alpha_, lambda_, density_, a_, b_;
+  bool clamped_;
   Tridiagonal mass_, stiffness_a_, stiffness_b_;
 
   // Constant coefficients of A, B1, B0 on the uniform mesh: the off-diagonal
