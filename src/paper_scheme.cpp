@@ -173,7 +173,23 @@ void PaperScheme::start() {
   }
   n_ = 0;
   cached_ = {};
-  work_half_ = dissipation_half_ = work_last_ = dissipation_last_ = 0.0;
+  book_first_half_step();
+}
+
+// Level m's increments are centred on t_m and summed from m = 1: the budget
+// would start at t_{1/2}. The first half step's share, dt/2 times the rates
+// at t = 0 (the load's power, the bar's dissipation, the viscoelastic
+// obstacle's (R - k d) dd/dt), is booked here.
+void PaperScheme::book_first_half_step() {
+  double power = 0.0;
+  if (load_mode_ != LoadMode::zero)
+    for (std::size_t j = 0; j < v0_.size(); ++j) power += loads_[0][j] * v0_[j];
+  double dissipation = mesh_.stiffness_form(b_, v0_, v0_);
+  if (dashpot_sigma_ > 0.0)
+    dissipation -= (law_.reaction(u0_[0], v0_[0]) - law_.stiffness() * law_.penetration(u0_[0])) * v0_[0];
+  work_half_ = 0.5 * dt_ * power;
+  dissipation_half_ = 0.5 * dt_ * dissipation;
+  work_last_ = dissipation_last_ = 0.0;
 }
 
 // a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0), R(0) the obstacle's law at

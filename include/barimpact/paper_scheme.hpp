@@ -80,6 +80,8 @@ class PaperScheme final : public Scheme {
   double viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact);
   /// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0).
   [[nodiscard]] std::vector<double> initial_acceleration() const;
+  /// W_ext and D_visc of (0, t_{1/2}), dt/2 times their rates at t = 0.
+  void book_first_half_step();
   /// exp(lambda t_m): u^m = scale(m) z^m (Remark 6.2).
   [[nodiscard]] double scale(long long m) const;
   /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
