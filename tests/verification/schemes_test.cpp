@@ -250,7 +250,7 @@ TEST(EnergyBudget, MoreauJeanLosesWhatNewtonsLawPredicts) {
 
 TEST(ViscoelasticObstacle, DissipatesAtImpactAndLessAsKGrows) {
   // l = 1/2 fixed. The continuum predicts O(1/k) (the end's velocity relaxes
-  // in tau = (rho c + l)/k): measured D(100)/D(400) = 3.5. The balance,
+  // in tau = (rho c + l)/k): measured D(100)/D(400) = 3.6. The balance,
   // dashpot included in D_visc, closes within 0.1%.
   std::vector<double> dissipated;
   for (double k : {100.0, 400.0}) {
