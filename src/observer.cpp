@@ -89,10 +89,13 @@ bool ContactMonitor::observe(const Scheme& s) {
   const double R = s.reaction();
   // On the obstacle: penetrating (penalty), or held by a reaction (rigid: U + g = 0).
   const bool contact = law_.kind() != ObstacleKind::none && (d < 0.0 || R > 0.0);
-  // Linear interpolation of the crossing of U + g = 0 between two steps.
+  // Linear interpolation of the crossing of U + g = 0 between two steps, kept
+  // in the step: contact seen through R > 0 alone (a rigid end pushed while
+  // above the face) may have d > 0 on both sides of the step, and the line's
+  // zero then lies outside it, possibly beyond the episode's other end.
   auto crossing = [&] {
     if (!have_previous_ || previous_d_ == d) return t;  // a rigid end sits at d = 0
-    return previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d);
+    return std::clamp(previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d), previous_t_, t);
   };
   if (contact && !in_contact_) {
     intervals_.push_back({crossing(), t, false, 0.0, 0.0});

@@ -69,6 +69,7 @@ PaperScheme::PaperScheme(const Case& c)
       density_(c.bar.density),
       a_(c.bar.stiffness),
       b_(c.bar.viscosity),
+      clamped_(c.bar.far_end == FarEnd::clamped),
       mass_(mesh_.mass(density_)),
       stiffness_a_(mesh_.stiffness(a_)),
       stiffness_b_(mesh_.stiffness(b_)) {
@@ -107,9 +108,8 @@ PaperScheme::PaperScheme(const Case& c)
   }
   // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
   // exactly that, and its zero up removes the column's coupling.
-  const bool clamped = c.bar.far_end == FarEnd::clamped;
   for (std::size_t j = last; j > twist; --j) {
-    inv_[j] = clamped && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
+    inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
   inv_[twist] = 1.0 / (A.diag[twist] - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
@@ -153,21 +153,57 @@ void PaperScheme::start() {
     cur_ = levels_[0].data();
     next_ = levels_[1].data();
   }
-  const std::size_t st = stride_;
-  // (6.3)(ii)-(iii) with erratum 2: z^1 = u0 + dt (v0 - lambda u0) at the nodes.
-  for (std::size_t j = 0; j < n; ++j) {
-    cur_[j * st] = u0_[j];
-    next_[j * st] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]);
-    prev_[j * st] = u0_[j];
-  }
   if (load_mode_ == LoadMode::steady) mesh_.load(*body_force_, 0.0, loads_[0]);
   if (load_mode_ == LoadMode::unsteady) {
     mesh_.load(*body_force_, 0.0, loads_[0]);
     mesh_.load(*body_force_, dt_, loads_[1]);
   }
+  // A Taylor start, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with (6.1)
+  // z' = v0 - lambda u0 and z'' = a0 - 2 lambda v0 + lambda^2 u0: second
+  // order. The paper's z^1 = u0 + dt (v0 - lambda u0) (erratum 2) drops the
+  // dt^2 term and is first order when a0 is not zero (a load, u0 strained).
+  const std::vector<double> a0 = initial_acceleration();
+  const std::size_t st = stride_;
+  const double half_dt2 = 0.5 * dt_ * dt_;
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j * st] = u0_[j];
+    next_[j * st] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]) +
+                    half_dt2 * (a0[j] - 2.0 * lambda_ * v0_[j] + lambda_ * lambda_ * u0_[j]);
+    prev_[j * st] = u0_[j];
+  }
   n_ = 0;
   cached_ = {};
-  work_half_ = dissipation_half_ = work_last_ = dissipation_last_ = 0.0;
+  book_first_half_step();
+}
+
+// Level m's increments are centred on t_m and summed from m = 1: the budget
+// would start at t_{1/2}. The first half step's share, dt/2 times the rates
+// at t = 0 (the load's power, the bar's dissipation, the viscoelastic
+// obstacle's (R - k d) dd/dt), is booked here.
+void PaperScheme::book_first_half_step() {
+  double power = 0.0;
+  if (load_mode_ != LoadMode::zero)
+    for (std::size_t j = 0; j < v0_.size(); ++j) power += loads_[0][j] * v0_[j];
+  double dissipation = mesh_.stiffness_form(b_, v0_, v0_);
+  if (dashpot_sigma_ > 0.0)
+    dissipation -= (law_.reaction(u0_[0], v0_[0]) - law_.stiffness() * law_.penetration(u0_[0])) * v0_[0];
+  work_half_ = 0.5 * dt_ * power;
+  dissipation_half_ = 0.5 * dt_ * dissipation;
+  work_last_ = dissipation_last_ = 0.0;
+}
+
+// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0), R(0) the obstacle's law at
+// (u0, v0); F(0) is in loads_[0]. Called by start() only: it may allocate.
+std::vector<double> PaperScheme::initial_acceleration() const {
+  const std::size_t n = mesh_.nodes();
+  std::vector<double> a(n, 0.0), viscous(n, 0.0);
+  stiffness_a_.multiply(u0_, a);
+  stiffness_b_.multiply(v0_, viscous);
+  for (std::size_t j = 0; j < n; ++j) a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - a[j] - viscous[j];
+  a[0] += law_.reaction(u0_[0], v0_[0]);
+  if (clamped_) a[n - 1] = 0.0;
+  FactoredTridiagonal(mass_, clamped_).solve(a);
+  return a;
 }
 
 // One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}
@@ -221,13 +257,7 @@ void PaperScheme::solve_level(long long m) {
   // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
   const double k = law_.stiffness(), g = law_.gap();
   double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
-  if (dashpot_sigma_ > 0.0) {
-    // Explicit status: in contact and pushing at t_m, dd/dt from u^m and u^{m-1}.
-    const double l = law_.viscosity();
-    const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
-    dashpot_active_ = d > 0.0 && k * d + l * d_rate > 0.0;
-    if (dashpot_active_) contact += l * (zo[0] * 0.5 / dt_ - lambda_ * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]));
-  }
+  const double sigma = dashpot_sigma_ > 0.0 ? viscoelastic_row(zc, zo, e0, em1, contact) : 0.0;
 
   const double b1o = b1_off_, b0o = b0_off_;
   const double b1d = b1_diag_[1], b0d = b0_diag_[1];
@@ -252,12 +282,36 @@ void PaperScheme::solve_level(long long m) {
       },
       [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
       [&](std::size_t j, double v) { zn[j] = v; });
-  if (dashpot_active_) {
+  if (sigma != 0.0) {
     // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
     const double* __restrict w = dashpot_response_.data();
-    const double s = dashpot_sigma_ * zn[0] / (1.0 + dashpot_sigma_ * w[0]);
+    const double s = sigma * zn[0] / (1.0 + sigma * w[0]);
     for (std::size_t j = 0; j < n; ++j) zn[j] -= s * w[j];
   }
+}
+
+// The viscoelastic obstacle at level m, its status explicit (d^m and dd/dt^m
+// by a backward difference): pushing, the dashpot joins the spring; clipped
+// (d > 0, k d + l dd/dt <= 0: R = 0), neither acts, so that the force in the
+// equation is the law's. Adjusts row 0's `contact`; returns sigma, the change
+// of A's (0, 0) entry, applied by Sherman-Morrison.
+double PaperScheme::viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact) {
+  const double k = law_.stiffness(), l = law_.viscosity(), g = law_.gap();
+  const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
+  contact_ = d <= 0.0 ? Contact::apart : k * d + l * d_rate > 0.0 ? Contact::pushing : Contact::clipped;
+  if (contact_ == Contact::pushing) {
+    contact += l * (zo[0] * 0.5 / dt_ - lambda_ * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]));
+    return dashpot_sigma_;
+  }
+  if (contact_ == Contact::clipped) {
+    // Drop the explicit half and the gap's share; cancel the implicit half
+    // (k/2) z_0^{m,alpha}: its z^m, z^{m-1} parts (in B1, B0) here, its
+    // alpha z^{m+1} part (in A) by sigma. A - alpha (k/2) e0 e0^T stays
+    // positive definite: it is A without the spring.
+    contact = 0.5 * k * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]);
+    return -0.5 * alpha_ * k;
+  }
+  return 0.0;
 }
 
 void PaperScheme::advance() {
@@ -320,9 +374,14 @@ void PaperScheme::accumulate_budget(long long m) {
     }
     dd *= dt_ * b_ / mesh_.h();
   }
-  if (dashpot_active_) {  // the obstacle's dashpot: dt l (du_0/dt)^2
+  if (contact_ == Contact::pushing) {  // the obstacle's dashpot: dt l (du_0/dt)^2
     const double rate = (sp * next_[0] - sm * prev_[0]) / (2.0 * dt_);
     dd += dt_ * law_.viscosity() * rate * rate;
+  } else if (contact_ == Contact::clipped) {
+    // The spring lets go unloaded: what k d^2 / 2 loses is dissipated, as
+    // k d^m (d^{m-1} - d^{m+1}) / 2, the centred form that telescopes to it.
+    const double d = law_.penetration(scale(m) * cur_[0]);
+    dd += law_.stiffness() * d * 0.5 * (sp * next_[0] - sm * prev_[0]);
   }
   work_last_ = dw;
   dissipation_last_ = dd;

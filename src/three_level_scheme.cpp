@@ -64,9 +64,26 @@ void ThreeLevelScheme::start() {
     next_[j] = u0_[j] + dt_ * v0_[j] + 0.5 * dt_ * dt_ * rhs_[j];
   }
   if (clamped_) next_[n - 1] = 0.0;
+  book_first_half_step(viscous);
   // A rigid obstacle holds from the first step. The start is a Taylor step,
   // dt^2/2 a^0, so the force behind a correction is twice that of a full step.
   reaction_ = law_.reaction(u0_[0], v0_[0]) + 2.0 * enforce_contact(prev_, cur_, next_);
+}
+
+// The row at t_n sums level m's increments, each centred on t_m, from m = 1:
+// the budget would start at t_{1/2}. The first half step's share, dt/2 times
+// the rates at t = 0, is booked here: the load's power F^0 . v^0, the bar's
+// dissipation v^0 . K_b v^0 and the viscoelastic obstacle's (R - k d) dd/dt.
+void ThreeLevelScheme::book_first_half_step(std::span<const double> viscous) {
+  double power = 0.0, dissipation = 0.0;
+  for (std::size_t j = 0; j < v0_.size(); ++j) {
+    power += load_[j] * v0_[j];
+    dissipation += viscous[j] * v0_[j];
+  }
+  if (law_.viscosity() > 0.0)
+    dissipation -= (law_.reaction(u0_[0], v0_[0]) - law_.stiffness() * law_.penetration(u0_[0])) * v0_[0];
+  work_half_ = 0.5 * dt_ * power;
+  dissipation_half_ = 0.5 * dt_ * dissipation;
 }
 
 double ThreeLevelScheme::clamp_end(double* next) const {
@@ -184,10 +201,11 @@ void ThreeLevelScheme::advance() {
   // Budget of level m: dW = F^m . (u^{m+1} - u^{m-1}) / 2, dD = viscous force . same.
   double dw = 0.0, dd = 0.0;
   if (!load_zero_ || viscous) bar_budget(dw, dd);
-  if (law_.viscosity() > 0.0 && penalty > 0.0) {  // the obstacle's dashpot
-    const double rate = (cur_[0] - prev_[0]) * inv_dt_;
-    dd += law_.viscosity() * rate * 0.5 * (next_[0] - prev_[0]);
-  }
+  // The viscoelastic obstacle's force beyond its spring's, R - k d, tested
+  // like the rest: the dashpot's l dd/dt while pushing, and -k d while the
+  // law clips (R = 0), the spring's energy k d^2 / 2 released.
+  if (law_.viscosity() > 0.0)
+    dd += (penalty - law_.stiffness() * law_.penetration(cur_[0])) * 0.5 * (prev_[0] - next_[0]);
   work_last_ = dw;
   dissipation_last_ = dd;
   work_half_ += dw;

@@ -12,6 +12,8 @@
 // the two sweeps of the solve. beta = 1/4,
 // gamma = 1/2 (the defaults) is the trapezoidal rule: energy-conserving
 // without contact; the penalty's trapezoidal work is not, at impacts.
+// D_visc takes the work of R - k d, the force beyond the spring's: the
+// dashpot's, and the spring's k d^2 / 2 released while the law clips.
 #pragma once
 
 #include "barimpact/one_step_scheme.hpp"
@@ -27,6 +29,8 @@ class NewmarkScheme final : public OneStepScheme {
  private:
   template <bool loaded, bool viscous>
   void step();
+  /// The viscoelastic obstacle's dissipation over the step (D_visc).
+  [[nodiscard]] double obstacle_dissipation(double u0_old, double R) const;
 
   double beta_, gamma_;
   FactoredTridiagonal factor_;

@@ -77,7 +77,7 @@ class FieldRecorder final : public Observer {
 };
 
 /// A contact episode: U + g < 0 from `start` to `end` (crossing times
-/// interpolated linearly between steps).
+/// interpolated linearly between steps, kept inside the step: start <= end).
 struct ContactInterval {
   double start = 0.0;
   double end = 0.0;

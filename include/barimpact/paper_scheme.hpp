@@ -16,7 +16,10 @@
 // z-variables, joins the implicit side, centred like D and alpha-averaged
 // like S, while the contact status is explicit (d^n > 0 and k d^n + l dd/dt^n
 // > 0): A + sigma e0 e0^T is solved by Sherman-Morrison with w = A^{-1} e0
-// computed once, so the matrix is still factored once.
+// computed once, so the matrix is still factored once. Where the law clips
+// (d^n > 0, k d^n + l dd/dt^n <= 0, R = 0) the spring's split is cancelled
+// too, its share of A by sigma = -alpha k/2: no obstacle force acts.
+// Start: z^1 by Taylor with the initial acceleration, second order.
 // Clamped far end: the last row of A becomes the identity, u_M = 0.
 //
 // Velocity and energies at t_n (docs/methods.md): V^n = (u^{n+1} - u^{n-1}) / (2 dt);
@@ -72,6 +75,13 @@ class PaperScheme final : public Scheme {
   void solve_level(long long m);
   /// Rotates the levels and books the budget of level m.
   void finish_level(long long m);
+  /// The viscoelastic obstacle's status at level m and its terms in row 0;
+  /// returns the change sigma of A's (0, 0) entry.
+  double viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact);
+  /// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0).
+  [[nodiscard]] std::vector<double> initial_acceleration() const;
+  /// W_ext and D_visc of (0, t_{1/2}), dt/2 times their rates at t = 0.
+  void book_first_half_step();
   /// exp(lambda t_m): u^m = scale(m) z^m (Remark 6.2).
   [[nodiscard]] double scale(long long m) const;
   /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
@@ -86,6 +96,7 @@ class PaperScheme final : public Scheme {
   Mesh mesh_;
   ObstacleLaw law_;
   double dt_, alpha_, lambda_, density_, a_, b_;
+  bool clamped_;
   Tridiagonal mass_, stiffness_a_, stiffness_b_;
 
   // Constant coefficients of A, B1, B0 on the uniform mesh: the off-diagonal
@@ -96,7 +107,10 @@ class PaperScheme final : public Scheme {
   std::vector<double> upper_;             // a_off / pivot: the factors' off-diagonal
   std::vector<double> dashpot_response_;  // w = A^{-1} e0 (viscoelastic obstacle)
   double dashpot_sigma_ = 0.0;            // l (alpha lambda + 1/(2 dt))
-  bool dashpot_active_ = false;           // the contact status used at the last level
+  /// The viscoelastic obstacle's status used at the last level: apart (d <= 0,
+  /// the split spring alone), pushing (spring and dashpot), clipped (R = 0).
+  enum class Contact { apart, pushing, clipped };
+  Contact contact_ = Contact::apart;
 
   std::array<std::vector<double>, 3> levels_;
   std::size_t stride_ = 1;  // node j of a level is at [j * stride_] (PaperBatch::width inside one)

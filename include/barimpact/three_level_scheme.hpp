@@ -8,7 +8,9 @@
 // explicit). Testing with (u^{n+1} - u^{n-1})/2 conserves, for b = 0, f = 0
 // and no contact, H^{n+1/2} = |w|_M^2 / 2 + (u^n)^T K_a u^{n+1} / 2 with
 // w = (u^{n+1} - u^n)/dt; the row at t_n reports the mean of H^{n-1/2} and
-// H^{n+1/2}. Derived classes decide M (lumped or consistent) and R^n.
+// H^{n+1/2}. W_ext and D_visc sum level m's increments (tested likewise)
+// from the first half step's, dt/2 times the rates at t = 0. Derived
+// classes decide M (lumped or consistent) and R^n.
 #pragma once
 
 #include <array>
@@ -82,6 +84,8 @@ class ThreeLevelScheme : public Scheme {
   template <bool viscous, bool loaded>
   [[gnu::always_inline]] inline double step_rows(const double* um, const double* u, double* up, double penalty);
   void load_at(long long n);
+  /// W_ext and D_visc of (0, t_{1/2}), from the start's rates (`viscous` = K_b v^0).
+  void book_first_half_step(std::span<const double> viscous);
   /// Adds the level's load work and the bar's viscous dissipation to dw, dd.
   void bar_budget(double& dw, double& dd) const;
   void half_step_energy(const double* a, const double* b, double& kinetic, double& strain) const;

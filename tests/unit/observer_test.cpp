@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "../support/run_case.hpp"
 #include "barimpact/simulate.hpp"
@@ -79,6 +82,60 @@ TEST(ContactMonitor, InterpolatesCrossingsAndReportsEachEpisode) {
   EXPECT_NEAR(m.intervals()[0].rebound_velocity, 1.0, 1e-3);
   EXPECT_NEAR(m.max_reaction(), 10.0, 1e-3);
   EXPECT_NEAR(m.max_penetration(), 1.0, 1e-3);
+}
+
+// A scheme whose end follows a given table of U and R, one entry per step.
+class TableScheme final : public Scheme {
+ public:
+  TableScheme(double dt, std::vector<double> U, std::vector<double> R) : dt_(dt), U_(std::move(U)), R_(std::move(R)) {}
+  void start() override { n_ = 0; }
+  void advance() override { ++n_; }
+  long long step() const override { return n_; }
+  double time() const override { return static_cast<double>(n_) * dt_; }
+  std::size_t nodes() const override { return 2; }
+  double end_displacement() const override { return U_[static_cast<std::size_t>(n_)]; }
+  double end_velocity() const override { return 0.0; }
+  double reaction() const override { return R_[static_cast<std::size_t>(n_)]; }
+  void displacement(std::span<double> out) const override { std::fill(out.begin(), out.end(), end_displacement()); }
+  void velocity(std::span<double> out) const override { std::fill(out.begin(), out.end(), 0.0); }
+  Energies energies() const override { return {}; }
+  bool finite() const override { return true; }
+
+ private:
+  double dt_;
+  std::vector<double> U_, R_;
+  long long n_ = 0;
+};
+
+TEST(ContactMonitor, KeepsEachCrossingInsideItsStep) {
+  // A rigid end pushed (R > 0) at t = 0.2 and 0.3 while above the face
+  // (U = 0.1, then 0.05): the lines through (t, U) cross U = 0 at 0.3 and
+  // 0.275, outside the steps (0.1, 0.2) and (0.3, 0.4) where the episode
+  // begins and ends, and in the wrong order. Clamped into them: 0.2 .. 0.3.
+  TableScheme s(0.1, {0.3, 0.2, 0.1, 0.05, 0.25, 0.3}, {0, 0, 1, 1, 0, 0});
+  ContactMonitor m(ObstacleData{ObstacleKind::rigid, 0.0, 0.0});
+  const std::array<Observer*, 1> obs{&m};
+  simulate(s, 5, obs);
+  ASSERT_EQ(m.intervals().size(), 1u);
+  EXPECT_DOUBLE_EQ(m.intervals()[0].start, 0.2);
+  EXPECT_DOUBLE_EQ(m.intervals()[0].end, 0.30000000000000004);  // 3 * 0.1
+  EXPECT_TRUE(m.intervals()[0].closed);
+}
+
+TEST(ContactMonitor, EpisodesNeverEndBeforeTheyStartOnPaoliSchatzmansGravityCase) {
+  // Example 2 against the rigid obstacle, Paoli-Schatzman at dt = 0.004: the
+  // end is pushed off and back while slightly above the face near lift-off
+  // (t ~ 2.94, U = 2.2e-4 with R > 0), where an unclamped crossing lands at 2.99.
+  const auto r = run(testing::example("paper-example2-rigid.toml",
+                                      {"time.scheme=\"paoli-schatzman\"", "time.step=0.004", "output.fields_at=[]"}));
+  ASSERT_GE(r.summary.contacts.size(), 2u);
+  for (std::size_t i = 0; i < r.summary.contacts.size(); ++i) {
+    const auto& c = r.summary.contacts[i];
+    EXPECT_LE(c.start, c.end) << "episode " << i;
+    if (i > 0) {
+      EXPECT_LE(r.summary.contacts[i - 1].end, c.start) << "episode " << i;
+    }
+  }
 }
 
 }  // namespace

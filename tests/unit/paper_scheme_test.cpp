@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -69,12 +70,11 @@ TEST(PaperScheme, FirstStepsOfTwoElementsMatchTheHandComputation) {
 struct DenseReference {
   using Matrix = testing::DenseMatrix;
   std::size_t n;
-  Matrix A, B1, B0;
+  Matrix A, B1, B0, Mh, Ka, Kb;
 
   DenseReference(int M, double L, double rho, double a, double b, double k, double dt, double alpha, double lambda)
-      : n(static_cast<std::size_t>(M) + 1), A(n, std::vector<double>(n)), B1(A), B0(A) {
+      : n(static_cast<std::size_t>(M) + 1), A(n, std::vector<double>(n)), B1(A), B0(A), Mh(A), Ka(A), Kb(A) {
     const double h = L / M;
-    Matrix Mh(n, std::vector<double>(n)), Ka(Mh), Kb(Mh);
     for (std::size_t e = 0; e + 1 < n; ++e) {
       const double me[2][2] = {{rho * h / 3, rho * h / 6}, {rho * h / 6, rho * h / 3}};
       const double ke[2][2] = {{1 / h, -1 / h}, {-1 / h, 1 / h}};
@@ -141,11 +141,22 @@ lambda = 0.4
     for (auto& f : F) f *= t * std::exp(-lambda * t);
     return F;
   };
+  // The Taylor start: z^1 = u0 + dt (v0 - lambda u0) + (dt^2/2) (a0 - 2 lambda v0 + lambda^2 u0),
+  // M_h a0 = F(0) - K_a u0 - K_b v0 + k ((u0_0 + g)^-) e0 (F(0) = 0 here).
+  std::vector<double> u0(n), v0(n), f0(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    u0[j] = 0.02 * static_cast<double>(j) * h;
+    v0[j] = -1 + static_cast<double>(j) * h / 3;
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) f0[i] -= ref.Ka[i][j] * u0[j] + ref.Kb[i][j] * v0[j];
+  f0[0] += k * std::max(0.0, -(u0[0] + g));
+  const auto a0 = testing::dense_solve(ref.Mh, f0);
   std::vector<double> zm(n), z(n);
   for (std::size_t j = 0; j < n; ++j) {
-    const double x = static_cast<double>(j) * h, u0 = 0.02 * x, v0 = -1 + x / 3;
-    zm[j] = u0;
-    z[j] = u0 + dt * (v0 - lambda * u0);
+    zm[j] = u0[j];
+    z[j] =
+        u0[j] + dt * (v0[j] - lambda * u0[j]) + 0.5 * dt * dt * (a0[j] - 2 * lambda * v0[j] + lambda * lambda * u0[j]);
   }
   bool touched = false;
   for (int m = 1; m <= 20; ++m) {

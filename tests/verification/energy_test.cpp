@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "../support/run_case.hpp"
 
@@ -84,6 +85,28 @@ TEST(EnergyBudget, PenaltyContactErrorFallsWithTheStep) {
     err.push_back(r.summary.energy_error_max);
   }
   for (std::size_t i = 1; i < err.size(); ++i) EXPECT_GT(std::log2(err[i - 1] / err[i]), 1.5) << i;
+}
+
+TEST(EnergyBudget, ThreeLevelSchemesCloseItFromTheStartUnderAConstantLoad) {
+  // Example 2's load f = -1 on a strained, viscous bar without obstacle. Row
+  // n sums level m's work from m = 1, each centred on t_m; the first half
+  // step's, P(0) dt / 2 (and its dissipation), is booked at the start.
+  for (auto [scheme, dt] :
+       {std::pair{"paper", 0.004}, std::pair{"central-difference", 0.004}, std::pair{"paoli-schatzman", 0.0015}}) {
+    const auto r = run(testing::example(
+        "paper-example2.toml", {std::string("time.scheme=\"") + scheme + "\"", "time.step=" + std::to_string(dt),
+                                "obstacle.kind=none", "bar.viscosity=0.01", "initial.velocity=\"-1 + 0.5*x\"",
+                                "initial.displacement=\"0.05*x\"", "time.end=3", "output.fields_at=[]"}));
+    double worst = 0, size = 0;
+    for (const auto& row : r.history) {
+      worst = std::max(worst, std::abs(total_energy(row) - total_energy(r.history.front())));
+      size = std::max(size, row.E_kin + row.E_strain);
+    }
+    // Left: the start's O(dt^2), the rows' energies being half-step means.
+    // Measured 1.1e-8 (paper), 2.8e-9 (central-difference), 2.9e-8
+    // (paoli-schatzman); without the half step 2.1e-4, 2.1e-4, 8.0e-5.
+    EXPECT_LT(worst, 1e-6 * size) << scheme << " relative " << worst / size;
+  }
 }
 
 }  // namespace

@@ -250,7 +250,7 @@ TEST(EnergyBudget, MoreauJeanLosesWhatNewtonsLawPredicts) {
 
 TEST(ViscoelasticObstacle, DissipatesAtImpactAndLessAsKGrows) {
   // l = 1/2 fixed. The continuum predicts O(1/k) (the end's velocity relaxes
-  // in tau = (rho c + l)/k): measured D(100)/D(400) = 3.5. The balance,
+  // in tau = (rho c + l)/k): measured D(100)/D(400) = 3.6. The balance,
   // dashpot included in D_visc, closes within 0.1%.
   std::vector<double> dissipated;
   for (double k : {100.0, 400.0}) {
@@ -266,6 +266,95 @@ TEST(ViscoelasticObstacle, DissipatesAtImpactAndLessAsKGrows) {
   const double order = std::log2(dissipated[0] / dissipated[1]) / 2.0;
   EXPECT_GT(order, 0.7);
   EXPECT_LT(order, 1.2);
+}
+
+TEST(ViscoelasticObstacle, PaperReactionConvergesWhereTheLawClips) {
+  // k = 1000, l = 5 > rho c: right after the impact the dashpot throws the end
+  // back, and k d + l dd/dt < 0 while d > 0 for t in (0.010, 0.014): the law
+  // clips, R = 0. At fixed h (M = 20), R converges in dt to the semi-discrete
+  // solution, Newmark's at dt = 2e-6 (it solves the law implicitly).
+  auto at = [](const std::string& scheme, double dt, int every) {
+    return run(example("paper-example1.toml",
+                       {"obstacle.kind=viscoelastic", "obstacle.stiffness=1000", "obstacle.viscosity=5",
+                        "bar.elements=20", "time.end=0.5", "time.scheme=\"" + scheme + "\"", "time.step=" + num(dt),
+                        "output.every=" + std::to_string(every), "output.fields_at=[]"}));
+  };
+  const double coarse = 2.5e-4;
+  const auto ref = at("newmark", 2e-6, 125);  // a row every 2.5e-4
+  int clipped = 0;
+  for (const auto& row : ref.history) clipped += row.U < 0 && row.R == 0;
+  ASSERT_GE(clipped, 10) << "the case must clip during contact";
+  std::vector<double> err;  // int |R - R_ref| dt
+  for (int r : {8, 4, 2, 1}) {
+    const auto paper = at("paper", r * coarse, 1);
+    double e = 0;
+    for (std::size_t i = 0; i < paper.history.size(); ++i)
+      e += std::abs(paper.history[i].R - ref.history[i * static_cast<std::size_t>(r)].R) * r * coarse;
+    err.push_back(e);
+  }
+  // R jumps by l |V| = 5 when the dashpot engages at impact: a jump placed to
+  // O(dt) caps the L1 order at 1. Measured 1.23, 1.09, 1.05 (0.67, 0.47, 0.22
+  // while the spring stayed in the update with R reported 0).
+  for (std::size_t i = 1; i < err.size(); ++i) EXPECT_GT(std::log2(err[i - 1] / err[i]), 0.9) << "level " << i;
+}
+
+TEST(EnergyBudget, PenaltySchemesBookTheSpringWhenTheViscoelasticLawClips) {
+  // A soft, strongly damped obstacle (k = 10, l = 3): the end leaves while
+  // still penetrating, k d + l dd/dt < 0 with d > 0, R = 0. The spring's
+  // k d^2 / 2, in E_obstacle while stored, goes to D_visc as it is released.
+  for (auto scheme : {"paper", "newmark", "central-difference"}) {
+    const auto r =
+        run(example("paper-example1.toml", {std::string("time.scheme=\"") + scheme + "\"", "obstacle.kind=viscoelastic",
+                                            "obstacle.stiffness=10", "obstacle.viscosity=3", "bar.elements=50",
+                                            "time.step=0.001", "time.end=4", "output.fields_at=[]"}));
+    int clipped = 0;
+    double worst = 0;
+    const double initial = total_energy(r.history.front());
+    for (const auto& row : r.history) {
+      clipped += row.U < 0 && row.R == 0;
+      worst = std::max(worst, std::abs(total_energy(row) - initial));
+    }
+    ASSERT_GE(clipped, 10) << scheme;
+    // What remains is O(dt^2): the spring's energy against its discrete work
+    // across the face and at the switches. Measured 5.8e-6 (paper), 8.6e-7
+    // (newmark), 8.5e-6 (central-difference); 7.3e-2 and 7.2e-2 for the last
+    // two when the released energy was booked nowhere.
+    EXPECT_LT(worst / initial, 1e-4) << scheme;
+  }
+}
+
+TEST(PaperScheme, IsSecondOrderInTimeWithANonzeroInitialAcceleration) {
+  // Example 2's load f = -1 on a bar clamped at x = L, at rest, without
+  // obstacle: a0 = M^{-1} F != 0. At fixed h (M = 20) the max error of U
+  // against the semi-discrete solution (Newmark at dt = 0.01/64), dt halved
+  // from 0.01. Shifted (lambda = 0.25, with viscosity) and not.
+  for (const std::vector<std::string>& variant :
+       {std::vector<std::string>{}, std::vector<std::string>{"time.lambda=0.25", "bar.viscosity=0.01"}}) {
+    auto at = [&](const std::string& scheme, double dt) {
+      std::vector<std::string> sets = variant;
+      for (const char* key : {"obstacle.kind=none", "bar.far_end=\"clamped\"", "initial.velocity=\"0\"",
+                              "bar.elements=20", "time.end=2", "output.fields_at=[]"})
+        sets.emplace_back(key);
+      sets.push_back("time.scheme=\"" + scheme + "\"");
+      sets.push_back("time.step=" + num(dt));
+      return run(example("paper-example2.toml", sets));
+    };
+    const auto ref = at("newmark", 0.01 / 64);
+    std::vector<double> err;
+    for (int r : {64, 32, 16, 8}) {
+      const auto paper = at("paper", r * 0.01 / 64);
+      double e = 0;
+      for (std::size_t i = 0; i < paper.history.size(); ++i)
+        e = std::max(e, std::abs(paper.history[i].U - ref.history[i * static_cast<std::size_t>(r)].U));
+      err.push_back(e);
+    }
+    // A linear problem with a smooth solution: the scheme's order, 2, once the
+    // start is second order. Measured 1.96-2.02 (1.00-1.02 with the
+    // first-order start z^1 = u0 + dt (v0 - lambda u0)).
+    for (std::size_t i = 1; i < err.size(); ++i)
+      EXPECT_GT(std::log2(err[i - 1] / err[i]), 1.8)
+          << (variant.empty() ? "lambda = 0" : "lambda = 0.25") << " level " << i;
+  }
 }
 
 }  // namespace
