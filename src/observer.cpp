@@ -89,19 +89,20 @@ bool ContactMonitor::observe(const Scheme& s) {
   const double R = s.reaction();
   // On the obstacle: penetrating (penalty), or held by a reaction (rigid: U + g = 0).
   const bool contact = law_.kind() != ObstacleKind::none && (d < 0.0 || R > 0.0);
-  // Linear interpolation of the crossing of U + g = 0 between two steps, kept
-  // in the step: contact seen through R > 0 alone (a rigid end pushed while
-  // above the face) may have d > 0 on both sides of the step, and the line's
-  // zero then lies outside it, possibly beyond the episode's other end.
-  auto crossing = [&] {
+  // The crossing of U + g = 0, linear between the last two steps. A rigid
+  // end can be held by a reaction one step before it reaches the face (R^n
+  // is the force that puts u^{n+1} on it), so an episode's start may lie up
+  // to a step ahead of the step that opened it; it never lies before the
+  // previous step, and an episode never ends before it starts.
+  auto crossing = [&](double latest) {
     if (!have_previous_ || previous_d_ == d) return t;  // a rigid end sits at d = 0
-    return std::clamp(previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d), previous_t_, t);
+    return std::clamp(previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d), previous_t_, latest);
   };
   if (contact && !in_contact_) {
-    intervals_.push_back({crossing(), t, false, 0.0, 0.0});
+    intervals_.push_back({crossing(t + (t - previous_t_)), t, false, 0.0, 0.0});
   } else if (!contact && in_contact_) {
     auto& last = intervals_.back();
-    last.end = crossing();
+    last.end = std::max(crossing(t), last.start);
     last.closed = true;
     last.exit_velocity = s.end_velocity();
     // Mean velocity: the consistent P1 mass gives momentum rho h sum (v_j + v_{j+1}) / 2.
@@ -112,7 +113,7 @@ bool ContactMonitor::observe(const Scheme& s) {
   }
   if (contact) {
     auto& last = intervals_.back();
-    last.end = t;
+    last.end = std::max(t, last.start);
     last.max_reaction = std::max(last.max_reaction, R);
     max_penetration_ = std::max(max_penetration_, -d);
     max_reaction_ = std::max(max_reaction_, R);

@@ -77,7 +77,8 @@ class FieldRecorder final : public Observer {
 };
 
 /// A contact episode: U + g < 0 from `start` to `end` (crossing times
-/// interpolated linearly between steps, kept inside the step: start <= end).
+/// interpolated linearly between steps; a start up to a step ahead of the
+/// step that saw the contact, an end never before the start).
 struct ContactInterval {
   double start = 0.0;
   double end = 0.0;

@@ -107,18 +107,19 @@ class TableScheme final : public Scheme {
   long long n_ = 0;
 };
 
-TEST(ContactMonitor, KeepsEachCrossingInsideItsStep) {
+TEST(ContactMonitor, StartsAtMostAStepAheadAndNeverEndsBeforeItStarts) {
   // A rigid end pushed (R > 0) at t = 0.2 and 0.3 while above the face
   // (U = 0.1, then 0.05): the lines through (t, U) cross U = 0 at 0.3 and
-  // 0.275, outside the steps (0.1, 0.2) and (0.3, 0.4) where the episode
-  // begins and ends, and in the wrong order. Clamped into them: 0.2 .. 0.3.
+  // 0.275, in the wrong order. The start may lie a step ahead of the step
+  // that saw the contact (R^n places u^{n+1}): 0.3; the end, clamped into
+  // its step (0.3, 0.4), is not before it: 0.3 .. 0.3.
   TableScheme s(0.1, {0.3, 0.2, 0.1, 0.05, 0.25, 0.3}, {0, 0, 1, 1, 0, 0});
   ContactMonitor m(ObstacleData{ObstacleKind::rigid, 0.0, 0.0});
   const std::array<Observer*, 1> obs{&m};
   simulate(s, 5, obs);
   ASSERT_EQ(m.intervals().size(), 1u);
-  EXPECT_DOUBLE_EQ(m.intervals()[0].start, 0.2);
-  EXPECT_DOUBLE_EQ(m.intervals()[0].end, 0.30000000000000004);  // 3 * 0.1
+  EXPECT_DOUBLE_EQ(m.intervals()[0].start, 0.30000000000000004);  // 3 * 0.1
+  EXPECT_DOUBLE_EQ(m.intervals()[0].end, 0.30000000000000004);
   EXPECT_TRUE(m.intervals()[0].closed);
 }
 
