@@ -200,20 +200,23 @@ PYBIND11_MODULE(_core, m) {
       [](const Case& c, const py::object& progress) {
         RunOptions options;
         std::exception_ptr failure;
-        if (!progress.is_none()) {
-          options.progress = [&progress, &failure](const Progress& p) {
-            py::gil_scoped_acquire gil;
-            try {
-              const py::object answer =
-                  progress(py::dict(py::arg("step") = p.step, py::arg("steps") = p.steps, py::arg("t") = p.t,
-                                    py::arg("t_end") = p.t_end, py::arg("elapsed") = p.elapsed_seconds));
-              return answer.is_none() || answer.cast<bool>();
-            } catch (...) {
-              failure = std::current_exception();
-              return false;
-            }
-          };
-        }
+        // Called about every 0.2 s: Ctrl-C (KeyboardInterrupt) stops the run
+        // after the step under way, then the user's callback, if any.
+        options.progress_interval = progress.is_none() ? 0.2 : 0.5;
+        options.progress = [&progress, &failure](const Progress& p) {
+          py::gil_scoped_acquire gil;
+          try {
+            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+            if (progress.is_none()) return true;
+            const py::object answer =
+                progress(py::dict(py::arg("step") = p.step, py::arg("steps") = p.steps, py::arg("t") = p.t,
+                                  py::arg("t_end") = p.t_end, py::arg("elapsed") = p.elapsed_seconds));
+            return answer.is_none() || answer.cast<bool>();
+          } catch (...) {
+            failure = std::current_exception();
+            return false;
+          }
+        };
         auto result = std::make_unique<PyResult>(PyResult{c, {}});
         {
           py::gil_scoped_release release;
@@ -224,7 +227,7 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("case"), py::arg("progress") = py::none(),
       "Run a case (the GIL is released); `progress(info: dict)` is called about twice a second,\n"
-      "returning False stops the run.");
+      "returning False stops the run. Ctrl-C stops it too, raising KeyboardInterrupt.");
 
   m.def(
       "exact",

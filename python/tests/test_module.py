@@ -158,3 +158,19 @@ def test_summary_lists_warnings():
                                          set={"obstacle.stiffness": 1e4, "time.step": 1e-3}))
     kinds = {w.split(":")[0] for w in stiff.summary["warnings"]}
     assert {"energy-balance", "penalty-unresolved"} <= kinds
+
+
+def test_ctrl_c_stops_a_long_run():
+    # SIGINT from another thread while the run holds no GIL: the run ends
+    # after the step under way and KeyboardInterrupt reaches the caller.
+    import os
+    import signal
+    case = barimpact.Case(EXAMPLES / "paper-example1.toml",
+                          set={"bar.elements": 2000, "time.step": 1e-4, "time.end": 1e4, "output.every": 10000,
+                               "output.fields_at": []})
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        barimpact.run(case)
+    assert time.monotonic() - start < 5.0  # the whole run would take minutes
