@@ -243,6 +243,13 @@ TEST(Case, ErrorsStayOneLineWhateverTheInputHolds) {
   EXPECT_REFUSED("[load]\nbody_force = \"1 +\\n\"", "load.body_force");
 }
 
+TEST(Case, RefusesAnExpressionThatMuparserWouldReadOnlyInPart) {
+  // muparser stops at a NUL: "-1\0 + 2" would run as -1.
+  EXPECT_REFUSED("[initial]\nvelocity = \"-1\\u0000 + 2\"", "initial.velocity", "NUL");
+  const std::string msg = refusal("", {std::string("initial.velocity=t\0junk", 23)});
+  EXPECT_NE(msg.find("NUL"), std::string::npos) << msg;
+}
+
 TEST(Case, ResolvedTomlKeepsEveryFieldTimeExactly) {
   // Times below 1 are written by hand: toml++ 3.3 sizes float arrays with
   // size_t(log10(x)) (undefined for x < 1).
