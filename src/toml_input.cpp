@@ -53,7 +53,7 @@ class NonAsciiGuard {
  private:
   [[nodiscard]] bool done() const { return i_ >= t_.size(); }
   [[nodiscard]] char peek(std::size_t k = 0) const { return i_ + k < t_.size() ? t_[i_ + k] : '\0'; }
-  [[nodiscard]] bool starts(std::string_view s) const { return t_.substr(i_).starts_with(s); }
+  [[nodiscard]] bool starts(std::string_view s) const { return !done() && t_.substr(i_).starts_with(s); }
   static bool ascii(char c) { return static_cast<unsigned char>(c) < 0x80; }
   static bool bare_key(char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
