@@ -1,15 +1,19 @@
 # Quick start on a fresh Debian machine (as root, or with sudo):
 #   make demo   installs what is missing, builds in Release, runs both paper examples into out/ with figures
-#   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan)
+#   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan, then a bounded fuzzing run)
+#   make fuzz   only the fuzzing run: the input layer's libFuzzer targets (clang), FUZZ_SECONDS each
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
             nlohmann-json3-dev libgtest-dev libbenchmark-dev \
             python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest \
-            libopenmpi-dev openmpi-bin python3-scipy
+            libopenmpi-dev openmpi-bin python3-scipy \
+            clang-14 libclang-rt-14-dev python3-hypothesis
 PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2
+FUZZ_TARGETS := case overrides sweep
+FUZZ_SECONDS ?= 55
 
-.PHONY: deps build demo test bench verification format clean
+.PHONY: deps build demo test fuzz bench verification format clean
 
 deps:
 	@missing=""; for p in $(PACKAGES); do \
@@ -42,6 +46,12 @@ test: deps
 	cmake --preset dev
 	cmake --build --preset dev -j $(JOBS)
 	ctest --preset dev -j $(JOBS)
+	$(MAKE) --no-print-directory fuzz
+
+fuzz: deps
+	cmake --preset fuzz
+	cmake --build --preset fuzz -j $(JOBS)
+	bash tests/fuzz/run.sh build/fuzz $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 bench: build
 	$(PYTHON) bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md

@@ -16,6 +16,8 @@ struct Expression::Impl {
 
 Expression::Expression(const std::string& text) : impl_(std::make_unique<Impl>()) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError("the expression is empty");
+  // muparser stops reading at a NUL: the rest would be silently ignored.
+  if (text.find('\0') != std::string::npos) throw InputError("the expression holds a NUL character");
   try {
     impl_->parser.DefineVar("x", &impl_->x);
     impl_->parser.DefineVar("t", &impl_->t);

@@ -57,7 +57,8 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
 
 namespace {
 
-RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOptions& options);
+RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOptions& options,
+                     bool finite_rows = true);
 
 // The observers of one run and the summary they add up to.
 struct Recorders {
@@ -68,8 +69,8 @@ struct Recorders {
   std::array<Observer*, 3> all() { return {&history, &fields, &contact}; }
 };
 
-RunResult collect(const Case& c, const LoopResult& loop, long long steps, Recorders& rec,
-                  std::chrono::steady_clock::time_point started);
+RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
+                  std::chrono::steady_clock::time_point started, bool finite_rows = true);
 
 }  // namespace
 
@@ -138,7 +139,7 @@ RunResult run_exact(const Case& c) {
   const double known = solution->valid_until();
   long long steps = c.step_count();
   if (std::isfinite(known)) steps = std::min(steps, static_cast<long long>(std::floor(known / c.time.step)));
-  RunResult r = run_scheme(c, *scheme, steps, {});
+  RunResult r = run_scheme(c, *scheme, steps, {}, false);  // energies are NaN where u(x, t) is not known
   r.summary.method = "exact";
   r.summary.message = solution->name();
   return r;
@@ -146,7 +147,7 @@ RunResult run_exact(const Case& c) {
 
 namespace {
 
-RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options) {
+RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options, bool finite_rows) {
   const auto started = std::chrono::steady_clock::now();
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
@@ -154,12 +155,30 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact};
   if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
-  return collect(c, loop, steps, rec, started);
+  return collect(c, loop, steps, rec, started, finite_rows);
 }
 
-RunResult collect(const Case& c, const LoopResult& loop, long long steps, Recorders& rec,
-                  std::chrono::steady_clock::time_point started) {
+RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
+                  std::chrono::steady_clock::time_point started, bool finite_rows) {
   RunResult r;
+  r.history = rec.history.rows();
+  if (finite_rows && loop.status == RunStatus::complete) {
+    // The state can stay finite while what is read off it overflows (a
+    // blowing-up run squares (u^{n+1} - u^n)/dt in its energies first): the
+    // first row that is not finite ends the run there, as a non-finite state would.
+    const auto bad = std::find_if(r.history.begin(), r.history.end(), [](const HistoryRow& h) {
+      return !(std::isfinite(h.t) && std::isfinite(h.U) && std::isfinite(h.V) && std::isfinite(h.R) &&
+               std::isfinite(h.E_kin) && std::isfinite(h.E_strain) && std::isfinite(h.E_obstacle) &&
+               std::isfinite(h.W_ext) && std::isfinite(h.D_visc));
+    });
+    if (bad != r.history.end()) {
+      const long long step = std::llround(bad->t / c.time.step);
+      loop.status = RunStatus::non_finite;
+      loop.message = fmt::format("the history became non-finite at step {} (t = {})", step, bad->t);
+      loop.steps_done = std::max(0LL, step - 1);
+      r.history.erase(bad, r.history.end());
+    }
+  }
   Summary& s = r.summary;
   s.method = c.time.scheme;
   s.status = loop.status;
@@ -171,7 +190,6 @@ RunResult collect(const Case& c, const LoopResult& loop, long long steps, Record
   s.contacts = rec.contact.intervals();
   s.max_penetration = rec.contact.max_penetration();
   s.max_reaction = rec.contact.max_reaction();
-  r.history = rec.history.rows();
   if (!r.history.empty()) {
     auto total = [](const HistoryRow& h) { return h.E_kin + h.E_strain + h.E_obstacle - h.W_ext + h.D_visc; };
     s.energy_initial = total(r.history.front());

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <toml++/toml.h>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -15,18 +14,13 @@
 #include "barimpact/output_directory.hpp"
 #include "barimpact/paper_scheme.hpp"
 #include "barimpact/simulate.hpp"
+#include "toml_input.hpp"
 
 namespace barimpact {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string toml_text(const toml::node& n) {
-  std::ostringstream out;
-  n.visit([&](auto&& v) { out << v; });
-  return out.str();
-}
 
 std::string plain_text(const std::string& toml_value) {
   if (toml_value.size() >= 2 && (toml_value.front() == '\'' || toml_value.front() == '"'))
@@ -68,30 +62,29 @@ SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
 SweepPlan SweepPlan::from_file(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such sweep file", path.string()));
-  toml::table root;
-  try {
-    root = toml::parse_file(path.string());
-  } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("{}:{}: not valid TOML: {}", path.string(), e.source().begin.line, e.description()));
-  }
-  auto where = [&](const toml::node& n) { return fmt::format("{}:{}", path.string(), n.source().begin.line); };
+  return from_string(read_input_file(path, "sweep file"), path.string(), path.parent_path());
+}
+
+SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin, const fs::path& dir) {
+  const std::string source(origin);
+  toml::table root = parse_toml(text, origin);
+  auto where = [&](const toml::node& n) { return fmt::format("{}:{}", source, n.source().begin.line); };
   for (auto&& [k, v] : root)
     if (k != "case" && k != "set" && k != "axis" && k != "zip")
       throw InputError(fmt::format("{}: unknown key {} (known: case, set, axis, zip)", where(v), k.str()));
   SweepPlan plan;
   const auto* c = root.get_as<std::string>("case");
-  if (c == nullptr) throw InputError(fmt::format("{}: case = \"CASE.toml\" is required", path.string()));
-  plan.case_file_ = path.parent_path() / c->get();
+  if (c == nullptr) throw InputError(fmt::format("{}: case = \"CASE.toml\" is required", source));
+  plan.case_file_ = dir / c->get();
   if (const auto* set = root.get_as<toml::table>("set")) {
     for (auto&& [section, keys] : *set) {
       if (!keys.is_table()) throw InputError(fmt::format("{}: [set] takes section.key = value", where(keys)));
       for (auto&& [key, value] : *keys.as_table())
-        plan.base_sets_.push_back({fmt::format("{}.{}={}", section.str(), key.str(), toml_text(value))});
+        plan.base_sets_.push_back({fmt::format("{}.{}={}", section.str(), key.str(), toml_value_text(value))});
     }
   }
   const auto* axes = root.get_as<toml::array>("axis");
-  if (axes == nullptr || axes->empty())
-    throw InputError(fmt::format("{}: at least one [[axis]] is required", path.string()));
+  if (axes == nullptr || axes->empty()) throw InputError(fmt::format("{}: at least one [[axis]] is required", source));
   std::vector<SweepAxis> list;
   for (const auto& node : *axes) {
     const auto* t = node.as_table();
@@ -107,7 +100,7 @@ SweepPlan SweepPlan::from_file(const fs::path& path) {
     if (key == nullptr) throw InputError(fmt::format("{}: axis.key = \"section.key\" is required", where(node)));
     a.key = key->get();
     if (const auto* values = t->get_as<toml::array>("values")) {
-      for (const auto& v : *values) a.values.push_back(toml_text(v));
+      for (const auto& v : *values) a.values.push_back(toml_value_text(v));
     } else if (t->contains("from")) {
       const double bad = std::numeric_limits<double>::quiet_NaN();
       const double from = (*t)["from"].value_or(bad), to = (*t)["to"].value_or(bad);
@@ -157,7 +150,7 @@ SweepPlan SweepPlan::from_file(const fs::path& path) {
         std::size_t i = 0;
         while (i < list.size() && (!name || list[i].key != *name)) ++i;
         if (i == list.size())
-          throw InputError(fmt::format("{}: zip names {}, which is no axis", where(z), toml_text(n)));
+          throw InputError(fmt::format("{}: zip names {}, which is no axis", where(z), toml_value_text(n)));
         if (grouped[i]) throw InputError(fmt::format("{}: axis {} is zipped twice", where(z), list[i].key));
         if (list[i].values.size() != list[g.empty() ? i : g.front()].values.size())
           throw InputError(fmt::format("{}: zipped axes must have as many values each", where(z)));
@@ -172,9 +165,14 @@ SweepPlan SweepPlan::from_file(const fs::path& path) {
   std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
   for (const auto& a : list) plan.keys_.push_back(a.key);
 
+  // The number of cases, refused before the product can wrap around.
+  constexpr std::size_t most = 10'000'000;
   std::size_t total = 1;
-  for (const auto& g : groups) total *= list[g.front()].values.size();
-  if (total > 10'000'000) throw InputError(fmt::format("{}: {} cases; at most 1e7", path.string(), total));
+  for (const auto& g : groups) {
+    const std::size_t size = list[g.front()].values.size();
+    if (total > most / size) throw InputError(fmt::format("{}: more than 1e7 cases", source));
+    total *= size;
+  }
   const int width = std::max(4, static_cast<int>(std::to_string(total - 1).size()));
   for (std::size_t n = 0; n < total; ++n) {
     SweepPoint p;

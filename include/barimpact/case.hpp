@@ -19,7 +19,9 @@ namespace barimpact {
 /// rule it breaks; the command line prints it and exits with status 2.
 class InputError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  /// Control characters in `what` (quoted input: a key, a value, toml++'s
+  /// excerpt) are escaped, so that the message stays one line.
+  explicit InputError(const std::string& what);
 };
 
 enum class ObstacleKind { none, elastic, viscoelastic, rigid };
@@ -98,6 +100,10 @@ struct Case {
   /// reproduces this case exactly.
   [[nodiscard]] std::string to_toml() const;
 };
+
+/// The whole of an input file (`what`: "case file", "sweep file"); empty is
+/// fine. Throws InputError when it cannot be read or exceeds 64 MiB.
+[[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what);
 
 [[nodiscard]] std::string_view to_string(ObstacleKind kind);
 [[nodiscard]] std::string_view to_string(FarEnd end);

@@ -25,6 +25,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -47,6 +48,9 @@ class SweepPlan {
   /// Reads and checks a sweep file; every point's case is validated too.
   /// Throws InputError naming the file, line and key.
   static SweepPlan from_file(const std::filesystem::path& path);
+  /// Same from TOML text: `origin` names it in error messages and `case`
+  /// is resolved relative to `dir` (the sweep file's directory).
+  static SweepPlan from_string(std::string_view toml, std::string_view origin, const std::filesystem::path& dir);
 
   [[nodiscard]] const std::vector<SweepPoint>& points() const { return points_; }
   [[nodiscard]] const std::vector<std::string>& keys() const { return keys_; }

@@ -1,5 +1,6 @@
 #include "barimpact/case.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -205,6 +206,68 @@ TEST(Case, RefusesMissingAndUnreadableFiles) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/case.toml"), std::string::npos);
   }
+}
+
+TEST(Case, EmptyCaseFileGivesTheDefaults) {
+  const auto path = std::filesystem::temp_directory_path() / "barimpact-empty-case.toml";
+  std::ofstream(path).close();
+  const Case c = Case::from_file(path);
+  std::filesystem::remove(path);
+  EXPECT_EQ(c.to_toml(), case_from("").to_toml());
+}
+
+TEST(Case, ReadsNonAsciiTextInCommentsAndStringValues) {
+  const Case c = case_from(
+      "# \xCF\x81 = 7800 kg/m\xC2\xB3\n[bar] # \xC3\xA9\nlength = 2.0 # \xC2\xA7\n[output]\nfields_at = [ # \xC3\xBC\n "
+      " 0.5,\n]\n");
+  EXPECT_EQ(c.bar.length, 2.0);
+  // A word with a non-ASCII letter is read, then refused as a word.
+  EXPECT_REFUSED("[time]\nscheme = \"p\xC3\xA4per\"", "time.scheme", "must be one of");
+}
+
+TEST(Case, RefusesNonAsciiTextWhereTomlDoesNotAllowIt) {
+  // toml++ 3.3 would reach undefined behaviour classifying these characters.
+  EXPECT_REFUSED("[bar]\nlength = 1\xC3\xA9", "test.toml:2:11", "non-ASCII character outside a string");
+  EXPECT_REFUSED("[bar]\n\"l\xC3\xA9ngth\" = 1", "test.toml:2:3", "non-ASCII character in a key");
+  EXPECT_REFUSED("[\xC3\xA9]", "test.toml:1:2", "non-ASCII");
+  EXPECT_REFUSED("[load]\nbody_force = \"\"\"\\\n  \xC2\xA7\"\"\"", "test.toml:3:3", "line-ending backslash");
+  EXPECT_REFUSED("[load]\nbody_force = \"\"\"\\\xC2\xA7\"\"\"", "after a backslash");
+  EXPECT_REFUSED("[bar]\nlength = 715\"\xCC\x9A\"", "outside a string");
+  const std::string msg = refusal("", {"bar.length=1\xC3\xA9"});  // not TOML: read as a word
+  EXPECT_NE(msg.find("must be a number (got a string)"), std::string::npos) << msg;
+}
+
+TEST(Case, ErrorsStayOneLineWhateverTheInputHolds) {
+  EXPECT_REFUSED("[bar]\n\"a\\nb\" = 1", "unknown key bar.a\\nb");
+  EXPECT_REFUSED("d. 6=t\n0(sep = 0.01\n", "not valid TOML");  // toml++ quotes the text it saw
+  EXPECT_REFUSED("[load]\nbody_force = \"1 +\\n\"", "load.body_force");
+}
+
+TEST(Case, RefusesAnExpressionThatMuparserWouldReadOnlyInPart) {
+  // muparser stops at a NUL: "-1\0 + 2" would run as -1.
+  EXPECT_REFUSED("[initial]\nvelocity = \"-1\\u0000 + 2\"", "initial.velocity", "NUL");
+  const std::string msg = refusal("", {std::string("initial.velocity=t\0junk", 23)});
+  EXPECT_NE(msg.find("NUL"), std::string::npos) << msg;
+}
+
+TEST(Case, ResolvedTomlKeepsEveryFieldTimeExactly) {
+  // Times below 1 are written by hand: toml++ 3.3 sizes float arrays with
+  // size_t(log10(x)) (undefined for x < 1).
+  const std::vector<double> times{0.0, 1e-5, 0.0004, 0.1 + 0.2, 1.0, 3.75};
+  std::string list;
+  for (double t : times) list += fmt::format("{}{}", list.empty() ? "" : ", ", t);
+  const Case c = case_from("[time]\nend = 4\n[output]\nfields_at = [" + list + "]\n");
+  const Case again = case_from(c.to_toml());
+  EXPECT_EQ(again.output.fields_at, times);
+  EXPECT_EQ(again.to_toml(), c.to_toml());
+}
+
+TEST(Case, ChecksAConstantExpressionOnceNotAtEveryNode) {
+  // 10^8 nodes: a pass over them per expression would take seconds.
+  const Case c =
+      case_from("[bar]\nelements = 100000000\n[obstacle]\nkind = \"none\"\n[time]\nend = 1e-9\nstep = 1e-9\n");
+  EXPECT_EQ(c.bar.elements, 100'000'000);
+  EXPECT_REFUSED("[bar]\nelements = 100000000\n[initial]\nvelocity = \"0/0\"", "initial.velocity", "finite");
 }
 
 }  // namespace

@@ -109,5 +109,21 @@ TEST(EnergyBudget, ThreeLevelSchemesCloseItFromTheStartUnderAConstantLoad) {
   }
 }
 
+TEST(EnergyBudget, OverflowingEnergiesEndTheRunAsNonFinite) {
+  // alpha = 0 far beyond its stable step: u grows 46-fold a step and stays
+  // finite, but the energies (u/dt squared) overflow first. Such a run is
+  // non-finite from the first row that is not, not "complete".
+  const auto r =
+      run(case_from("[bar]\nelements = 2\n[initial]\nvelocity = \"-1\"\n[obstacle]\nkind = \"none\"\n"
+                    "[time]\nscheme = \"paper\"\nalpha = 0\nstep = 1\nend = 103\n"));
+  EXPECT_FALSE(r.summary.complete);
+  EXPECT_EQ(r.summary.status, RunStatus::non_finite);
+  EXPECT_NE(r.summary.message.find("non-finite at step"), std::string::npos) << r.summary.message;
+  ASSERT_FALSE(r.history.empty());
+  for (const auto& h : r.history) EXPECT_TRUE(std::isfinite(total_energy(h))) << h.t;
+  EXPECT_EQ(r.summary.steps_done + 1, static_cast<long long>(r.history.size()));
+  EXPECT_TRUE(std::isfinite(r.summary.energy_error_max));
+}
+
 }  // namespace
 }  // namespace barimpact
