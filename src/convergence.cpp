@@ -168,6 +168,15 @@ void check_study(const Case& base, const StudyOptions& o) {
   if (levels < 2 || levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", levels));
   if (!o.vary && o.refine == Refine::none)
     throw InputError("--refine none: without --vary there is nothing to change between levels");
+  if (o.vary) {  // an unknown key is the option's error, not a run's (as in a sweep file)
+    try {
+      (void)Case::from_string(base.to_toml(), {{o.vary->key + "=" + o.vary->values.front()}}, "study", false);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (what.find("unknown") != std::string::npos || what.find("expected section.key") != std::string::npos)
+        throw InputError(fmt::format("--vary {}: {}", o.vary->key, what));
+    }
+  }
   if (o.reference == Reference::rigid) {
     Case rigid = base;
     rigid.obstacle.kind = ObstacleKind::rigid;
@@ -333,7 +342,7 @@ std::string study_csv(const Study& study) {
       "contact_episodes,cpu_seconds,order_U,order_R,message,warnings\n";
   for (const auto& r : study.runs) {
     std::string joined;
-    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : "; ") + w;
+    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : " | ") + w;  // a message holds no " | "
     const std::string& warnings = joined;
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.scheme, r.level, quoted(r.value),
                        r.elements, cell(r.h, "{}"), cell(r.step, "{}"), r.status, cell(r.error_U_max, "{}"),

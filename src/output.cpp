@@ -19,16 +19,23 @@ namespace fs = std::filesystem;
 
 RunDirectory::RunDirectory(fs::path target, bool force, std::string command, bool remove_stale)
     : target_(std::move(target)), command_(std::move(command)) {
+  shown_ = target_;
   beside_ = check_output_directory(target_, force) == OutputMode::beside;
-  if (!target_.has_filename()) target_ = target_.parent_path();
-  const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
-  if (remove_stale) remove_stale_staging(parent, target_.filename().string());
-  staging_ = parent / fmt::format(".{}.partial-{}", target_.filename().string(), ::getpid());
+  // Work on the resolved path: a link given as --out is written through, not replaced.
   std::error_code ec;
+  target_ = fs::weakly_canonical(fs::absolute(target_), ec);
+  if (ec) target_ = fs::absolute(shown_).lexically_normal();
+  if (!target_.has_filename()) target_ = target_.parent_path();
+  // Beside someone else's files, the staging goes inside the target: nothing is made outside it.
+  const fs::path parent = beside_ ? target_ : target_.parent_path();
+  const std::string name = beside_ ? std::string("barimpact") : target_.filename().string();
+  if (remove_stale) remove_stale_staging(parent, name);
+  staging_ = parent / fmt::format(".{}.partial-{}", name, ::getpid());
   fs::remove_all(staging_, ec);
   if (!fs::create_directory(staging_, ec) || ec)
-    throw InputError(fmt::format("--out {}: cannot write in {} ({})", target_.string(), parent.string(),
+    throw InputError(fmt::format("--out {}: cannot write in {} ({})", shown_.string(), parent.string(),
                                  ec ? ec.message() : "not created"));
+  write_text(staging_ / staging_flag, "a barimpact run's results while they are written\n");
 }
 
 RunDirectory::~RunDirectory() {
@@ -89,9 +96,10 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
 void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
   try {
     write(staging_);
+    fs::remove(staging_ / staging_flag);
     write_output_marker(staging_, command_, directory_entries(staging_));
   } catch (const std::system_error& e) {
-    throw InputError(fmt::format("--out {}: cannot write the results: {}", target_.string(), e.what()));
+    throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
   }
   // The target is judged again now: it may have changed during the run.
   std::error_code ec;
@@ -102,15 +110,15 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
   }
   fs::path old;
   if (fs::exists(target_, ec)) {
-    old = staging_.parent_path() / fmt::format(".{}.old-{}", target_.filename().string(), ::getpid());
+    old = target_.parent_path() / fmt::format(".{}.old-{}", target_.filename().string(), ::getpid());
     fs::rename(target_, old, ec);
     if (ec)
       throw InputError(
-          fmt::format("--out {}: cannot replace the existing directory: {}", target_.string(), ec.message()));
+          fmt::format("--out {}: cannot replace the existing directory: {}", shown_.string(), ec.message()));
   }
   fs::rename(staging_, target_, ec);
   if (ec)
-    throw InputError(fmt::format("--out {}: cannot move the results into place: {}", target_.string(), ec.message()));
+    throw InputError(fmt::format("--out {}: cannot move the results into place: {}", shown_.string(), ec.message()));
   committed_ = true;
   if (!old.empty()) fs::remove_all(old, ec);  // barimpact's own files only (written_by_barimpact)
 }
@@ -124,15 +132,15 @@ void RunDirectory::move_beside() {
     if (name == output_marker) continue;
     if (fs::is_directory(target_ / name, ec))
       throw InputError(fmt::format("--out {}: holds a directory {} where barimpact writes a file of that name",
-                                   target_.string(), name));
+                                   shown_.string(), name));
     fs::rename(staging_ / name, target_ / name, ec);
     if (ec)
-      throw InputError(fmt::format("--out {}: cannot move {} into place: {}", target_.string(), name, ec.message()));
+      throw InputError(fmt::format("--out {}: cannot move {} into place: {}", shown_.string(), name, ec.message()));
   }
   try {
     write_output_marker(target_, command_, names);
   } catch (const std::exception& e) {
-    throw InputError(fmt::format("--out {}: cannot write its marker: {}", target_.string(), e.what()));
+    throw InputError(fmt::format("--out {}: cannot write its marker: {}", shown_.string(), e.what()));
   }
   std::error_code ec;
   fs::remove_all(staging_, ec);

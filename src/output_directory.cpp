@@ -1,6 +1,7 @@
 #include "barimpact/output_directory.hpp"
 
 #include <fmt/format.h>
+#include <pwd.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,6 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// The home directory: $HOME, or the password database's when it is unset.
+fs::path home_directory();
+
 // The absolute, symlink-resolved form of `p`, with no trailing separator.
 fs::path resolved(const fs::path& p) {
   std::error_code ec;
@@ -26,6 +30,13 @@ fs::path resolved(const fs::path& p) {
   if (ec) full = fs::absolute(p).lexically_normal();
   if (!full.has_filename() && full != full.root_path()) full = full.parent_path();
   return full;
+}
+
+fs::path home_directory() {
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') return resolved(home);
+  if (const passwd* entry = ::getpwuid(::getuid()); entry != nullptr && entry->pw_dir != nullptr)
+    return resolved(entry->pw_dir);
+  return {};
 }
 
 // True when `a` is a proper ancestor of `b` (both resolved).
@@ -70,13 +81,26 @@ std::vector<std::string> directory_entries(const fs::path& dir) {
 
 namespace {
 
-// The entries of `dir` that its marker does not list (all of them without one).
+// The entries of `dir` that are not barimpact's, recursively: a directory
+// with a marker owns what it lists (a listed directory must be owned in
+// turn); a directory without one (a study's runs/) owns only directories
+// that are owned. Links are entries, never followed.
 std::vector<std::string> foreign_entries(const fs::path& dir) {
   const auto listed = marker_entries(dir);
   const std::set<std::string> ours(listed.begin(), listed.end());
   std::vector<std::string> foreign;
-  for (const auto& name : directory_entries(dir))
-    if (listed.empty() || (name != output_marker && !ours.count(name))) foreign.push_back(name);
+  for (const auto& name : directory_entries(dir)) {
+    std::error_code ec;
+    const bool is_dir = fs::symlink_status(dir / name, ec).type() == fs::file_type::directory;
+    if (!listed.empty() && name == output_marker) continue;
+    if (!listed.empty() && !ours.count(name)) {
+      foreign.push_back(name);
+    } else if (is_dir) {
+      for (const auto& inner : foreign_entries(dir / name)) foreign.push_back(name + "/" + inner);
+    } else if (listed.empty()) {
+      foreign.push_back(name);
+    }
+  }
   return foreign;
 }
 
@@ -86,6 +110,16 @@ bool written_by_barimpact(const fs::path& dir) {
   return !marker_entries(dir).empty() && foreign_entries(dir).empty();
 }
 
+std::string output_command(const fs::path& dir) {
+  std::ifstream in(dir / output_marker);
+  try {
+    const auto j = nlohmann::json::parse(in);
+    return j.value("written_by", "") == "barimpact" ? j.value("command", "") : std::string();
+  } catch (const std::exception&) {
+    return {};
+  }
+}
+
 OutputMode check_output_directory(const fs::path& target, bool force, std::string_view option) {
   if (target.empty()) throw InputError(fmt::format("{}: the output directory is empty", option));
   auto refuse = [&](std::string_view why) { throw InputError(fmt::format("{} {}: {}", option, target.string(), why)); };
@@ -93,7 +127,7 @@ OutputMode check_output_directory(const fs::path& target, bool force, std::strin
   std::error_code ec;
   const fs::path cwd = resolved(fs::current_path(ec));
   if (full == full.root_path()) refuse("is the root directory; barimpact never writes its results there");
-  if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0' && full == resolved(home))
+  if (full == home_directory())
     refuse("is your home directory; barimpact never writes its results there (choose a new directory inside it)");
   if (is_parent_of(full, cwd)) refuse("is a parent of the working directory; barimpact never writes its results there");
   if (!fs::exists(full, ec)) {
@@ -102,6 +136,9 @@ OutputMode check_output_directory(const fs::path& target, bool force, std::strin
     return OutputMode::create;
   }
   if (!fs::is_directory(full, ec)) refuse("exists and is not a directory");
+  if (::access(full.c_str(), W_OK | X_OK) != 0) refuse("is not writable");
+  if (fs::exists(fs::symlink_status(full / output_marker, ec)) && marker_entries(full).empty())
+    refuse(fmt::format("holds a {} that barimpact did not write; choose a new or empty directory", output_marker));
   if (full == cwd) {
     if (!force)
       refuse(
@@ -145,14 +182,19 @@ void remove_stale_staging(const fs::path& parent, const std::string& name) {
     if (entry.size() < 2 || entry[0] != '.') continue;
     for (const std::string_view kind : {".partial-", ".old-"}) {
       const auto at = name.empty() ? entry.rfind(kind) : name.size() + 1;
-      if (at == std::string::npos || at == 0 || entry.compare(at, kind.size(), kind) != 0) continue;
+      if (at == std::string::npos || at == 0 || at + kind.size() >= entry.size()) continue;
+      if (entry.compare(at, kind.size(), kind) != 0) continue;
       if (!name.empty() && entry.compare(1, name.size(), name) != 0) continue;
       const std::string digits = entry.substr(at + kind.size());
       if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
       const auto pid = static_cast<pid_t>(std::stol(digits));
       if (pid == ::getpid() || ::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+      // Only what barimpact made: a staging directory carries its flag, an
+      // old results directory is barimpact's whole.
       std::error_code ec;
-      fs::remove_all(parent / entry, ec);
+      const fs::path path = parent / entry;
+      if (fs::symlink_status(path, ec).type() != fs::file_type::directory) continue;
+      if (fs::exists(path / staging_flag, ec) || written_by_barimpact(path)) fs::remove_all(path, ec);
     }
   }
 }

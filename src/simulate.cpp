@@ -128,7 +128,7 @@ std::vector<RunResult> run_batch(const std::vector<const Case*>& cases, const st
   return out;
 }
 
-RunResult run_exact(const Case& c) {
+RunResult run_exact(const Case& c, const RunOptions& options) {
   std::shared_ptr<const exact::Solution> solution = exact::for_case(c);
   if (!solution)
     throw InputError(
@@ -139,7 +139,7 @@ RunResult run_exact(const Case& c) {
   const double known = solution->valid_until();
   long long steps = c.step_count();
   if (std::isfinite(known)) steps = std::min(steps, static_cast<long long>(std::floor(known / c.time.step)));
-  RunResult r = run_scheme(c, *scheme, steps, {}, false);  // energies are NaN where u(x, t) is not known
+  RunResult r = run_scheme(c, *scheme, steps, options, false);  // energies are NaN where u(x, t) is not known
   r.summary.method = "exact";
   r.summary.message = solution->name();
   return r;

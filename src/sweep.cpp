@@ -320,7 +320,7 @@ std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) 
       out += quoted(v);
     }
     std::string joined;
-    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : "; ") + w;
+    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : " | ") + w;  // a message holds no " | "
     const std::string& warnings = joined;
     out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, cell(r.t_end), r.contacts,
                        cell(r.first_contact), cell(r.lift_off), cell(r.rebound_velocity), cell(r.max_penetration),

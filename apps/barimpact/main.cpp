@@ -117,7 +117,7 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
       return true;
     };
   }
-  const auto result = exact ? barimpact::run_exact(c) : barimpact::run(c, options);
+  const auto result = exact ? barimpact::run_exact(c, options) : barimpact::run(c, options);
   if (reported) fmt::print(stderr, "\r\033[K");
   dir.commit(c, result);
   if (exact) fmt::print("exact solution: {}\n", result.summary.message);
@@ -132,6 +132,7 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
     fmt::print(stderr, "barimpact: {} (results so far kept in {})\n", result.summary.message, dir.target().string());
     return exit_non_finite;
   }
+  if (interrupted.load()) return exit_interrupted();  // after the last step: the results are whole, and written
   if (flags.strict && !result.summary.warnings.empty()) return exit_warnings;
   return 0;
 }
@@ -167,6 +168,7 @@ struct StudyEnd {
 };
 
 int study_exit(const StudyEnd& e, const WriteFlags& flags) {
+  if (interrupted.load() && e.stopped == 0) return exit_interrupted();  // after the last run: all written
   if (e.warned > 0)
     fmt::print(stderr, "barimpact: warning: {} of {} {} have warnings (the warnings column of {})\n", e.warned, e.total,
                e.runs, e.report);
@@ -197,7 +199,9 @@ void remove_other_runs(const std::filesystem::path& runs, const barimpact::Study
   for (const auto& name : barimpact::directory_entries(runs)) {
     const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
     std::error_code ec;
-    if (!ours && barimpact::written_by_barimpact(runs / name)) std::filesystem::remove_all(runs / name, ec);
+    // Only a study's own runs: a run of the user's kept in runs/ stays.
+    if (!ours && barimpact::output_command(runs / name) == "converge" && barimpact::written_by_barimpact(runs / name))
+      std::filesystem::remove_all(runs / name, ec);
   }
 }
 
@@ -255,7 +259,7 @@ int converge_command(ConvergeArgs& a) {
   const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
   const bool plotted = stopped == 0 && results > 0 && run_python({"converge-plot", dir.string()});
   fmt::print("results in {}{}\n", dir.string(), plotted ? " (with convergence and work-precision plots)" : "");
-  if (stopped == 0 && results > 0 && !plotted)
+  if (stopped == 0 && results > 0 && !plotted && !interrupted.load())
     fmt::print(stderr, "barimpact: note: plots skipped (the Python module is not built here)\n");
   if (results < static_cast<long>(study.runs.size()) && stopped == 0)
     fmt::print(stderr, "barimpact: {} of {} runs did not complete; see their rows\n",

@@ -35,12 +35,13 @@ class RunDirectory {
   /// replaced if barimpact wrote it, or else receives the files beside its own.
   void commit(const std::function<void(const std::filesystem::path& staging)>& write);
 
-  [[nodiscard]] const std::filesystem::path& target() const { return target_; }
+  /// The target as given.
+  [[nodiscard]] const std::filesystem::path& target() const { return shown_; }
 
  private:
   void move_beside();
 
-  std::filesystem::path target_, staging_;
+  std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
   std::string command_;
   bool beside_ = false;  // --force on someone else's directory
   bool committed_ = false;

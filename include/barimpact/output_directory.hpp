@@ -21,6 +21,8 @@ namespace barimpact {
 
 /// The marker file barimpact writes into every output directory.
 inline constexpr std::string_view output_marker = ".barimpact";
+/// The file that marks a staging directory as barimpact's while it fills.
+inline constexpr std::string_view staging_flag = ".barimpact-staging";
 
 /// What writing into a checked `--out` does.
 enum class OutputMode {
@@ -34,8 +36,13 @@ enum class OutputMode {
 [[nodiscard]] OutputMode check_output_directory(const std::filesystem::path& target, bool force,
                                                 std::string_view option = "--out");
 
-/// True when `dir` holds barimpact's marker and nothing the marker does not list.
+/// True when `dir` holds barimpact's marker and nothing the marker does not
+/// list, and each listed directory is barimpact's in turn (a directory with
+/// no marker, such as a study's runs/, holds only directories that are).
 [[nodiscard]] bool written_by_barimpact(const std::filesystem::path& dir);
+
+/// The command that wrote `dir` by its marker ("run", "converge", ...), or empty.
+[[nodiscard]] std::string output_command(const std::filesystem::path& dir);
 
 /// Writes (replaces) the marker of `dir`, listing `entries` and what the
 /// marker already listed; `command` is the command that wrote them.
@@ -45,9 +52,11 @@ void write_output_marker(const std::filesystem::path& dir, std::string_view comm
 /// The names of the entries of `dir` (not recursive), sorted; empty if it does not exist.
 [[nodiscard]] std::vector<std::string> directory_entries(const std::filesystem::path& dir);
 
-/// Removes the staging directories and files (`.<name>.partial-<pid>`,
-/// `.<name>.old-<pid>`) that a killed barimpact process left in `parent` for
-/// `name` (for any name when `name` is empty); those of live processes stay.
+/// Removes the staging directories (`.<name>.partial-<pid>`, flagged by
+/// staging_flag) and old results directories (`.<name>.old-<pid>`, barimpact's
+/// whole) that a killed barimpact process left in `parent` for `name` (for
+/// any name when `name` is empty); those of live processes, and anything
+/// barimpact did not make, stay.
 void remove_stale_staging(const std::filesystem::path& parent, const std::string& name);
 
 /// For a command that fills its directory bit by bit and resumes (sweep,

@@ -78,7 +78,7 @@ struct RunOptions {
 /// grid, through the same observers: same history columns as `run`, rows up
 /// to the end or to where the solution is known. Throws InputError when the
 /// case admits none.
-[[nodiscard]] RunResult run_exact(const Case& c);
+[[nodiscard]] RunResult run_exact(const Case& c, const RunOptions& options = {});
 
 [[nodiscard]] std::string_view to_string(RunStatus status);
 

@@ -81,6 +81,29 @@ before=$(listing "$work/new")
 expect_refusal "notes.txt" "$before" "$work/new" run "$ex1" --out "$work/new"
 check "--force keeps the note" "$bin" run "$ex1" --out "$work/new" --force "${fast[@]}" > /dev/null
 check "note kept" grep -q mine "$work/new/notes.txt"
+# A user's file inside one of barimpact's subdirectories (figures/) makes it the user's.
+"$bin" run "$ex1" --out "$work/nested" "${fast[@]}" --set output.fields_at=[0.25] > /dev/null || bad "run nested"
+"$bin" plot "$work/nested" > /dev/null 2>&1 || bad "plot nested"
+echo mine > "$work/nested/figures/notes.txt"
+before=$(listing "$work/nested")
+expect_refusal "figures/notes.txt" "$before" "$work/nested" run "$ex1" --out "$work/nested"
+# A link given as --out is written through, never replaced.
+mkdir "$work/linked" && ln -s "$work/linked" "$work/link"
+check "--out a link" "$bin" run "$ex1" --out "$work/link" "${fast[@]}" > /dev/null
+check "the link stays a link" test -L "$work/link"
+check "written through the link" test -s "$work/linked/history.csv"
+# A .barimpact of the user's is never taken for a marker, nor replaced by one.
+mkdir "$work/fake" && echo "my notes" > "$work/fake/.barimpact"
+before=$(listing "$work/fake")
+expect_refusal ".barimpact" "$before" "$work/fake" run "$ex1" --out "$work/fake" --force
+# converge --force beside a user's runs/: the user's own run stays.
+mkdir -p "$work/study/runs"
+"$bin" run "$ex1" --out "$work/study/runs/baseline" "${fast[@]}" > /dev/null || bad "baseline run"
+"$bin" converge "$ex1" --out "$work/study" --force --levels 2 "${fast[@]}" > /dev/null 2>&1 || bad "converge --force"
+check "the user's run kept by converge" test -s "$work/study/runs/baseline/history.csv"
+# A misspelled --vary key is bad input: exit 2, nothing written.
+"$bin" converge "$ex1" --out "$work/vary-typo" --vary nosuch.key=1,2 > /dev/null 2> "$work/err"
+[ $? -eq 2 ] && [ ! -e "$work/vary-typo" ] && grep -q -- "--vary" "$work/err" && ok || bad "--vary typo: $(cat "$work/err")"
 # The working directory: refused; with --force, written beside.
 make_user_dir "$work/cwd"
 before=$(listing "$work/cwd")
@@ -109,9 +132,11 @@ for force in "" --force; do
   [ $? -eq 2 ] && grep -q "root directory" "$work/err" && ok || bad "--out / $force: $(cat "$work/err")"
 done
 # A staging directory left by a killed process is cleaned up; none is left behind.
-mkdir "$work/stale" && mkdir "$work/.kept.partial-999999999"
+mkdir "$work/stale" && mkdir "$work/.kept.partial-999999999" && touch "$work/.kept.partial-999999999/.barimpact-staging"
+echo mine > "$work/.results.old-1999"  # a user's file that looks like staging stays
 check "run beside stale staging" "$bin" run "$ex1" --out "$work/kept" "${fast[@]}" > /dev/null
 ls -a "$work" | grep -q partial && bad "stale staging left" || ok
+check "a user's look-alike file kept" grep -q mine "$work/.results.old-1999"
 
 # 2. Warnings and --strict.
 "$bin" run "$ex1" --out "$work/stiff" --set obstacle.stiffness=1e4 --set time.step=0.001 --set output.fields_at=[] \
@@ -165,6 +190,15 @@ for signal in INT TERM; do
   [ "$(wc -l < "$work/stop-$signal/history.csv")" -gt 2 ] && ok || bad "SIG$signal: rows kept"
   ls -a "$work" | grep -q partial && bad "SIG$signal: staging left" || ok
 done
+
+# exact is interrupted the same way.
+"$bin" exact "$examples/clamped-periodic.toml" --out "$work/stop-exact" "${long[@]}" > /dev/null 2>&1 &
+pid=$!
+sleep 1
+kill -s INT $pid
+wait $pid
+[ $? -eq 130 ] && ok || bad "exact SIGINT"
+grep -q '"status": "interrupted"' "$work/stop-exact/summary.json" && ok || bad "exact: status"
 
 # A sweep or converge interrupted (SIGINT, SIGTERM or SIGKILL) and rerun ends as an uninterrupted one.
 printf 'case = "%s"\n[set]\ntime.end = 10.0\ntime.step = 1e-4\noutput.fields_at = []\noutput.every = 100\n[[axis]]\nkey = "bar.elements"\nvalues = [400, 500, 600, 700, 800, 900]\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0]\n' \

@@ -96,23 +96,33 @@ TEST_F(OutputDirectory, ErrorsNameTheOptionAndTheRule) {
 }
 
 TEST_F(OutputDirectory, StaleStagingOfDeadProcessesIsRemovedOnly) {
-  fs::create_directory(root_ / ".out.partial-999999999");  // no such process
-  fs::create_directory(root_ / ".out.partial-1");          // init: alive
-  fs::create_directory(root_ / ".other.partial-999999999");
+  auto staging = [&](const std::string& name) {
+    fs::create_directory(root_ / name);
+    touch(root_ / name / staging_flag);
+  };
+  staging(".out.partial-999999999");  // no such process
+  staging(".out.partial-1");          // init: alive
+  staging(".other.partial-999999999");
+  fs::create_directory(root_ / ".out.old-999999999");  // no marker: not barimpact's old results
+  touch(root_ / ".out.old-999999999" / "mine");
   remove_stale_staging(root_, "out");
   EXPECT_FALSE(fs::exists(root_ / ".out.partial-999999999"));
   EXPECT_TRUE(fs::exists(root_ / ".out.partial-1"));
   EXPECT_TRUE(fs::exists(root_ / ".other.partial-999999999"));
-  // Every name at once (a sweep's runs/), files too; nothing else.
-  touch(root_ / ".sweep.csv.partial-999999999");
+  EXPECT_TRUE(fs::exists(root_ / ".out.old-999999999" / "mine"));
+  // Every name at once (a sweep's runs/); a user's look-alike files and directories stay.
+  touch(root_ / ".notes.partial-999999999");
+  fs::create_directory(root_ / ".draft.partial-77777777");
   touch(root_ / ".hidden");
   touch(root_ / ".a.partial-12x");
   remove_stale_staging(root_, "");
   EXPECT_FALSE(fs::exists(root_ / ".other.partial-999999999"));
-  EXPECT_FALSE(fs::exists(root_ / ".sweep.csv.partial-999999999"));
+  EXPECT_TRUE(fs::exists(root_ / ".notes.partial-999999999"));
+  EXPECT_TRUE(fs::exists(root_ / ".draft.partial-77777777"));
   EXPECT_TRUE(fs::exists(root_ / ".hidden"));
   EXPECT_TRUE(fs::exists(root_ / ".a.partial-12x"));
   EXPECT_TRUE(fs::exists(root_ / ".out.partial-1"));
+  remove_stale_staging(root_, "barimpact");  // names shorter than the prefix are passed over
 }
 
 TEST_F(OutputDirectory, ForceWritesBesideAndDeletesNothing) {
