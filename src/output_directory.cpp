@@ -93,6 +93,7 @@ std::vector<std::string> foreign_entries(const fs::path& dir) {
     std::error_code ec;
     const bool is_dir = fs::symlink_status(dir / name, ec).type() == fs::file_type::directory;
     if (!listed.empty() && name == output_marker) continue;
+    if (is_dir && fs::exists(dir / name / staging_flag, ec)) continue;  // a run of barimpact's being written
     if (!listed.empty() && !ours.count(name)) {
       foreign.push_back(name);
     } else if (is_dir) {

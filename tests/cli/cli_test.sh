@@ -167,7 +167,7 @@ cmp -s "$work/single/history.csv" "$work/sweep/runs/0005/history.csv" && ok || b
 cut -d, -f1-14 "$work/sweep/sweep.csv" > "$work/first.csv"
 # Resume: a removed case is redone, a half-written one (staging) ignored, the others skipped.
 rm -rf "$work/sweep/runs/0007"
-mkdir -p "$work/sweep/runs/.0008.partial-1" && rm -rf "$work/sweep/runs/0008" && touch "$work/sweep/runs/.0008.partial-1/history.csv"
+mkdir -p "$work/sweep/runs/.0008.partial-1" && rm -rf "$work/sweep/runs/0008" && touch "$work/sweep/runs/.0008.partial-1/history.csv" "$work/sweep/runs/.0008.partial-1/.barimpact-staging"
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" > "$work/out" && ok || bad "resume"
 grep -q "12 cases: 2 run (.*), 10 resumed" "$work/out" && ok || bad "resume counts: $(cat "$work/out")"
 cmp -s <(cut -d, -f1-14 "$work/sweep/sweep.csv") "$work/first.csv" && ok || bad "resumed sweep.csv differs"
