@@ -429,6 +429,9 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts"})
     for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
   barimpact::prepare_output_directory(target, "plot", names, force);
+  // DIR/figures belongs to the run directory it is in, drawn or not.
+  if (figures.empty() && barimpact::written_by_barimpact(run_dir))
+    barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
   std::string path = BARIMPACT_PYTHON_DIR;
   if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0') path += std::string(":") + old;
   setenv("PYTHONPATH", path.c_str(), 1);

@@ -81,12 +81,11 @@ before=$(listing "$work/new")
 expect_refusal "notes.txt" "$before" "$work/new" run "$ex1" --out "$work/new"
 check "--force keeps the note" "$bin" run "$ex1" --out "$work/new" --force "${fast[@]}" > /dev/null
 check "note kept" grep -q mine "$work/new/notes.txt"
-# A user's file inside one of barimpact's subdirectories (figures/) makes it the user's.
-"$bin" run "$ex1" --out "$work/nested" "${fast[@]}" --set output.fields_at=[0.25] > /dev/null || bad "run nested"
-"$bin" plot "$work/nested" > /dev/null 2>&1 || bad "plot nested"
-echo mine > "$work/nested/figures/notes.txt"
+# A user's file inside one of barimpact's subdirectories (a sweep's runs/) makes it the user's.
+"$bin" sweep "$examples/sweeps/penalty-to-rigid.toml" --out "$work/nested" > /dev/null 2>&1 || bad "sweep nested"
+echo mine > "$work/nested/runs/notes.txt"
 before=$(listing "$work/nested")
-expect_refusal "figures/notes.txt" "$before" "$work/nested" run "$ex1" --out "$work/nested"
+expect_refusal "runs/notes.txt" "$before" "$work/nested" run "$ex1" --out "$work/nested"
 # A link given as --out is written through, never replaced.
 mkdir "$work/linked" && ln -s "$work/linked" "$work/link"
 check "--out a link" "$bin" run "$ex1" --out "$work/link" "${fast[@]}" > /dev/null
