@@ -11,6 +11,7 @@
 
 #include "barimpact/exact.hpp"
 #include "barimpact/executor.hpp"
+#include "barimpact/health.hpp"
 #include "barimpact/output.hpp"
 #include "barimpact/output_directory.hpp"
 #include "barimpact/simulate.hpp"
@@ -341,9 +342,7 @@ std::string study_csv(const Study& study) {
       "scheme,level,value,elements,h,step,status,error_U_max,error_R_l1,energy_error_end,first_contact,lift_off,"
       "contact_episodes,cpu_seconds,order_U,order_R,message,warnings\n";
   for (const auto& r : study.runs) {
-    std::string joined;
-    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : " | ") + w;  // a message holds no " | "
-    const std::string& warnings = joined;
+    const std::string warnings = join_warnings(r.warnings);
     out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.scheme, r.level, quoted(r.value),
                        r.elements, cell(r.h, "{}"), cell(r.step, "{}"), r.status, cell(r.error_U_max, "{}"),
                        cell(r.error_R_l1, "{}"), cell(r.energy_error_end, "{}"), cell(r.first_contact, "{}"),

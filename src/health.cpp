@@ -129,6 +129,12 @@ void check_chatter(const Case& c, const Summary& s, std::vector<std::string>& ou
 
 }  // namespace
 
+std::string join_warnings(const std::vector<std::string>& warnings) {
+  std::string joined;
+  for (const auto& w : warnings) joined += (joined.empty() ? "" : " | ") + w;
+  return joined;
+}
+
 std::vector<std::string> check_health(const Case& c, const Summary& s, const std::vector<HistoryRow>& history) {
   std::vector<std::string> out;
   if (s.method == "exact") return out;

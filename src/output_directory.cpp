@@ -48,15 +48,24 @@ bool is_parent_of(const fs::path& a, const fs::path& b) {
   return true;
 }
 
-std::vector<std::string> marker_entries(const fs::path& dir) {
+// The marker of `dir`, if barimpact wrote it: its JSON, else null.
+nlohmann::json read_marker(const fs::path& dir) {
   std::ifstream in(dir / output_marker);
-  if (!in) return {};
+  if (!in) return nullptr;
   try {
-    const auto j = nlohmann::json::parse(in);
-    if (j.value("written_by", "") != "barimpact") return {};
-    return j.at("entries").get<std::vector<std::string>>();
+    auto j = nlohmann::json::parse(in);
+    if (j.value("written_by", "") == "barimpact" && j.contains("entries")) return j;
   } catch (const std::exception&) {
-    return {};  // unreadable: not a marker barimpact wrote
+  }
+  return nullptr;  // unreadable: not a marker barimpact wrote
+}
+
+std::vector<std::string> marker_entries(const fs::path& dir) {
+  const auto j = read_marker(dir);
+  try {
+    return j.is_null() ? std::vector<std::string>{} : j.at("entries").get<std::vector<std::string>>();
+  } catch (const std::exception&) {
+    return {};
   }
 }
 
@@ -112,13 +121,8 @@ bool written_by_barimpact(const fs::path& dir) {
 }
 
 std::string output_command(const fs::path& dir) {
-  std::ifstream in(dir / output_marker);
-  try {
-    const auto j = nlohmann::json::parse(in);
-    return j.value("written_by", "") == "barimpact" ? j.value("command", "") : std::string();
-  } catch (const std::exception&) {
-    return {};
-  }
+  const auto j = read_marker(dir);
+  return j.is_null() ? std::string() : j.value("command", "");
 }
 
 OutputMode check_output_directory(const fs::path& target, bool force, std::string_view option) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "barimpact/executor.hpp"
+#include "barimpact/health.hpp"
 #include "barimpact/output.hpp"
 #include "barimpact/output_directory.hpp"
 #include "barimpact/paper_scheme.hpp"
@@ -319,9 +320,7 @@ std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) 
       out += ',';
       out += quoted(v);
     }
-    std::string joined;
-    for (const auto& w : r.warnings) joined += (joined.empty() ? "" : " | ") + w;  // a message holds no " | "
-    const std::string& warnings = joined;
+    const std::string warnings = join_warnings(r.warnings);
     out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, cell(r.t_end), r.contacts,
                        cell(r.first_contact), cell(r.lift_off), cell(r.rebound_velocity), cell(r.max_penetration),
                        cell(r.max_reaction), cell(r.energy_error_relative), cell(r.run_seconds), quoted(r.message),

@@ -95,6 +95,18 @@ void print_warnings(const std::vector<std::string>& warnings, const std::string&
   for (const auto& w : warnings) fmt::print(stderr, "barimpact: warning: {}{}\n", prefix, w);
 }
 
+// A study's warnings, one line each with the run's id, the first 20 of them
+// (a large sweep would bury the terminal); the CSV's warnings column has all.
+template <class Rows>
+void print_study_warnings(const Rows& rows) {
+  constexpr std::size_t shown = 20;
+  std::size_t printed = 0;
+  for (const auto& r : rows)
+    for (const auto& w : r.warnings)
+      if (printed++ < shown) fmt::print(stderr, "barimpact: warning: {}: {}\n", r.id, w);
+  if (printed > shown) fmt::print(stderr, "barimpact: warning: ... {} more\n", printed - shown);
+}
+
 int run_command(const std::string& case_path, const std::string& out_dir, const std::vector<std::string>& sets,
                 bool exact, const WriteFlags& flags) {
   std::vector<barimpact::Case::Override> overrides;
@@ -264,6 +276,7 @@ int converge_command(ConvergeArgs& a) {
   if (results < static_cast<long>(study.runs.size()) && stopped == 0)
     fmt::print(stderr, "barimpact: {} of {} runs did not complete; see their rows\n",
                static_cast<long>(study.runs.size()) - results, study.runs.size());
+  print_study_warnings(study.runs);
   return study_exit({"runs", "convergence.csv", study.runs.size(), results, stopped, warned}, a.flags);
 }
 
@@ -413,6 +426,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   fmt::print("{} cases: {} run{} ({} in SIMD batches), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
              done.size() - static_cast<std::size_t>(stopped), size > 1 ? fmt::format(" on {} ranks", size) : "",
              batched, resumed, static_cast<long>(rows.size()) - complete, out_dir);
+  print_study_warnings(rows);
   return study_exit({"cases", "sweep.csv", rows.size(), complete, stopped, warned}, flags);
 }
 

@@ -32,6 +32,9 @@ namespace barimpact {
 /// largest stored energy E_kin + E_strain + E_obstacle.
 [[nodiscard]] double energy_scale(const std::vector<HistoryRow>& history);
 
+/// Warnings as one CSV cell: joined by " | ", which no message holds.
+[[nodiscard]] std::string join_warnings(const std::vector<std::string>& warnings);
+
 /// The warnings of a finished run (an empty list for a healthy one).
 [[nodiscard]] std::vector<std::string> check_health(const Case& c, const Summary& s,
                                                     const std::vector<HistoryRow>& history);
