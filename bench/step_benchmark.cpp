@@ -12,11 +12,11 @@
 #include <utility>
 #include <vector>
 
-#include "barimpact/case.hpp"
-#include "barimpact/mass_redistribution_scheme.hpp"
-#include "barimpact/mesh.hpp"
-#include "barimpact/paper_scheme.hpp"
-#include "barimpact/scheme.hpp"
+#include "barimpact/case/case.hpp"
+#include "barimpact/schemes/mass_redistribution_scheme.hpp"
+#include "barimpact/model/mesh.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/schemes/scheme.hpp"
 
 #include <string>
 #include <utility>

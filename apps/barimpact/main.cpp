@@ -35,18 +35,18 @@
 #include <sstream>
 #include <thread>
 
-#include "barimpact/case.hpp"
-#include "barimpact/convergence.hpp"
-#include "barimpact/output.hpp"
-#include "barimpact/output_directory.hpp"
-#include "barimpact/scheme.hpp"
-#include "barimpact/sweep.hpp"
+#include "barimpact/case/case.hpp"
+#include "barimpact/study/convergence.hpp"
+#include "barimpact/run/output.hpp"
+#include "barimpact/run/output_directory.hpp"
+#include "barimpact/schemes/scheme.hpp"
+#include "barimpact/study/sweep.hpp"
 
 #ifdef BARIMPACT_HAVE_MPI
 #include <mpi.h>
 #endif
-#include "barimpact/paper_scheme.hpp"
-#include "barimpact/simulate.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/run/simulate.hpp"
 
 namespace {
 

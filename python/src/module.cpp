@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <sstream>
 
-#include "barimpact/case.hpp"
-#include "barimpact/exact.hpp"
-#include "barimpact/output.hpp"
-#include "barimpact/simulate.hpp"
+#include "barimpact/case/case.hpp"
+#include "barimpact/exact/exact.hpp"
+#include "barimpact/run/output.hpp"
+#include "barimpact/run/simulate.hpp"
 
 namespace py = pybind11;
 using namespace barimpact;

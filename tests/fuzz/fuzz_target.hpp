@@ -22,7 +22,7 @@
 #include <string_view>
 #include <typeinfo>
 
-#include "barimpact/case.hpp"
+#include "barimpact/case/case.hpp"
 
 namespace barimpact::fuzz {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "barimpact/sweep.hpp"
+#include "barimpact/study/sweep.hpp"
 #include "fuzz_target.hpp"
 
 #ifndef BARIMPACT_FUZZ_SWEEP_DIR

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "barimpact/case.hpp"
-#include "barimpact/simulate.hpp"
+#include "barimpact/case/case.hpp"
+#include "barimpact/run/simulate.hpp"
 
 namespace barimpact::testing {
 

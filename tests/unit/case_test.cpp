@@ -1,4 +1,4 @@
-#include "barimpact/case.hpp"
+#include "barimpact/case/case.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

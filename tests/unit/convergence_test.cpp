@@ -1,4 +1,4 @@
-#include "barimpact/convergence.hpp"
+#include "barimpact/study/convergence.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-#include "barimpact/exact.hpp"
+#include "barimpact/exact/exact.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "barimpact/health.hpp"
+#include "barimpact/run/health.hpp"
 
 #include <gtest/gtest.h>
 

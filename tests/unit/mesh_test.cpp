@@ -1,4 +1,4 @@
-#include "barimpact/mesh.hpp"
+#include "barimpact/model/mesh.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "../support/dense.hpp"
-#include "barimpact/expression.hpp"
+#include "barimpact/model/expression.hpp"
 
 namespace barimpact {
 namespace {

@@ -8,8 +8,8 @@
 #include <new>
 
 #include "../support/run_case.hpp"
-#include "barimpact/observer.hpp"
-#include "barimpact/scheme.hpp"
+#include "barimpact/run/observer.hpp"
+#include "barimpact/schemes/scheme.hpp"
 
 namespace {
 std::atomic<bool> counting{false};

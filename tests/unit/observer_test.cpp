@@ -1,4 +1,4 @@
-#include "barimpact/observer.hpp"
+#include "barimpact/run/observer.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../support/run_case.hpp"
-#include "barimpact/simulate.hpp"
+#include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
 namespace {

@@ -1,4 +1,4 @@
-#include "barimpact/output_directory.hpp"
+#include "barimpact/run/output_directory.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "../support/run_case.hpp"
-#include "barimpact/output.hpp"
+#include "barimpact/run/output.hpp"
 
 namespace barimpact {
 namespace {

@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "../support/run_case.hpp"
-#include "barimpact/paper_scheme.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
 
 namespace barimpact {
 namespace {

@@ -1,4 +1,4 @@
-#include "barimpact/paper_scheme.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
 
 #include <gtest/gtest.h>
 

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "../support/run_case.hpp"
-#include "barimpact/exact.hpp"
+#include "barimpact/exact/exact.hpp"
 
 namespace barimpact {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../support/run_case.hpp"
-#include "barimpact/exact.hpp"
+#include "barimpact/exact/exact.hpp"
 
 namespace barimpact {
 namespace {

@@ -1,0 +1,95 @@
+// The case: every datum of one problem (bar, load, initial state, obstacle,
+// time stepping, output), read from a TOML case file and validated.
+//
+// This header owns the case-file contract: section and key names, their
+// defaults, and the rules each value obeys. It does not own the numerics:
+// expressions are kept as text here and compiled by `Expression`.
+#pragma once
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "barimpact/model/input_error.hpp"
+#include "barimpact/model/obstacle.hpp"
+
+namespace barimpact {
+
+enum class FarEnd { free, clamped };
+
+struct BarData {
+  double length = 1.0;            ///< L
+  double density = 1.0;           ///< rho, mass per unit length
+  double stiffness = 1.0;         ///< a (Section 2)
+  double viscosity = 0.0;         ///< b, Kelvin-Voigt
+  int elements = 100;             ///< M, uniform P1 elements
+  FarEnd far_end = FarEnd::free;  ///< x = L: free (sigma = 0) or clamped (u = 0)
+};
+
+struct LoadData {
+  std::string body_force = "0";  ///< f(x, t)
+};
+
+struct InitialData {
+  std::string displacement = "0";  ///< u0(x)
+  std::string velocity = "0";      ///< v0(x)
+};
+
+struct TimeData {
+  double end = 1.0;
+  double step = 0.01;  ///< dt
+  std::string scheme = "paper";
+  double alpha = 0.25;       ///< alpha of (6.3)
+  double lambda = 0.0;       ///< lambda_shift: z = exp(-lambda t) u, (6.1)
+  double beta = 0.25;        ///< Newmark beta
+  double gamma = 0.5;        ///< Newmark gamma
+  double theta = 0.5;        ///< Moreau-Jean theta
+  double restitution = 0.0;  ///< e: Paoli-Schatzman, Moreau-Jean
+};
+
+struct OutputData {
+  int every = 1;                  ///< history row every N steps
+  std::vector<double> fields_at;  ///< times of field snapshots
+};
+
+/// A validated case. Construct with `Case::from_file` or `Case::from_string`;
+/// every rule of the case-file contract holds for the result.
+struct Case {
+  BarData bar;
+  LoadData load;
+  InitialData initial;
+  ObstacleData obstacle;
+  TimeData time;
+  OutputData output;
+
+  /// One `section.key=value` override; the value is read as a TOML value,
+  /// a bare word as a string.
+  struct Override {
+    std::string text;
+  };
+
+  /// Reads, overrides and validates. Throws InputError.
+  static Case from_file(const std::filesystem::path& path, const std::vector<Override>& overrides = {});
+  /// Same from TOML text; `origin` names it in error messages, followed by
+  /// the line when `cite_lines` (not for text made from a dict).
+  static Case from_string(std::string_view toml, const std::vector<Override>& overrides = {},
+                          std::string_view origin = "case", bool cite_lines = true);
+
+  /// The number of steps N: t_N = N dt is the first step time >= end
+  /// (up to a relative 1e-9, so that end = 4, step = 0.01 gives 400).
+  [[nodiscard]] long long step_count() const;
+
+  /// The resolved case as TOML, every default filled in: running it
+  /// reproduces this case exactly.
+  [[nodiscard]] std::string to_toml() const;
+};
+
+/// The whole of an input file (`what`: "case file", "sweep file"); empty is
+/// fine. Throws InputError when it cannot be read or exceeds 64 MiB.
+[[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what);
+
+[[nodiscard]] std::string_view to_string(FarEnd end);
+
+}  // namespace barimpact

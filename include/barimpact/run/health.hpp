@@ -1,0 +1,42 @@
+// A run's checks of its own health: what makes a run that completed still
+// not to be trusted. Each finding is one line for the user (stderr and
+// summary.json's `warnings`); `barimpact --strict` turns any into exit 4.
+//   - energy-balance: the budget E_kin + E_strain + E_obstacle - W_ext +
+//     D_visc drifts beyond what the scheme guarantees on a resolved run;
+//   - penalty-unresolved: the penalty obstacle's time constant Z / k (Z =
+//     rho c = sqrt(rho a), the bar's impedance) is below the time step, so a
+//     contact lasts less than a step and its force is not resolved;
+//   - unstable-step: the paper scheme with alpha < 1/4, or Newmark with
+//     2 beta < gamma, at a step beyond its stable one (such a run may still
+//     end before it blows up);
+//   - contact-chatter: most contact episodes last a step or two (the
+//     contact switches on and off numerically).
+// An explicit scheme's step beyond its stable one is refused before the run
+// (scheme.hpp).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+#include "barimpact/run/simulate.hpp"
+
+namespace barimpact {
+
+/// The largest budget drift a resolved run of the case's scheme keeps to,
+/// relative to the largest energy the run holds (see energy_scale).
+[[nodiscard]] double energy_balance_bound(const Case& c);
+
+/// The energy against which a budget drift is judged: the larger of
+/// |E_total(0)| and |W_ext| over the rows, or, when both are zero, the
+/// largest stored energy E_kin + E_strain + E_obstacle.
+[[nodiscard]] double energy_scale(const std::vector<HistoryRow>& history);
+
+/// Warnings as one CSV cell: joined by " | ", which no message holds.
+[[nodiscard]] std::string join_warnings(const std::vector<std::string>& warnings);
+
+/// The warnings of a finished run (an empty list for a healthy one).
+[[nodiscard]] std::vector<std::string> check_health(const Case& c, const Summary& s,
+                                                    const std::vector<HistoryRow>& history);
+
+}  // namespace barimpact

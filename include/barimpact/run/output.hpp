@@ -1,0 +1,68 @@
+// The run directory: history.csv, fields.csv, case.toml, summary.json,
+// written into a hidden staging directory beside the target and renamed into
+// place only when written whole, so that no half-written result ever carries
+// the target's name. Which targets may be written, and how, is the rule of
+// output_directory.hpp: nothing barimpact did not write is ever deleted.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "barimpact/case/case.hpp"
+#include "barimpact/run/simulate.hpp"
+
+namespace barimpact {
+
+class RunDirectory {
+ public:
+  /// Checks `target` against the output rule (`force` as --force) and
+  /// creates the staging directory, first removing what killed processes
+  /// left beside it (unless the caller cleans the parent once for many
+  /// targets: a sweep's runs/). Throws InputError naming `--out`.
+  explicit RunDirectory(std::filesystem::path target, bool force = false, std::string command = "run",
+                        bool remove_stale = true);
+  /// Removes the staging directory unless `commit` succeeded.
+  ~RunDirectory();
+  RunDirectory(const RunDirectory&) = delete;
+  RunDirectory& operator=(const RunDirectory&) = delete;
+
+  /// Writes the four files into staging, then moves them into place.
+  void commit(const Case& c, const RunResult& result);
+  /// Lets `write` fill the staging directory with files, marks them as
+  /// barimpact's, then moves them into place: `target` is created, or
+  /// replaced if barimpact wrote it, or else receives the files beside its own.
+  void commit(const std::function<void(const std::filesystem::path& staging)>& write);
+
+  /// The target as given.
+  [[nodiscard]] const std::filesystem::path& target() const { return shown_; }
+
+ private:
+  void move_beside();
+
+  std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
+  std::string command_;
+  bool beside_ = false;  // --force on someone else's directory
+  bool committed_ = false;
+};
+
+/// Writes `text` to `path` (throws std::system_error).
+void write_text(const std::filesystem::path& path, const std::string& text);
+/// The same, through a hidden file beside it renamed over `path`: a reader
+/// (or an interruption) never sees half of it.
+void replace_text(const std::filesystem::path& path, const std::string& text);
+
+/// Reads back what `commit` wrote (history.csv and summary.json; not the
+/// fields): the same doubles, as every number is written in its shortest
+/// exact form. Empty when `dir` holds no readable run, or one whose case.toml
+/// is not `case_toml` (when given).
+[[nodiscard]] std::optional<RunResult> read_run_directory(const std::filesystem::path& dir,
+                                                          const std::string& case_toml = {});
+
+/// summary.json's text.
+[[nodiscard]] std::string summary_json(const Case& c, const Summary& s);
+/// The short human summary printed on stdout.
+[[nodiscard]] std::string summary_text(const Case& c, const Summary& s);
+
+}  // namespace barimpact

@@ -1,0 +1,85 @@
+// The time loop, and a convenience that runs a case with the standard
+// observers. `simulate` is the only loop in barimpact.
+#pragma once
+
+#include <atomic>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+#include "barimpact/run/observer.hpp"
+#include "barimpact/schemes/scheme.hpp"
+
+namespace barimpact {
+
+enum class RunStatus { complete, non_finite, stopped, interrupted };
+
+struct LoopResult {
+  RunStatus status = RunStatus::complete;
+  long long steps_done = 0;  ///< the last step observed
+  std::string message;       ///< why it did not complete
+};
+
+/// Starts `scheme`, then advances it `steps` times; every observer sees steps
+/// 0..steps. Stops early, with the observers' data so far, when the state
+/// turns non-finite, an observer returns false, or `interrupt` (set from a
+/// signal handler, say) becomes true: the step under way ends first.
+LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers,
+                    const std::atomic<bool>* interrupt = nullptr);
+
+struct Summary {
+  std::string method;  ///< the scheme's name, or "exact"
+  bool complete = true;
+  RunStatus status = RunStatus::complete;
+  std::string message;
+  long long steps = 0;  ///< N requested
+  long long steps_done = 0;
+  double t_end = 0.0;  ///< t of the last step observed
+  std::vector<ContactInterval> contacts;
+  double max_penetration = 0.0;
+  double max_reaction = 0.0;
+  double energy_initial = 0.0;    ///< E_total at t = 0
+  double energy_final = 0.0;      ///< E_total at the last history row
+  double energy_error_max = 0.0;  ///< max over rows of |E_total - E_total(0)|
+  double run_seconds = 0.0;
+  /// What the run's own health checks found (health.hpp): one line each.
+  std::vector<std::string> warnings;
+};
+
+struct RunResult {
+  Summary summary;
+  std::vector<HistoryRow> history;
+  Fields fields;
+};
+
+struct RunOptions {
+  /// Called about every `progress_interval` seconds once `progress_delay`
+  /// seconds have passed; returning false stops the run. Empty: no reports.
+  ProgressMonitor::Report progress;
+  double progress_interval = 0.5;
+  double progress_delay = 0.0;
+  /// When it becomes true the run ends after the step under way, its rows
+  /// so far kept, with RunStatus::interrupted. Null: never.
+  const std::atomic<bool>* interrupt = nullptr;
+};
+
+/// Runs `c` with its scheme and the history, field and contact observers.
+/// Throws InputError when the case does not fit its scheme.
+[[nodiscard]] RunResult run(const Case& c, const RunOptions& options = {});
+
+/// Runs up to four batchable paper-scheme cases together in a PaperBatch
+/// (PaperScheme::batchable): the same results as run() on each, bit for
+/// bit, for about a third of the cost per case.
+[[nodiscard]] std::vector<RunResult> run_batch(const std::vector<const Case*>& cases,
+                                               const std::atomic<bool>* interrupt = nullptr);
+
+/// Tabulates the exact solution the case admits (exact.hpp) on its time
+/// grid, through the same observers: same history columns as `run`, rows up
+/// to the end or to where the solution is known. Throws InputError when the
+/// case admits none.
+[[nodiscard]] RunResult run_exact(const Case& c, const RunOptions& options = {});
+
+[[nodiscard]] std::string_view to_string(RunStatus status);
+
+}  // namespace barimpact

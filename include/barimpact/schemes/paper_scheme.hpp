@@ -1,0 +1,185 @@
+// The alpha-scheme of Do, Raupp & Feijoo, eq. (6.3), in the matrix form of
+// THE-PAPER.md (errata fixed). With z = exp(-lambda t) u and the split
+// k U^- = (k/2)|U| - (k/2) U (linear half implicit, |.| explicit):
+//
+//   M (z^{n+1} - 2 z^n + z^{n-1}) / dt^2 + S z^{n,alpha} + D (z^{n+1} - z^{n-1}) / (2 dt)
+//       = F^{n,alpha} + (k/2) |z^n_0| e_0,
+//   S = lambda^2 M + K_a + lambda K_b + (k/2) e_0 e_0^T,   D = 2 lambda M + K_b,
+//
+// so that A z^{n+1} = B1 z^n + B0 z^{n-1} + (load and contact), with
+// A = M/dt^2 + alpha S + D/(2 dt) factored once (it is symmetric positive
+// definite) and B1 = 2M/dt^2 - (1 - 2 alpha) S, B0 = -M/dt^2 - alpha S + D/(2 dt).
+// A gap g shifts the contact variable: z_0 + g exp(-lambda t) replaces z_0 in
+// the obstacle terms, its constant part treated as a load.
+//
+// Viscoelastic obstacle (l > 0): its dashpot, l (dz_0/dt + lambda z_0) in
+// z-variables, joins the implicit side, centred like D and alpha-averaged
+// like S, while the contact status is explicit (d^n > 0 and k d^n + l dd/dt^n
+// > 0): A + sigma e0 e0^T is solved by Sherman-Morrison with w = A^{-1} e0
+// computed once, so the matrix is still factored once. Where the law clips
+// (d^n > 0, k d^n + l dd/dt^n <= 0, R = 0) the spring's split is cancelled
+// too, its share of A by sigma = -alpha k/2: no obstacle force acts.
+// Start: z^1 by Taylor with the initial acceleration, second order.
+// Clamped far end: the last row of A becomes the identity, u_M = 0.
+//
+// Velocity and energies at t_n (docs/methods.md): V^n = (u^{n+1} - u^{n-1}) / (2 dt);
+// E_kin, E_strain are the means of the scheme's half-step energies at
+// n -/+ 1/2, E_obstacle = k ((U^n + g)^-)^2 / 2.
+#pragma once
+
+#include <array>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+#include "barimpact/model/expression.hpp"
+#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/obstacle.hpp"
+#include "barimpact/schemes/scheme.hpp"
+
+namespace barimpact {
+
+class PaperScheme final : public Scheme {
+ public:
+  /// Preconditions: `c` validated, obstacle kind none or elastic.
+  explicit PaperScheme(const Case& c);
+
+  void start() override;
+  void advance() override;
+
+  [[nodiscard]] long long step() const override { return n_; }
+  [[nodiscard]] double time() const override { return static_cast<double>(n_) * dt_; }
+  [[nodiscard]] std::size_t nodes() const override { return mesh_.nodes(); }
+  [[nodiscard]] double end_displacement() const override;
+  [[nodiscard]] double end_velocity() const override;
+  [[nodiscard]] double reaction() const override { return law_.reaction(end_displacement(), end_velocity()); }
+  void displacement(std::span<double> out) const override;
+  void velocity(std::span<double> out) const override;
+  [[nodiscard]] Energies energies() const override;
+  [[nodiscard]] bool finite() const override;
+
+  /// The level z^{n+1}, node j at [j * stride()] (exposed for tests of the scheme itself).
+  [[nodiscard]] const double* next_level() const { return next_; }
+  [[nodiscard]] std::size_t stride() const { return stride_; }
+
+  /// Whether `a` and `b` can share a PaperBatch: same mesh size and step
+  /// count, a load that does not depend on t, no dashpot.
+  [[nodiscard]] static bool batchable(const Case& a, const Case& b);
+
+ private:
+  friend class PaperBatch;
+  enum class LoadMode { zero, steady, unsteady };
+
+  template <LoadMode mode>
+  void solve_level(long long m);
+  /// Rotates the levels and books the budget of level m.
+  void finish_level(long long m);
+  /// The viscoelastic obstacle's status at level m and its terms in row 0;
+  /// returns the change sigma of A's (0, 0) entry.
+  double viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact);
+  /// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0).
+  [[nodiscard]] std::vector<double> initial_acceleration() const;
+  /// W_ext and D_visc of (0, t_{1/2}), dt/2 times their rates at t = 0.
+  void book_first_half_step();
+  /// exp(lambda t_m): u^m = scale(m) z^m (Remark 6.2).
+  [[nodiscard]] double scale(long long m) const;
+  /// The scheme's energy between levels (a, b) = (n-1, n) or (n, n+1):
+  /// (1/2)|w|_M^2 + (1/2)|m|_Ka^2 + (alpha - 1/4)(dt^2/2)|w|_Ka^2, w = (u^b - u^a)/dt,
+  /// m = (u^b + u^a)/2; the identity (7.1) makes it telescope when lambda = 0.
+  /// Level i is z_i scaled by s_i; with z_c, also the half-step (b, c), in
+  /// the same pass over the nodes.
+  void half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc, double sc,
+                          double (&kinetic)[2], double (&strain)[2]) const;
+  void accumulate_budget(long long m);
+
+  Mesh mesh_;
+  ObstacleLaw law_;
+  double dt_, alpha_, lambda_, density_, a_, b_;
+  bool clamped_;
+  Tridiagonal mass_, stiffness_a_, stiffness_b_;
+
+  // Constant coefficients of A, B1, B0 on the uniform mesh: the off-diagonal
+  // (identical for every element) and the first, inner and last diagonal.
+  double a_off_, b1_off_, b0_off_;
+  std::array<double, 3> b1_diag_{}, b0_diag_{};
+  std::vector<double> inv_;               // 1 / pivot of A's two-ended factorisation
+  std::vector<double> upper_;             // a_off / pivot: the factors' off-diagonal
+  std::vector<double> dashpot_response_;  // w = A^{-1} e0 (viscoelastic obstacle)
+  double dashpot_sigma_ = 0.0;            // l (alpha lambda + 1/(2 dt))
+  /// The viscoelastic obstacle's status used at the last level: apart (d <= 0,
+  /// the split spring alone), pushing (spring and dashpot), clipped (R = 0).
+  enum class Contact { apart, pushing, clipped };
+  Contact contact_ = Contact::apart;
+
+  std::array<std::vector<double>, 3> levels_;
+  std::size_t stride_ = 1;  // node j of a level is at [j * stride_] (PaperBatch::width inside one)
+  bool batched_ = false;
+  double* prev_ = nullptr;  // z^{n-1}
+  double* cur_ = nullptr;   // z^n
+  double* next_ = nullptr;  // z^{n+1}
+
+  LoadMode load_mode_ = LoadMode::zero;
+  std::unique_ptr<Expression> body_force_, initial_displacement_, initial_velocity_;
+  std::array<std::vector<double>, 3> loads_;  // F(t_{m-1}), F(t_m), F(t_{m+1}), unscaled
+  std::vector<double> u0_, v0_;
+
+  // The half-step energy at n + 1/2, kept for the row at n + 1.
+  struct HalfStep {
+    long long n = -1;
+    double kinetic = 0.0, strain = 0.0;
+  };
+  mutable HalfStep cached_;
+
+  long long n_ = 0;
+  double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
+  double work_last_ = 0.0, dissipation_last_ = 0.0;  // increments of level n
+};
+
+/// Up to `width` paper-scheme cases stepped together, one per lane of a
+/// SIMD register: their levels, pivots and loads interleaved
+/// (node j of lane l at [width j + l]), the same arithmetic as PaperScheme's
+/// kernel lane by lane, so that each lane's results are PaperScheme's to the
+/// last bit (tested). The sweeps are latency-bound; `width` independent
+/// chains in one register make them several times cheaper per case.
+/// Each lane stays a PaperScheme: observers see it through the Scheme
+/// interface.
+class PaperBatch {
+ public:
+  /// Cases per register: 4 doubles, one AVX2 register. (Eight, one AVX-512
+  /// register, measured no faster on AMD Zen 4, which runs it as two halves,
+  /// and slower from M = 10^5, where eight cases leave the cache.)
+  static constexpr std::size_t width = 4;
+  /// The largest mesh worth batching: beyond it the lanes' levels and
+  /// factors leave the cache and a batch is no faster per case than single
+  /// runs (measured 2.0-2.4x at M = 10^5, 0.8-1.3x at 10^6; docs/benchmarks.md).
+  static constexpr int largest_mesh = 200'000;
+  /// Storage aligned to a register: every load of all lanes is one aligned access.
+  template <class T>
+  struct RegisterAligned {
+    using value_type = T;
+    RegisterAligned() = default;
+    template <class U>
+    explicit RegisterAligned(const RegisterAligned<U>&) {}
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{8 * width})); }
+    void deallocate(T* p, std::size_t) { ::operator delete (p, std::align_val_t{8 * width}); }
+    friend bool operator==(const RegisterAligned&, const RegisterAligned&) = default;
+  };
+  using Lanes = std::vector<double, RegisterAligned<double>>;
+
+  /// 1 to `width` cases, pairwise batchable. Throws InputError otherwise.
+  explicit PaperBatch(const std::vector<const Case*>& cases);
+  void start();
+  void advance();
+  [[nodiscard]] std::size_t size() const { return lanes_.size(); }
+  [[nodiscard]] PaperScheme& lane(std::size_t i) { return *lanes_[i]; }
+
+ private:
+  std::vector<std::unique_ptr<PaperScheme>> lanes_;
+  std::array<Lanes, 3> levels_;
+  Lanes inv_, up_, load_;
+  std::size_t nodes_ = 0;
+  bool steady_load_ = false;
+};
+
+}  // namespace barimpact

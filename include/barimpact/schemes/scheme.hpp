@@ -1,0 +1,80 @@
+// The one interface every time scheme implements: a state that moves from
+// step n to n + 1 and answers questions about itself at t_n.
+//
+// A scheme owns its discrete levels and its discrete energy identity (how
+// velocity and energies are read off its levels); it knows nothing of files,
+// history or stopping (Odeint's stepper / observer split).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+
+namespace barimpact {
+
+/// The energy budget at t_n. `total()` is constant for an exact solution.
+struct Energies {
+  double kinetic = 0.0;      ///< E_kin
+  double strain = 0.0;       ///< E_strain
+  double obstacle = 0.0;     ///< E_obstacle
+  double work = 0.0;         ///< W_ext, cumulative work of f
+  double dissipation = 0.0;  ///< D_visc, cumulative viscous dissipation
+
+  [[nodiscard]] double total() const { return kinetic + strain + obstacle - work + dissipation; }
+};
+
+class Scheme {
+ public:
+  virtual ~Scheme() = default;
+
+  /// Sets the initial levels: the state is at step 0.
+  virtual void start() = 0;
+  /// Moves the state from step n to n + 1. Never allocates, never does I/O.
+  virtual void advance() = 0;
+
+  [[nodiscard]] virtual long long step() const = 0;
+  /// t_n = n dt (never accumulated).
+  [[nodiscard]] virtual double time() const = 0;
+  [[nodiscard]] virtual std::size_t nodes() const = 0;
+  /// U^n = u(0, t_n).
+  [[nodiscard]] virtual double end_displacement() const = 0;
+  /// V^n, the velocity of x = 0 at t_n.
+  [[nodiscard]] virtual double end_velocity() const = 0;
+  /// R^n >= 0, the obstacle's force on the bar at t_n.
+  [[nodiscard]] virtual double reaction() const = 0;
+  /// u(x_j, t_n) into `out` (size nodes()).
+  virtual void displacement(std::span<double> out) const = 0;
+  /// v(x_j, t_n) into `out` (size nodes()).
+  virtual void velocity(std::span<double> out) const = 0;
+  [[nodiscard]] virtual Energies energies() const = 0;
+  /// False once a level holds NaN or infinity.
+  [[nodiscard]] virtual bool finite() const = 0;
+};
+
+/// The names `time.scheme` accepts.
+[[nodiscard]] std::vector<std::string_view> scheme_names();
+
+/// Why a case does not fit its scheme: the `time` key to blame and the rule.
+struct SchemeMisfit {
+  std::string key;
+  std::string rule;
+};
+
+/// Checks that `c.time.scheme` can run `c` (obstacle kind, bar, step limit).
+/// The `characteristic` scheme sets `c.time.step = h/c` (when `step_given`
+/// it must already be that). Returns the first misfit, if any.
+[[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
+
+/// The largest stable step of the explicit schemes (central differences,
+/// lumped or consistent mass) for `c`'s mesh, bar and obstacle.
+[[nodiscard]] double stable_step(const Case& c, bool consistent_mass);
+
+/// The scheme `c.time.scheme` names, set up for `c`. Throws InputError.
+[[nodiscard]] std::unique_ptr<Scheme> make_scheme(const Case& c);
+
+}  // namespace barimpact

@@ -1,0 +1,94 @@
+// Convergence and work-precision studies: a sequence of runs of one case,
+// refined in h and/or dt, or along a case key (k -> infinity), for one or
+// several schemes, each measured against a reference: the exact solution
+// the case admits (exact.hpp), the rigid obstacle's exact solution, or the
+// finest run. The runs are independent and go to a pool of threads; a run
+// that fails is recorded in its row, not fatal. With a runs directory, each
+// run is kept there as it finishes (the files of `barimpact run`) and a
+// rerun reads back the runs it finds for the same case instead of running
+// them again: an interrupted study, rerun, ends as an uninterrupted one.
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+
+namespace barimpact {
+
+enum class Refine { both, h, dt, none };
+enum class Reference { automatic, rigid, finest };
+
+/// A case key and the values it takes along the study.
+struct Variation {
+  std::string key;                  ///< section.key
+  std::vector<std::string> values;  ///< TOML values as written
+  /// "key=v1,v2,..." or "key=a:b:n" (linear) or "key=log:a:b:n". Throws InputError.
+  static Variation parse(const std::string& text);
+};
+
+struct StudyOptions {
+  int levels = 4;  ///< with refinement and no variation
+  Refine refine = Refine::both;
+  int ratio = 2;                     ///< h and/or dt divided by ratio per level
+  std::optional<Variation> vary;     ///< the levels are its values
+  std::vector<std::string> schemes;  ///< empty: the case's scheme
+  Reference reference = Reference::automatic;
+  int jobs = 0;  ///< threads; 0: all cores
+  /// Where each run is kept as runs/<scheme>-<level>/ (and read back from
+  /// on a rerun); empty: nowhere.
+  std::filesystem::path runs;
+  /// When it becomes true, runs under way end after their step and are not
+  /// kept, runs not begun are not run; their rows say "interrupted".
+  const std::atomic<bool>* interrupt = nullptr;
+};
+
+/// One run of the study and what it measured.
+struct StudyRun {
+  std::string id;  ///< <scheme>-<level>: its directory under StudyOptions::runs
+  std::string scheme;
+  int level = 0;
+  std::string value;  ///< the varied key's value (empty without variation)
+  int elements = 0;
+  double h = 0.0;
+  double step = 0.0;
+  std::string status;                 ///< complete, reference, non-finite, refused, interrupted
+  std::vector<std::string> warnings;  ///< the run's health checks (health.hpp)
+  std::string message;
+  double error_U_max = 0.0;       ///< max_n |U - U_ref|
+  double error_R_l1 = 0.0;        ///< sum_n |R - R_ref| dt
+  double energy_error_end = 0.0;  ///< |E_total(end) - E_total(0)| / |E_total(0)|
+  double first_contact = 0.0;     ///< start of the first contact episode (NaN: none)
+  double lift_off = 0.0;          ///< end of the first contact episode (NaN: none or unclosed)
+  int contact_episodes = 0;
+  double cpu_seconds = 0.0;
+  double order_U = 0.0;  ///< observed order against the previous level (NaN on level 0)
+  double order_R = 0.0;
+};
+
+struct Study {
+  std::string reference;  ///< what the errors are measured against, in words
+  std::string abscissa;   ///< "h" or the varied key
+  std::vector<StudyRun> runs;
+};
+
+/// Checks the options against the case; throws InputError naming the option.
+void check_study(const Case& base, const StudyOptions& options);
+
+/// Runs the study. Throws InputError for bad options (check_study), before any run.
+/// Errors and orders are measured on complete runs only (NaN elsewhere).
+[[nodiscard]] Study converge(const Case& base, const StudyOptions& options);
+
+/// log(e_prev / e) / log(s / s_prev): the observed order between two levels
+/// whose scale (1/h, or the varied value) went from s_prev to s. NaN when an
+/// error is zero or not finite.
+[[nodiscard]] double observed_order(double e_prev, double e, double s_prev, double s);
+
+[[nodiscard]] std::string study_csv(const Study& study);
+/// A Markdown table a person can paste into a paper; `command` is printed above it.
+[[nodiscard]] std::string study_markdown(const Study& study, const std::string& command);
+
+}  // namespace barimpact

@@ -1,0 +1,115 @@
+#include "barimpact/model/mesh.hpp"
+
+#include <array>
+#include <cassert>
+#include <cmath>
+
+#include "barimpact/model/expression.hpp"
+
+namespace barimpact {
+
+void Tridiagonal::multiply(std::span<const double> x, std::span<double> y) const {
+  const std::size_t n = size();
+  assert(x.size() == n && y.size() == n);
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = diag[i] * x[i];
+    if (i > 0) s += off[i - 1] * x[i - 1];
+    if (i + 1 < n) s += off[i] * x[i + 1];
+    y[i] = s;
+  }
+}
+
+double Tridiagonal::quadratic_form(std::span<const double> x) const {
+  double s = 0.0;
+  for (std::size_t i = 0; i < size(); ++i) s += diag[i] * x[i] * x[i];
+  for (std::size_t i = 0; i + 1 < size(); ++i) s += 2.0 * off[i] * x[i] * x[i + 1];
+  return s;
+}
+
+Tridiagonal Tridiagonal::combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b) {
+  assert(a.size() == b.size());
+  Tridiagonal r{a.diag, a.off};
+  for (std::size_t i = 0; i < r.diag.size(); ++i) r.diag[i] = c1 * a.diag[i] + c2 * b.diag[i];
+  for (std::size_t i = 0; i < r.off.size(); ++i) r.off[i] = c1 * a.off[i] + c2 * b.off[i];
+  return r;
+}
+
+FactoredTridiagonal::FactoredTridiagonal(const Tridiagonal& a, bool fix_last) {
+  const std::size_t n = a.size();
+  inv_.assign(n, 0.0);
+  coupling_.assign(n, 0.0);
+  // Pivots from the far end: p_{n-1} = d_{n-1}, p_j = d_j - off_j^2 / p_{j+1}.
+  // A fixed last row drops out: inv = 0 there, and p_{n-2} = d_{n-2}.
+  inv_[n - 1] = fix_last ? 0.0 : 1.0 / a.diag[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) {
+    coupling_[j + 1] = a.off[j] * inv_[j + 1];
+    inv_[j] = 1.0 / (a.diag[j] - a.off[j] * coupling_[j + 1]);
+  }
+}
+
+void FactoredTridiagonal::solve(std::span<double> x) const {
+  const std::size_t n = inv_.size();
+  if (inv_[n - 1] == 0.0) x[n - 1] = 0.0;  // the fixed row
+  for (std::size_t j = n - 1; j-- > 0;) x[j] -= coupling_[j + 1] * x[j + 1];
+  x[0] *= inv_[0];
+  for (std::size_t j = 1; j < n; ++j) x[j] = x[j] * inv_[j] - coupling_[j] * x[j - 1];
+}
+
+std::vector<double> FactoredTridiagonal::response_to_end_force() const {
+  std::vector<double> w(inv_.size(), 0.0);
+  w[0] = 1.0;
+  solve(w);
+  return w;
+}
+
+Mesh::Mesh(double length, int elements)
+    : length_(length), elements_(elements), h_(length / static_cast<double>(elements)) {}
+
+namespace {
+// Assembles the element matrix [[p, q], [q, p]] on every element.
+Tridiagonal assemble(std::size_t nodes, double p, double q) {
+  Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes - 1, q)};
+  for (std::size_t e = 0; e + 1 < nodes; ++e) {
+    t.diag[e] += p;
+    t.diag[e + 1] += p;
+  }
+  return t;
+}
+}  // namespace
+
+Tridiagonal Mesh::mass(double density) const {
+  return assemble(nodes(), density * h_ / 3.0, density * h_ / 6.0);
+}
+
+Tridiagonal Mesh::stiffness(double coefficient) const {
+  return assemble(nodes(), coefficient / h_, -coefficient / h_);
+}
+
+void Mesh::load(const Expression& f, double t, std::span<double> out) const {
+  // 3-point Gauss-Legendre on [-1, 1]: exact for f phi_i of degree <= 5.
+  static const double r = std::sqrt(0.6);
+  static constexpr std::array<double, 3> weight{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  const std::array<double, 3> xi{-r, 0.0, r};
+  for (auto& v : out) v = 0.0;
+  for (std::size_t e = 0; e + 1 < nodes(); ++e) {
+    const double left = x(e);
+    for (std::size_t q = 0; q < 3; ++q) {
+      const double s = 0.5 * (1.0 + xi[q]);  // local coordinate in [0, 1]
+      const double fw = f(left + s * h_, t) * weight[q] * 0.5 * h_;
+      out[e] += fw * (1.0 - s);
+      out[e + 1] += fw * s;
+    }
+  }
+}
+
+double Mesh::stiffness_form(double coefficient, std::span<const double> a, std::span<const double> b) const {
+  double s = 0.0;
+  for (std::size_t e = 0; e + 1 < a.size(); ++e) s += (a[e + 1] - a[e]) * (b[e + 1] - b[e]);
+  return coefficient / h_ * s;
+}
+
+void Mesh::interpolate(const Expression& g, std::span<double> out) const {
+  for (std::size_t j = 0; j < nodes(); ++j) out[j] = g(x(j), 0.0);
+}
+
+}  // namespace barimpact

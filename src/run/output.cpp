@@ -1,0 +1,292 @@
+#include "barimpact/run/output.hpp"
+
+#include "barimpact/run/output_directory.hpp"
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+RunDirectory::RunDirectory(fs::path target, bool force, std::string command, bool remove_stale)
+    : target_(std::move(target)), command_(std::move(command)) {
+  shown_ = target_;
+  beside_ = check_output_directory(target_, force) == OutputMode::beside;
+  // Work on the resolved path: a link given as --out is written through, not replaced.
+  std::error_code ec;
+  target_ = fs::weakly_canonical(fs::absolute(target_), ec);
+  if (ec) target_ = fs::absolute(shown_).lexically_normal();
+  if (!target_.has_filename()) target_ = target_.parent_path();
+  // Beside someone else's files, the staging goes inside the target: nothing is made outside it.
+  const fs::path parent = beside_ ? target_ : target_.parent_path();
+  const std::string name = beside_ ? std::string("barimpact") : target_.filename().string();
+  if (remove_stale) remove_stale_staging(parent, name);
+  staging_ = parent / fmt::format(".{}.partial-{}", name, ::getpid());
+  fs::remove_all(staging_, ec);
+  if (!fs::create_directory(staging_, ec) || ec)
+    throw InputError(fmt::format("--out {}: cannot write in {} ({})", shown_.string(), parent.string(),
+                                 ec ? ec.message() : "not created"));
+  write_text(staging_ / staging_flag, "a barimpact run's results while they are written\n");
+}
+
+RunDirectory::~RunDirectory() {
+  if (!committed_) {
+    std::error_code ec;
+    fs::remove_all(staging_, ec);
+  }
+}
+
+namespace {
+
+// Shortest text that reads back to the same double.
+void write_history(const fs::path& path, const std::vector<HistoryRow>& rows) {
+  auto out = fmt::output_file(path.string());
+  out.print("t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc\n");
+  for (const auto& r : rows)
+    out.print("{},{},{},{},{},{},{},{},{}\n", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext, r.D_visc);
+  out.close();
+}
+
+void write_fields(const fs::path& path, const RunResult& result) {
+  auto out = fmt::output_file(path.string());
+  out.print("t,x,u,v,sigma\n");
+  const Fields& f = result.fields;
+  for (std::size_t s = 0; s < f.count(); ++s)
+    for (std::size_t j = 0, i = s * f.nodes(); j < f.nodes(); ++j, ++i)
+      out.print("{},{},{},{},{}\n", f.t[s], f.x[j], f.u[i], f.v[i], f.sigma[i]);
+  out.close();
+}
+
+nlohmann::json number_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+}  // namespace
+
+void write_text(const fs::path& path, const std::string& text) {
+  auto out = fmt::output_file(path.string());
+  out.print("{}", text);
+  out.close();
+}
+
+void replace_text(const fs::path& path, const std::string& text) {
+  const auto staging = path.parent_path() / fmt::format(".{}.partial-{}", path.filename().string(), ::getpid());
+  write_text(staging, text);
+  fs::rename(staging, path);
+}
+
+void RunDirectory::commit(const Case& c, const RunResult& result) {
+  commit([&](const fs::path& dir) {
+    write_history(dir / "history.csv", result.history);
+    write_fields(dir / "fields.csv", result);
+    write_text(dir / "case.toml", c.to_toml());
+    write_text(dir / "summary.json", summary_json(c, result.summary));
+  });
+}
+
+void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
+  try {
+    write(staging_);
+    fs::remove(staging_ / staging_flag);
+    write_output_marker(staging_, command_, directory_entries(staging_));
+  } catch (const std::system_error& e) {
+    throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
+  }
+  // The target is judged again now: it may have changed during the run.
+  std::error_code ec;
+  if (fs::is_directory(target_, ec) && fs::is_empty(target_, ec)) fs::remove(target_, ec);
+  if (beside_ || (fs::exists(target_, ec) && !written_by_barimpact(target_))) {
+    move_beside();
+    return;
+  }
+  fs::path old;
+  if (fs::exists(target_, ec)) {
+    old = target_.parent_path() / fmt::format(".{}.old-{}", target_.filename().string(), ::getpid());
+    fs::rename(target_, old, ec);
+    if (ec)
+      throw InputError(
+          fmt::format("--out {}: cannot replace the existing directory: {}", shown_.string(), ec.message()));
+  }
+  fs::rename(staging_, target_, ec);
+  if (ec)
+    throw InputError(fmt::format("--out {}: cannot move the results into place: {}", shown_.string(), ec.message()));
+  committed_ = true;
+  if (!old.empty()) fs::remove_all(old, ec);  // barimpact's own files only (written_by_barimpact)
+}
+
+// --force on a directory that holds someone else's files: each of
+// barimpact's files replaces only the file of its own name.
+void RunDirectory::move_beside() {
+  const auto names = directory_entries(staging_);
+  for (const auto& name : names) {
+    std::error_code ec;
+    if (name == output_marker) continue;
+    if (fs::is_directory(target_ / name, ec))
+      throw InputError(fmt::format("--out {}: holds a directory {} where barimpact writes a file of that name",
+                                   shown_.string(), name));
+    fs::rename(staging_ / name, target_ / name, ec);
+    if (ec)
+      throw InputError(fmt::format("--out {}: cannot move {} into place: {}", shown_.string(), name, ec.message()));
+  }
+  try {
+    write_output_marker(target_, command_, names);
+  } catch (const std::exception& e) {
+    throw InputError(fmt::format("--out {}: cannot write its marker: {}", shown_.string(), e.what()));
+  }
+  std::error_code ec;
+  fs::remove_all(staging_, ec);
+  committed_ = true;
+}
+
+namespace {
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return in ? text.str() : std::string();
+}
+
+std::vector<HistoryRow> read_history(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  if (!std::getline(in, line) || line != "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc")
+    throw std::runtime_error("not a history.csv");
+  std::vector<HistoryRow> rows;
+  while (std::getline(in, line)) {
+    HistoryRow r{};
+    double* cells[] = {&r.t, &r.U, &r.V, &r.R, &r.E_kin, &r.E_strain, &r.E_obstacle, &r.W_ext, &r.D_visc};
+    std::size_t at = 0;
+    for (double* cell : cells) {
+      const std::size_t end = std::min(line.find(',', at), line.size());
+      *cell = std::stod(line.substr(at, end - at));  // "nan" and "inf" read back too
+      at = end + 1;
+    }
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+double number_or_nan(const nlohmann::json& j, const char* key) {
+  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+RunStatus status_from(const std::string& text) {
+  for (auto s : {RunStatus::complete, RunStatus::non_finite, RunStatus::stopped, RunStatus::interrupted})
+    if (to_string(s) == text) return s;
+  throw std::runtime_error("unknown status " + text);
+}
+
+}  // namespace
+
+std::optional<RunResult> read_run_directory(const fs::path& dir, const std::string& case_toml) {
+  if (!case_toml.empty() && read_text(dir / "case.toml") != case_toml) return std::nullopt;
+  try {
+    std::ifstream in(dir / "summary.json");
+    const auto j = nlohmann::json::parse(in);
+    RunResult r;
+    Summary& s = r.summary;
+    s.method = j.at("scheme").get<std::string>();
+    s.status = status_from(j.at("status").get<std::string>());
+    s.complete = s.status == RunStatus::complete;
+    s.message = j.value("message", "");
+    s.steps = j.at("steps").get<long long>();
+    s.steps_done = j.at("steps_done").get<long long>();
+    s.t_end = number_or_nan(j, "t_end");
+    for (const auto& e : j.at("contacts")) {
+      ContactInterval ci;
+      ci.start = e.at("start").get<double>();
+      ci.end = e.at("end").get<double>();
+      ci.closed = e.at("closed").get<bool>();
+      ci.exit_velocity = number_or_nan(e, "exit_velocity");
+      ci.rebound_velocity = number_or_nan(e, "rebound_velocity");
+      ci.max_reaction = e.at("max_reaction").get<double>();
+      s.contacts.push_back(ci);
+    }
+    s.max_penetration = number_or_nan(j, "max_penetration");
+    s.max_reaction = number_or_nan(j, "max_reaction");
+    s.energy_initial = number_or_nan(j, "energy_initial");
+    s.energy_final = number_or_nan(j, "energy_final");
+    s.energy_error_max = number_or_nan(j, "energy_error_max");
+    s.run_seconds = number_or_nan(j, "run_seconds");
+    s.warnings = j.value("warnings", std::vector<std::string>{});
+    r.history = read_history(dir / "history.csv");
+    return r;
+  } catch (const std::exception&) {
+    return std::nullopt;  // not a run directory barimpact wrote whole: run it again
+  }
+}
+
+std::string summary_json(const Case& c, const Summary& s) {
+  nlohmann::json contacts = nlohmann::json::array();
+  for (const auto& ci : s.contacts)
+    contacts.push_back({{"start", ci.start},
+                        {"end", ci.end},
+                        {"closed", ci.closed},
+                        {"exit_velocity", ci.closed ? number_or_null(ci.exit_velocity) : nlohmann::json(nullptr)},
+                        {"rebound_velocity", ci.closed ? number_or_null(ci.rebound_velocity) : nlohmann::json(nullptr)},
+                        {"max_reaction", ci.max_reaction}});
+  const double rel = s.energy_initial != 0.0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
+  const nlohmann::json j = {
+      {"complete", s.complete},
+      {"status", std::string(to_string(s.status))},
+      {"message", s.message},
+      {"scheme", s.method},
+      {"steps", s.steps},
+      {"steps_done", s.steps_done},
+      {"step", c.time.step},
+      {"elements", c.bar.elements},
+      {"t_end", s.t_end},
+      {"contacts", contacts},
+      {"contact_count", s.contacts.size()},
+      {"max_penetration", s.max_penetration},
+      {"max_reaction", s.max_reaction},
+      {"energy_initial", number_or_null(s.energy_initial)},
+      {"energy_final", number_or_null(s.energy_final)},
+      {"energy_error_max", number_or_null(s.energy_error_max)},
+      {"energy_error_relative", number_or_null(rel)},
+      {"run_seconds", s.run_seconds},
+      {"warnings", s.warnings},
+  };
+  return j.dump(2) + "\n";
+}
+
+std::string summary_text(const Case& c, const Summary& s) {
+  std::string out = fmt::format("{}: {} steps of dt = {} on {} elements, t = 0 .. {}{}\n", s.method, s.steps_done,
+                                c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
+  if (s.contacts.empty()) out += "  no contact\n";
+  constexpr std::size_t shown = 8;
+  for (std::size_t i = 0; i < std::min(shown, s.contacts.size()); ++i) {
+    const auto& ci = s.contacts[i];
+    if (ci.closed)
+      out += fmt::format(
+          "  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {:+.4g} (end {:+.4g})\n",
+          i + 1, ci.start, ci.end, ci.max_reaction, ci.rebound_velocity, ci.exit_velocity);
+    else
+      out += fmt::format("  contact {}: t = {:.6g} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
+                         ci.max_reaction);
+  }
+  if (s.contacts.size() > shown)
+    out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);
+  out += fmt::format("  max penetration {:.4g}, max reaction {:.4g}\n", s.max_penetration, s.max_reaction);
+  if (std::isfinite(s.energy_initial))
+    out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",
+                       s.energy_initial, s.energy_final, s.energy_error_max,
+                       s.energy_initial != 0.0 ? 100.0 * s.energy_error_max / std::abs(s.energy_initial) : 0.0);
+  else
+    out += "  energy: not known for this solution\n";
+  out += fmt::format("  run time {:.3f} s\n", s.run_seconds);
+  if (!s.complete) out += fmt::format("  {}\n", s.message);
+  return out;
+}
+
+}  // namespace barimpact

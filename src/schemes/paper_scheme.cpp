@@ -1,0 +1,622 @@
+#include "barimpact/schemes/paper_scheme.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+// PaperBatch passes GCC's generic 4-double vectors by value to inlined
+// helpers; their ABI without AVX does not concern us.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace barimpact {
+
+namespace {
+// The two-ended ("twisted") solve of the symmetric tridiagonal A with the
+// factors of PaperScheme: rows 0..k-1 eliminated from row 0 down, rows
+// k+1..M from row M up, row k = M/2 last. Each sweep then carries two
+// independent chains, one per half, which a latency-bound solve runs in the
+// time of one. T is double, or four lanes (PaperBatch): the same operations
+// in the same order. r0, rl: rows 0 and M of the right-hand side; rhs(j) an
+// interior row's; get/put read and write the solution, row by row.
+template <class T, class Rhs, class Inv, class Up, class Get, class Put>
+inline void twisted_solve(std::size_t last, T a, T r0, T rl, Rhs rhs, Inv inv, Up up, Get get, Put put) {
+  const std::size_t k = last / 2;
+  const std::size_t top = k > 0 ? k - 1 : 0;  // interior rows of the upper half: 1..k-1
+  const std::size_t bottom = last - 1 - k;    // of the lower half: k+1..M-1 (top or top + 1)
+  T yt{};
+  if (k > 0) {
+    yt = r0 * inv(0);
+    put(0, yt);
+  }
+  T yb = rl * inv(last);
+  put(last, yb);
+  std::size_t jb = last;
+  for (std::size_t e = top; e < bottom; ++e) {  // the lower half's extra row
+    --jb;
+    yb = rhs(jb) * inv(jb) - up(jb) * yb;
+    put(jb, yb);
+  }
+  for (std::size_t j = 1; j <= top; ++j) {
+    --jb;
+    yt = rhs(j) * inv(j) - up(j) * yt;
+    put(j, yt);
+    yb = rhs(jb) * inv(jb) - up(jb) * yb;
+    put(jb, yb);
+  }
+  T x = ((k > 0 ? rhs(k) : r0) - a * (yt + yb)) * inv(k);  // row k meets both halves
+  put(k, x);
+  T xt = x, xb = x;
+  for (std::size_t i = 1; i <= k; ++i) {
+    xt = get(k - i) - up(k - i) * xt;
+    put(k - i, xt);
+    xb = get(k + i) - up(k + i) * xb;
+    put(k + i, xb);
+  }
+  for (std::size_t j = 2 * k + 1; j <= last; ++j) {  // the lower half's extra row
+    xb = get(j) - up(j) * xb;
+    put(j, xb);
+  }
+}
+}  // namespace
+
+PaperScheme::PaperScheme(const Case& c)
+    : mesh_(c.bar.length, c.bar.elements),
+      law_(c.obstacle),
+      dt_(c.time.step),
+      alpha_(c.time.alpha),
+      lambda_(c.time.lambda),
+      density_(c.bar.density),
+      a_(c.bar.stiffness),
+      b_(c.bar.viscosity),
+      clamped_(c.bar.far_end == FarEnd::clamped),
+      mass_(mesh_.mass(density_)),
+      stiffness_a_(mesh_.stiffness(a_)),
+      stiffness_b_(mesh_.stiffness(b_)) {
+  const std::size_t n = mesh_.nodes();
+  const double k = law_.stiffness();
+
+  // S = lambda^2 M + K_a + lambda K_b + (k/2) e0 e0^T and D = 2 lambda M + K_b, (6.1)(i).
+  Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiffness_a_);
+  S = Tridiagonal::combine(1.0, S, lambda_, stiffness_b_);
+  S.diag[0] += 0.5 * k;
+  const Tridiagonal D = Tridiagonal::combine(2.0 * lambda_, mass_, 1.0, stiffness_b_);
+
+  const double inv_dt2 = 1.0 / (dt_ * dt_);
+  const double half_inv_dt = 0.5 / dt_;
+  const Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(inv_dt2, mass_, alpha_, S), half_inv_dt, D);
+  const Tridiagonal B1 = Tridiagonal::combine(2.0 * inv_dt2, mass_, -(1.0 - 2.0 * alpha_), S);
+  const Tridiagonal B0 = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
+
+  // Every element contributes the same off-diagonal entry on a uniform mesh.
+  a_off_ = A.off[0];
+  b1_off_ = B1.off[0];
+  b0_off_ = B0.off[0];
+  const std::size_t inner = std::min<std::size_t>(1, n - 1);
+  b1_diag_ = {B1.diag[0], B1.diag[inner], B1.diag[n - 1]};
+  b0_diag_ = {B0.diag[0], B0.diag[inner], B0.diag[n - 1]};
+
+  // The two-ended factorisation of the symmetric positive definite A, once
+  // (see twisted_solve): pivots p_j from row 0 down to row k - 1 and from row
+  // M up to row k + 1, with up_j = a_off / p_j, and row k = M/2's pivot last.
+  const std::size_t last = n - 1, twist = last / 2;
+  inv_.assign(n, 0.0);
+  upper_.assign(n, 0.0);
+  for (std::size_t j = 0; j < twist; ++j) {
+    inv_[j] = 1.0 / (A.diag[j] - (j > 0 ? a_off_ * upper_[j - 1] : 0.0));
+    upper_[j] = a_off_ * inv_[j];
+  }
+  // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
+  // exactly that, and its zero up removes the column's coupling.
+  for (std::size_t j = last; j > twist; --j) {
+    inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
+    upper_[j] = a_off_ * inv_[j];
+  }
+  inv_[twist] = 1.0 / (A.diag[twist] - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
+
+  if (law_.viscosity() > 0.0) {
+    dashpot_sigma_ = law_.viscosity() * (alpha_ * lambda_ + 0.5 / dt_);
+    dashpot_response_.assign(n, 0.0);
+    double* w = dashpot_response_.data();
+    twisted_solve(
+        last, a_off_, 1.0, 0.0, [](std::size_t) { return 0.0; }, [&](std::size_t j) { return inv_[j]; },
+        [&](std::size_t j) { return upper_[j]; }, [&](std::size_t j) { return w[j]; },
+        [&](std::size_t j, double v) { w[j] = v; });
+  }
+
+  for (auto& level : levels_) level.assign(n, 0.0);
+  u0_.assign(n, 0.0);
+  v0_.assign(n, 0.0);
+
+  body_force_ = std::make_unique<Expression>(c.load.body_force);
+  if (body_force_->is_zero()) {
+    load_mode_ = LoadMode::zero;
+  } else {
+    load_mode_ = body_force_->depends_on_t() ? LoadMode::unsteady : LoadMode::steady;
+    for (auto& l : loads_) l.assign(n, 0.0);
+  }
+
+  initial_displacement_ = std::make_unique<Expression>(c.initial.displacement);
+  initial_velocity_ = std::make_unique<Expression>(c.initial.velocity);
+}
+
+double PaperScheme::scale(long long m) const {
+  return lambda_ == 0.0 ? 1.0 : std::exp(lambda_ * static_cast<double>(m) * dt_);
+}
+
+void PaperScheme::start() {
+  const std::size_t n = mesh_.nodes();
+  mesh_.interpolate(*initial_displacement_, u0_);
+  mesh_.interpolate(*initial_velocity_, v0_);
+  if (!batched_) {
+    prev_ = levels_[2].data();
+    cur_ = levels_[0].data();
+    next_ = levels_[1].data();
+  }
+  if (load_mode_ == LoadMode::steady) mesh_.load(*body_force_, 0.0, loads_[0]);
+  if (load_mode_ == LoadMode::unsteady) {
+    mesh_.load(*body_force_, 0.0, loads_[0]);
+    mesh_.load(*body_force_, dt_, loads_[1]);
+  }
+  // A Taylor start, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with (6.1)
+  // z' = v0 - lambda u0 and z'' = a0 - 2 lambda v0 + lambda^2 u0: second
+  // order. The paper's z^1 = u0 + dt (v0 - lambda u0) (erratum 2) drops the
+  // dt^2 term and is first order when a0 is not zero (a load, u0 strained).
+  const std::vector<double> a0 = initial_acceleration();
+  const std::size_t st = stride_;
+  const double half_dt2 = 0.5 * dt_ * dt_;
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j * st] = u0_[j];
+    next_[j * st] = u0_[j] + dt_ * (v0_[j] - lambda_ * u0_[j]) +
+                    half_dt2 * (a0[j] - 2.0 * lambda_ * v0_[j] + lambda_ * lambda_ * u0_[j]);
+    prev_[j * st] = u0_[j];
+  }
+  n_ = 0;
+  cached_ = {};
+  book_first_half_step();
+}
+
+// Level m's increments are centred on t_m and summed from m = 1: the budget
+// would start at t_{1/2}. The first half step's share, dt/2 times the rates
+// at t = 0 (the load's power, the bar's dissipation, the viscoelastic
+// obstacle's (R - k d) dd/dt), is booked here.
+void PaperScheme::book_first_half_step() {
+  double power = 0.0;
+  if (load_mode_ != LoadMode::zero)
+    for (std::size_t j = 0; j < v0_.size(); ++j) power += loads_[0][j] * v0_[j];
+  double dissipation = mesh_.stiffness_form(b_, v0_, v0_);
+  if (dashpot_sigma_ > 0.0)
+    dissipation -= (law_.reaction(u0_[0], v0_[0]) - law_.stiffness() * law_.penetration(u0_[0])) * v0_[0];
+  work_half_ = 0.5 * dt_ * power;
+  dissipation_half_ = 0.5 * dt_ * dissipation;
+  work_last_ = dissipation_last_ = 0.0;
+}
+
+// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0), R(0) the obstacle's law at
+// (u0, v0); F(0) is in loads_[0]. Called by start() only: it may allocate.
+std::vector<double> PaperScheme::initial_acceleration() const {
+  const std::size_t n = mesh_.nodes();
+  std::vector<double> a(n, 0.0), viscous(n, 0.0);
+  stiffness_a_.multiply(u0_, a);
+  stiffness_b_.multiply(v0_, viscous);
+  for (std::size_t j = 0; j < n; ++j) a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - a[j] - viscous[j];
+  a[0] += law_.reaction(u0_[0], v0_[0]);
+  if (clamped_) a[n - 1] = 0.0;
+  FactoredTridiagonal(mass_, clamped_).solve(a);
+  return a;
+}
+
+// One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}
+// (cur_), written over z^{m-2} (prev_). The right-hand side
+// B1 z^m + B0 z^{m-1} + F^{m,alpha} + contact is formed row by row inside
+// the first sweep of the prefactored two-ended solve, then one sweep back:
+// two passes over memory, two chains per pass, no allocation.
+template <PaperScheme::LoadMode mode>
+void PaperScheme::solve_level(long long m) {
+  const std::size_t n = mesh_.nodes();
+  const double* __restrict zc = next_;
+  const double* __restrict zo = cur_;
+  double* __restrict zn = prev_;
+  const double* __restrict inv = inv_.data();
+  const double* __restrict up = upper_.data();
+
+  // exp(-lambda t) at t_{m-1}, t_m, t_{m+1}, and its alpha-mean.
+  const double em1 = 1.0 / scale(m - 1), e0 = 1.0 / scale(m), ep1 = 1.0 / scale(m + 1);
+  const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
+
+  // Load weights: F^{m,alpha} = cp F(t_{m+1}) + c0 F(t_m) + cm F(t_{m-1}), all scaled by exp(-lambda t).
+  const double* __restrict fp = nullptr;
+  const double* __restrict f0 = nullptr;
+  const double* __restrict fm = nullptr;
+  double cp = 0.0, c0 = 0.0, cm = 0.0;
+  if constexpr (mode == LoadMode::steady) {
+    f0 = loads_[0].data();
+    c0 = ebar;
+  } else if constexpr (mode == LoadMode::unsteady) {
+    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
+    mesh_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    fp = newest.data();
+    f0 = loads_[static_cast<std::size_t>(m % 3)].data();
+    fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
+    cp = alpha_ * ep1;
+    c0 = (1.0 - 2.0 * alpha_) * e0;
+    cm = alpha_ * em1;
+  }
+  auto load = [&](std::size_t j) {
+    if constexpr (mode == LoadMode::zero) {
+      (void)j;
+      return 0.0;
+    } else if constexpr (mode == LoadMode::steady) {
+      return c0 * f0[j];
+    } else {
+      return cp * fp[j] + c0 * f0[j] + cm * fm[j];
+    }
+  };
+
+  // The explicit half of the penalty, (k/2)|z_0 + g e^{-lambda t_m}|, and the
+  // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
+  const double k = law_.stiffness(), g = law_.gap();
+  double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
+  const double sigma = dashpot_sigma_ > 0.0 ? viscoelastic_row(zc, zo, e0, em1, contact) : 0.0;
+
+  const double b1o = b1_off_, b0o = b0_off_;
+  const double b1d = b1_diag_[1], b0d = b0_diag_[1];
+  const std::size_t last = n - 1;
+
+  // A zero load adds nothing, not even the + 0.0 that IEEE rules would keep.
+  auto loaded = [&](double r, std::size_t j) {
+    if constexpr (mode == LoadMode::zero) {
+      (void)j;
+      return r;
+    } else {
+      return r + load(j);
+    }
+  };
+  const double r0 = loaded(b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1], 0) + contact;
+  const double r_last =
+      loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);
+  twisted_solve(
+      last, a_off_, r0, r_last,
+      [&](std::size_t j) {
+        return loaded(b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]), j);
+      },
+      [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
+      [&](std::size_t j, double v) { zn[j] = v; });
+  if (sigma != 0.0) {
+    // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
+    const double* __restrict w = dashpot_response_.data();
+    const double s = sigma * zn[0] / (1.0 + sigma * w[0]);
+    for (std::size_t j = 0; j < n; ++j) zn[j] -= s * w[j];
+  }
+}
+
+// The viscoelastic obstacle at level m, its status explicit (d^m and dd/dt^m
+// by a backward difference): pushing, the dashpot joins the spring; clipped
+// (d > 0, k d + l dd/dt <= 0: R = 0), neither acts, so that the force in the
+// equation is the law's. Adjusts row 0's `contact`; returns sigma, the change
+// of A's (0, 0) entry, applied by Sherman-Morrison.
+double PaperScheme::viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact) {
+  const double k = law_.stiffness(), l = law_.viscosity(), g = law_.gap();
+  const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
+  contact_ = d <= 0.0 ? Contact::apart : k * d + l * d_rate > 0.0 ? Contact::pushing : Contact::clipped;
+  if (contact_ == Contact::pushing) {
+    contact += l * (zo[0] * 0.5 / dt_ - lambda_ * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]));
+    return dashpot_sigma_;
+  }
+  if (contact_ == Contact::clipped) {
+    // Drop the explicit half and the gap's share; cancel the implicit half
+    // (k/2) z_0^{m,alpha}: its z^m, z^{m-1} parts (in B1, B0) here, its
+    // alpha z^{m+1} part (in A) by sigma. A - alpha (k/2) e0 e0^T stays
+    // positive definite: it is A without the spring.
+    contact = 0.5 * k * ((1.0 - 2.0 * alpha_) * zc[0] + alpha_ * zo[0]);
+    return -0.5 * alpha_ * k;
+  }
+  return 0.0;
+}
+
+void PaperScheme::advance() {
+  const long long m = n_ + 1;
+  switch (load_mode_) {
+    case LoadMode::zero:
+      solve_level<LoadMode::zero>(m);
+      break;
+    case LoadMode::steady:
+      solve_level<LoadMode::steady>(m);
+      break;
+    case LoadMode::unsteady:
+      solve_level<LoadMode::unsteady>(m);
+      break;
+  }
+  finish_level(m);
+}
+
+void PaperScheme::finish_level(long long m) {
+  double* oldest = prev_;
+  prev_ = cur_;
+  cur_ = next_;
+  next_ = oldest;
+  n_ = m;
+  if (load_mode_ != LoadMode::zero || b_ > 0.0 || dashpot_sigma_ > 0.0) accumulate_budget(m);
+}
+
+// The work and dissipation of level m, from testing (6.3)(iv) with
+// (u^{m+1} - u^{m-1}) / 2: dW = F^{m,alpha} . (u^{m+1} - u^{m-1}) / 2 and
+// dD = dt |(u^{m+1} - u^{m-1}) / (2 dt)|^2_{K_b}.
+void PaperScheme::accumulate_budget(long long m) {
+  const std::size_t n = mesh_.nodes(), st = stride_;
+  const double sm = scale(m - 1), sp = scale(m + 1);
+  double dw = 0.0;
+  if (load_mode_ != LoadMode::zero) {
+    const double em1 = 1.0 / sm, e0 = 1.0 / scale(m), ep1 = 1.0 / sp;
+    const double back = scale(m);  // F^{m,alpha} is in z-units: times exp(lambda t_m)
+    if (load_mode_ == LoadMode::steady) {
+      const double w = back * (alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1);
+      const auto& f = loads_[0];
+      for (std::size_t j = 0; j < n; ++j) dw += w * f[j] * 0.5 * (sp * next_[j * st] - sm * prev_[j * st]);
+    } else {
+      const auto& fp = loads_[static_cast<std::size_t>((m + 1) % 3)];
+      const auto& f0 = loads_[static_cast<std::size_t>(m % 3)];
+      const auto& fm = loads_[static_cast<std::size_t>((m - 1) % 3)];
+      for (std::size_t j = 0; j < n; ++j) {
+        const double f = back * (alpha_ * ep1 * fp[j] + (1.0 - 2.0 * alpha_) * e0 * f0[j] + alpha_ * em1 * fm[j]);
+        dw += f * 0.5 * (sp * next_[j * st] - sm * prev_[j * st]);
+      }
+    }
+  }
+  double dd = 0.0;
+  if (b_ > 0.0) {
+    const double c = 0.5 / dt_;
+    double left = c * (sp * next_[0] - sm * prev_[0]);
+    for (std::size_t j = 1; j < n; ++j) {
+      const double right = c * (sp * next_[j * st] - sm * prev_[j * st]);
+      dd += (right - left) * (right - left);
+      left = right;
+    }
+    dd *= dt_ * b_ / mesh_.h();
+  }
+  if (contact_ == Contact::pushing) {  // the obstacle's dashpot: dt l (du_0/dt)^2
+    const double rate = (sp * next_[0] - sm * prev_[0]) / (2.0 * dt_);
+    dd += dt_ * law_.viscosity() * rate * rate;
+  } else if (contact_ == Contact::clipped) {
+    // The spring lets go unloaded: what k d^2 / 2 loses is dissipated, as
+    // k d^m (d^{m-1} - d^{m+1}) / 2, the centred form that telescopes to it.
+    const double d = law_.penetration(scale(m) * cur_[0]);
+    dd += law_.stiffness() * d * 0.5 * (sp * next_[0] - sm * prev_[0]);
+  }
+  work_last_ = dw;
+  dissipation_last_ = dd;
+  work_half_ += dw;
+  dissipation_half_ += dd;
+}
+
+double PaperScheme::end_displacement() const {
+  return scale(n_) * cur_[0];
+}
+
+double PaperScheme::end_velocity() const {
+  if (n_ == 0) return v0_[0];
+  return (scale(n_ + 1) * next_[0] - scale(n_ - 1) * prev_[0]) / (2.0 * dt_);
+}
+
+void PaperScheme::displacement(std::span<double> out) const {
+  const double s = scale(n_);
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = s * cur_[j * stride_];
+}
+
+void PaperScheme::velocity(std::span<double> out) const {
+  if (n_ == 0) {
+    std::copy(v0_.begin(), v0_.end(), out.begin());
+    return;
+  }
+  const double sp = scale(n_ + 1), sm = scale(n_ - 1);
+  for (std::size_t j = 0; j < out.size(); ++j)
+    out[j] = (sp * next_[j * stride_] - sm * prev_[j * stride_]) / (2.0 * dt_);
+}
+
+namespace {
+// One half-step's energy sums, element by element: the levels' values at a
+// node come in as (a, b), already scaled.
+struct HalfStepSums {
+  double inv_dt, wm = 0.0, wk = 0.0, mk = 0.0, w_left = 0.0, m_left = 0.0;
+  void first(double a, double b) {
+    w_left = (b - a) * inv_dt;  // a multiply: this runs on every history row
+    m_left = 0.5 * (b + a);
+  }
+  void next(double a, double b) {
+    const double w_right = (b - a) * inv_dt, m_right = 0.5 * (b + a);
+    wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
+    wk += (w_right - w_left) * (w_right - w_left);
+    mk += (m_right - m_left) * (m_right - m_left);
+    w_left = w_right;
+    m_left = m_right;
+  }
+};
+}  // namespace
+
+void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
+                                     double sc, double (&kinetic)[2], double (&strain)[2]) const {
+  // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
+  const double h = mesh_.h();
+  const std::size_t st = stride_, n = mesh_.nodes();
+  const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
+  const double extra = (alpha_ - 0.25) * dt_ * dt_, inv_dt = 1.0 / dt_;
+  HalfStepSums ab{inv_dt}, bc{inv_dt};
+  auto pass = [&](auto both) {
+    ab.first(sa * za[0], sb * zb[0]);
+    if constexpr (decltype(both)::value) bc.first(sb * zb[0], sc * zc[0]);
+    for (std::size_t j = 1; j < n; ++j) {
+      const double b = sb * zb[j * st];
+      ab.next(sa * za[j * st], b);
+      if constexpr (decltype(both)::value) bc.next(b, sc * zc[j * st]);
+    }
+  };
+  if (zc != nullptr)
+    pass(std::true_type{});
+  else
+    pass(std::false_type{});
+  const HalfStepSums* sums[2] = {&ab, &bc};
+  for (int i = 0; i < 2; ++i) {
+    kinetic[i] = 0.5 * mass_c * sums[i]->wm;
+    strain[i] = 0.5 * stiff_c * (sums[i]->mk + extra * sums[i]->wk);
+  }
+}
+
+Energies PaperScheme::energies() const {
+  Energies e;
+  e.obstacle = law_.energy(end_displacement());
+  if (n_ == 0) {
+    e.kinetic = 0.5 * mass_.quadratic_form(v0_);
+    e.strain = 0.5 * mesh_.stiffness_form(a_, u0_, u0_);
+    return e;
+  }
+  double k[2] = {0.0, 0.0}, s[2] = {0.0, 0.0}, k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
+  if (cached_.n == n_ - 1) {  // the previous row's n + 1/2 is this row's n - 1/2
+    k1 = cached_.kinetic;
+    s1 = cached_.strain;
+    half_step_energies(cur_, scale(n_), next_, scale(n_ + 1), nullptr, 0.0, k, s);
+    k2 = k[0], s2 = s[0];
+  } else {  // both half-steps in one pass
+    half_step_energies(prev_, scale(n_ - 1), cur_, scale(n_), next_, scale(n_ + 1), k, s);
+    k1 = k[0], s1 = s[0], k2 = k[1], s2 = s[1];
+  }
+  cached_ = {n_, k2, s2};
+  e.kinetic = 0.5 * (k1 + k2);
+  e.strain = 0.5 * (s1 + s2);
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  return e;
+}
+
+bool PaperScheme::finite() const {
+  const std::size_t last = mesh_.nodes() - 1;
+  const std::size_t at = last * stride_;
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[at]) && std::isfinite(next_[0]) && std::isfinite(next_[at]) &&
+         std::isfinite(work_half_) && std::isfinite(dissipation_half_) && std::isfinite(scale(n_ + 1));
+}
+
+}  // namespace barimpact
+
+namespace barimpact {
+
+bool PaperScheme::batchable(const Case& a, const Case& b) {
+  auto fits = [](const Case& c) {
+    return c.time.scheme == "paper" && c.obstacle.kind != ObstacleKind::viscoelastic &&
+           !Expression(c.load.body_force).depends_on_t();
+  };
+  return fits(a) && fits(b) && a.bar.elements == b.bar.elements && a.step_count() == b.step_count() &&
+         Expression(a.load.body_force).is_zero() == Expression(b.load.body_force).is_zero();
+}
+
+// GCC's generic vectors of PaperBatch::width doubles: one AVX-512 or AVX2
+// register with -march=native, emulated elsewhere.
+namespace {
+typedef double lanes __attribute__((vector_size(8 * PaperBatch::width)));
+inline lanes load_lanes(const double* p) {
+  lanes v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+inline void store_lanes(double* p, lanes v) {
+  __builtin_memcpy(p, &v, sizeof v);
+}
+}  // namespace
+
+PaperBatch::PaperBatch(const std::vector<const Case*>& cases) {
+  if (cases.empty() || cases.size() > width) throw InputError(fmt::format("PaperBatch: 1 to {} cases", width));
+  for (const auto* c : cases) {
+    if (!PaperScheme::batchable(*cases.front(), *c)) throw InputError("PaperBatch: the cases cannot share a batch");
+    lanes_.push_back(std::make_unique<PaperScheme>(*c));
+  }
+  nodes_ = lanes_.front()->nodes();
+  steady_load_ = lanes_.front()->load_mode_ == PaperScheme::LoadMode::steady;
+  for (auto& l : levels_) l.assign(width * nodes_, 0.0);
+  inv_.assign(width * nodes_, 0.0);
+  up_.assign(width * nodes_, 0.0);
+  load_.assign(width * nodes_, 0.0);
+  // Unused lanes repeat lane 0: they compute what it computes, and are ignored.
+  for (std::size_t l = 0; l < width; ++l) {
+    const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
+    for (std::size_t j = 0; j < nodes_; ++j) {
+      inv_[width * j + l] = s.inv_[j];
+      up_[width * j + l] = s.upper_[j];
+    }
+  }
+  for (std::size_t l = 0; l < lanes_.size(); ++l) {
+    PaperScheme& s = *lanes_[l];
+    s.batched_ = true;
+    s.stride_ = width;
+    s.prev_ = levels_[2].data() + l;
+    s.cur_ = levels_[0].data() + l;
+    s.next_ = levels_[1].data() + l;
+  }
+}
+
+void PaperBatch::start() {
+  for (auto& s : lanes_) s->start();
+  for (std::size_t l = lanes_.size(); l < width; ++l)  // padding lanes copy lane 0
+    for (auto& level : levels_)
+      for (std::size_t j = 0; j < nodes_; ++j) level[width * j + l] = level[width * j];
+  if (steady_load_)
+    for (std::size_t l = 0; l < width; ++l)
+      for (std::size_t j = 0; j < nodes_; ++j)
+        load_[width * j + l] = lanes_[std::min(l, lanes_.size() - 1)]->loads_[0][j];
+}
+
+// PaperScheme::solve_level with `width` lanes: the same operations in the same
+// order, so that every lane's result is bit-for-bit the scalar kernel's.
+void PaperBatch::advance() {
+  const long long m = lanes_.front()->n_ + 1;
+  lanes b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0, a_off;
+  for (std::size_t l = 0; l < width; ++l) {
+    const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
+    const double em1 = 1.0 / s.scale(m - 1), e0 = 1.0 / s.scale(m), ep1 = 1.0 / s.scale(m + 1);
+    const double ebar = s.alpha_ * ep1 + (1.0 - 2.0 * s.alpha_) * e0 + s.alpha_ * em1;
+    const double k = s.law_.stiffness(), g = s.law_.gap();
+    contact[l] = 0.5 * k * (std::abs(s.next_[0] + g * e0) - g * ebar);
+    c0[l] = steady_load_ ? ebar : 0.0;
+    b1d0[l] = s.b1_diag_[0], b1d[l] = s.b1_diag_[1], b1dl[l] = s.b1_diag_[2];
+    b0d0[l] = s.b0_diag_[0], b0d[l] = s.b0_diag_[1], b0dl[l] = s.b0_diag_[2];
+    b1o[l] = s.b1_off_, b0o[l] = s.b0_off_;
+    a_off[l] = s.a_off_;
+  }
+  PaperScheme& first = *lanes_.front();
+  const double* __restrict zc = first.next_;  // lane 0's pointers are the interleaved arrays' starts
+  const double* __restrict zo = first.cur_;
+  double* __restrict zn = first.prev_;
+  const double* __restrict inv = inv_.data();
+  const double* __restrict up = up_.data();
+  const double* __restrict f = load_.data();
+  const std::size_t w = width, last = nodes_ - 1;
+  // The single kernel's operations: a zero load adds nothing.
+  auto solve = [&](auto steady) {
+    auto loaded = [&](lanes r, std::size_t j) {
+      if constexpr (decltype(steady)::value) return r + c0 * load_lanes(f + w * j);
+      (void)j;
+      return r;
+    };
+    const lanes r0 =
+        loaded(b1d0 * load_lanes(zc) + b1o * load_lanes(zc + w) + b0d0 * load_lanes(zo) + b0o * load_lanes(zo + w), 0) +
+        contact;
+    const lanes r_last = loaded(b1dl * load_lanes(zc + w * last) + b1o * load_lanes(zc + w * (last - 1)) +
+                                    b0dl * load_lanes(zo + w * last) + b0o * load_lanes(zo + w * (last - 1)),
+                                last);
+    twisted_solve(
+        last, a_off, r0, r_last,
+        [&](std::size_t j) {
+          return loaded(
+              b1d * load_lanes(zc + w * j) + b1o * (load_lanes(zc + w * (j - 1)) + load_lanes(zc + w * (j + 1))) +
+                  b0d * load_lanes(zo + w * j) + b0o * (load_lanes(zo + w * (j - 1)) + load_lanes(zo + w * (j + 1))),
+              j);
+        },
+        [&](std::size_t j) { return load_lanes(inv + w * j); }, [&](std::size_t j) { return load_lanes(up + w * j); },
+        [&](std::size_t j) { return load_lanes(zn + w * j); },
+        [&](std::size_t j, lanes v) { store_lanes(zn + w * j, v); });
+  };
+  if (steady_load_)
+    solve(std::true_type{});
+  else
+    solve(std::false_type{});
+  for (auto& s : lanes_) s->finish_level(m);
+}
+
+}  // namespace barimpact

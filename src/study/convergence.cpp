@@ -1,0 +1,377 @@
+#include "barimpact/study/convergence.hpp"
+
+#include <fmt/format.h>
+#include <time.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "barimpact/exact/exact.hpp"
+#include "barimpact/run/health.hpp"
+#include "barimpact/run/output.hpp"
+#include "barimpact/run/output_directory.hpp"
+#include "barimpact/run/simulate.hpp"
+#include "barimpact/study/executor.hpp"
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (true) {
+    const auto at = s.find(sep, start);
+    out.push_back(s.substr(start, at - start));
+    if (at == std::string::npos) return out;
+    start = at + 1;
+  }
+}
+
+double number(const std::string& text, const std::string& where) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(v)) return v;
+  } catch (const std::exception&) {
+  }
+  throw InputError(fmt::format("{}: \"{}\" is not a number", where, text));
+}
+
+struct Task {
+  std::string id;  // runs/<id>
+  std::string scheme;
+  int level = 0;
+  double scale = 1.0;  // 1/h growth factor, or the varied value
+  std::string value;
+  std::optional<Case> c;
+  RunResult result;
+  std::string status, message;
+  double cpu = 0.0;
+};
+
+// One run of the study: read back from its directory when a previous
+// (interrupted) study left it there for this very case, else run and kept.
+void run_task(Task& t, const StudyOptions& o) {
+  if (!t.c) return;
+  const bool keep = !o.runs.empty();
+  const std::string case_toml = keep ? t.c->to_toml() : std::string();
+  if (keep) {
+    if (auto done = read_run_directory(o.runs / t.id, case_toml);
+        done && done->summary.status != RunStatus::interrupted) {
+      t.result = std::move(*done);
+      t.status = std::string(to_string(t.result.summary.status));
+      t.message = t.result.summary.message;
+      t.cpu = t.result.summary.run_seconds;  // a timing column: the earlier run's wall time
+      return;
+    }
+  }
+  if (o.interrupt != nullptr && o.interrupt->load()) {
+    t.status = "interrupted";
+    t.message = "interrupted before it began";
+    return;
+  }
+  const double start = thread_cpu_seconds();
+  try {
+    RunOptions options;
+    options.interrupt = o.interrupt;
+    t.result = run(*t.c, options);
+    t.status = std::string(to_string(t.result.summary.status));
+    t.message = t.result.summary.message;
+    t.cpu = thread_cpu_seconds() - start;
+    if (keep && t.result.summary.status != RunStatus::interrupted) {
+      RunDirectory dir(o.runs / t.id, false, "converge", false);  // runs/ is cleaned once, in converge()
+      dir.commit(*t.c, t.result);
+    }
+  } catch (const std::exception& e) {
+    t.status = "refused";
+    t.message = e.what();
+  }
+}
+
+// Linear interpolation of a history column at t (rows sorted by t).
+double interpolate(const std::vector<HistoryRow>& rows, double HistoryRow::*column, double t) {
+  auto it = std::lower_bound(rows.begin(), rows.end(), t, [](const HistoryRow& r, double x) { return r.t < x; });
+  if (it == rows.end()) return nan;
+  if (it->t == t || it == rows.begin()) return (*it).*column;
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  return a.*column + (b.*column - a.*column) * (t - a.t) / (b.t - a.t);
+}
+
+// The exact reaction's mean over [t - dt/2, t + dt/2] (nothing before t = 0):
+// what a scheme's R^n, an impulse over its step divided by the step, is to
+// be compared with, also where R jumps (or is impulsive) at a step time.
+double mean_reaction(const exact::Solution& s, double t, double dt) {
+  constexpr int samples = 16;
+  double sum = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const double x = t - 0.5 * dt + (i + 0.5) * dt / samples;
+    if (x >= 0.0) sum += s.R(x);
+  }
+  return sum / samples;
+}
+
+}  // namespace
+
+Variation Variation::parse(const std::string& text) {
+  const auto where = fmt::format("--vary {}", text);
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || text.find('.') > eq)
+    throw InputError(
+        fmt::format("{}: expected section.key=v1,v2,... or section.key=a:b:n or section.key=log:a:b:n", where));
+  Variation v{text.substr(0, eq), {}};
+  const std::string spec = text.substr(eq + 1);
+  const auto parts = split(spec, ':');
+  if (parts.size() == 3 || (parts.size() == 4 && parts[0] == "log")) {
+    const bool log = parts.size() == 4;
+    const double a = number(parts[log ? 1 : 0], where), b = number(parts[log ? 2 : 1], where);
+    const double n = number(parts[log ? 3 : 2], where);
+    if (n < 2 || n != std::floor(n) || n > 1000)
+      throw InputError(fmt::format("{}: the count must be 2 .. 1000", where));
+    if (log && (a <= 0 || b <= 0)) throw InputError(fmt::format("{}: a logarithmic range needs a, b > 0", where));
+    for (int i = 0; i < static_cast<int>(n); ++i) {
+      const double s = i / (n - 1.0);
+      const double x = log ? a * std::pow(b / a, s) : a + (b - a) * s;
+      v.values.push_back(fmt::format("{}", x));
+    }
+  } else {
+    v.values = split(spec, ',');
+    for (const auto& x : v.values)
+      if (x.empty()) throw InputError(fmt::format("{}: an empty value in the list", where));
+    if (v.values.size() < 2) throw InputError(fmt::format("{}: give at least two values", where));
+  }
+  return v;
+}
+
+double observed_order(double e_prev, double e, double s_prev, double s) {
+  if (!(e_prev > 0) || !(e > 0) || !std::isfinite(e_prev) || !std::isfinite(e) || s_prev <= 0 || s <= 0 || s == s_prev)
+    return nan;
+  return std::log(e_prev / e) / std::log(s / s_prev);
+}
+
+void check_study(const Case& base, const StudyOptions& o) {
+  if (o.ratio < 2) throw InputError("--ratio: must be an integer >= 2");
+  const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
+  if (levels < 2 || levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", levels));
+  if (!o.vary && o.refine == Refine::none)
+    throw InputError("--refine none: without --vary there is nothing to change between levels");
+  if (o.vary) {  // an unknown key is the option's error, not a run's (as in a sweep file)
+    try {
+      (void)Case::from_string(base.to_toml(), {{o.vary->key + "=" + o.vary->values.front()}}, "study", false);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (what.find("unknown") != std::string::npos || what.find("expected section.key") != std::string::npos)
+        throw InputError(fmt::format("--vary {}: {}", o.vary->key, what));
+    }
+  }
+  if (o.reference == Reference::rigid) {
+    Case rigid = base;
+    rigid.obstacle.kind = ObstacleKind::rigid;
+    if (!exact::for_case(rigid))
+      throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
+  }
+}
+
+Study converge(const Case& base, const StudyOptions& o) {
+  check_study(base, o);
+  const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
+  std::error_code ec;
+  if (!o.runs.empty()) {
+    if (!fs::create_directories(o.runs, ec) && ec)
+      throw InputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()));
+    remove_stale_staging(o.runs, "");  // what a killed study left
+    remove_stale_staging(o.runs.parent_path(), "");
+  }
+  const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
+  const std::string base_toml = base.to_toml();
+  const double c = std::sqrt(base.bar.stiffness / base.bar.density);
+
+  std::vector<Task> tasks;
+  for (const auto& scheme : schemes) {
+    for (int i = 0; i < levels; ++i) {
+      Task t;
+      t.id = fmt::format("{}-{:02}", scheme, i);
+      t.scheme = scheme;
+      t.level = i;
+      const long long f = static_cast<long long>(std::llround(std::pow(o.ratio, i)));
+      const bool refine_h = o.refine == Refine::both || o.refine == Refine::h;
+      const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
+      const long long elements = base.bar.elements * (refine_h ? f : 1);
+      double step = base.time.step / static_cast<double>(refine_dt ? f : 1);
+      std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""},
+                                       {"output.every=1"},
+                                       {"output.fields_at=[]"},
+                                       {fmt::format("bar.elements={}", elements)}};
+      if (o.vary) {
+        t.value = o.vary->values[static_cast<std::size_t>(i)];
+        sets.push_back({o.vary->key + "=" + t.value});
+      }
+      if (scheme == "characteristic") step = base.bar.length / static_cast<double>(elements) / c;  // Courant 1
+      sets.push_back({fmt::format("time.step={}", step)});
+      t.scale = (o.refine != Refine::none) ? static_cast<double>(f) : nan;
+      if (o.refine == Refine::none && o.vary) {
+        try {
+          t.scale = number(t.value, "--vary");
+        } catch (const InputError&) {
+          t.scale = nan;
+        }
+      }
+      try {
+        t.c = Case::from_string(base_toml, sets, "study", false);
+      } catch (const InputError& e) {
+        t.status = "refused";
+        t.message = e.what();
+      }
+      tasks.push_back(std::move(t));
+    }
+  }
+
+  run_parallel(tasks.size(), o.jobs, [&](std::size_t i) { run_task(tasks[i], o); });
+
+  // References and errors.
+  Study study;
+  study.abscissa = o.refine != Refine::none ? "h" : (o.vary ? o.vary->key : "h");
+  std::map<std::string, std::string> references;
+  std::map<std::string, const Task*> finest;
+  for (const auto& t : tasks)
+    if (t.level == levels - 1 && t.status == "complete") finest[t.scheme] = &t;
+  for (const auto& t : tasks) {
+    StudyRun r;
+    r.id = t.id;
+    r.scheme = t.scheme;
+    r.level = t.level;
+    r.value = t.value;
+    r.status = t.status;
+    r.message = t.message;
+    r.warnings = t.result.summary.warnings;
+    r.cpu_seconds = t.cpu;
+    r.error_U_max = r.error_R_l1 = r.energy_error_end = r.first_contact = r.lift_off = nan;
+    r.order_U = r.order_R = nan;
+    if (t.c) {
+      r.elements = t.c->bar.elements;
+      r.h = t.c->bar.length / t.c->bar.elements;
+      r.step = t.c->time.step;
+    }
+    const auto& h = t.result.history;
+    if (t.c && !h.empty() && t.status == "complete") {  // no error is measured on a run cut short
+      const auto& s = t.result.summary;
+      r.contact_episodes = static_cast<int>(s.contacts.size());
+      if (!s.contacts.empty()) {
+        r.first_contact = s.contacts.front().start;
+        r.lift_off = s.contacts.front().closed ? s.contacts.front().end : nan;
+      }
+      auto total = [](const HistoryRow& x) { return x.E_kin + x.E_strain + x.E_obstacle - x.W_ext + x.D_visc; };
+      r.energy_error_end = std::abs(total(h.back()) - total(h.front())) / std::abs(total(h.front()));
+
+      std::unique_ptr<exact::Solution> solution;
+      if (o.reference == Reference::automatic) solution = exact::for_case(*t.c);
+      if (o.reference == Reference::rigid) {
+        Case rigid = *t.c;
+        rigid.obstacle.kind = ObstacleKind::rigid;
+        solution = exact::for_case(rigid);
+        if (!solution) throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
+      }
+      const double dt = t.c->time.step;
+      if (solution) {
+        references[fmt::format("exact solution: {}", solution->name())] = "";
+        double eu = 0, er = 0;
+        for (const auto& x : h) {
+          if (x.t > solution->valid_until()) break;
+          eu = std::max(eu, std::abs(x.U - solution->U(x.t)));
+          er += std::abs(x.R - mean_reaction(*solution, x.t, dt)) * dt;
+        }
+        r.error_U_max = eu;
+        r.error_R_l1 = er;
+      } else if (finest.count(t.scheme) && finest[t.scheme] != &t) {
+        references[fmt::format("the finest run of each scheme (level {})", levels - 1)] = "";
+        const auto& ref = finest[t.scheme]->result.history;
+        double eu = 0, er = 0;
+        for (const auto& x : h) {
+          const double U = interpolate(ref, &HistoryRow::U, x.t), R = interpolate(ref, &HistoryRow::R, x.t);
+          if (std::isnan(U)) break;
+          eu = std::max(eu, std::abs(x.U - U));
+          er += std::abs(x.R - R) * dt;
+        }
+        r.error_U_max = eu;
+        r.error_R_l1 = er;
+      } else if (finest.count(t.scheme)) {
+        r.status = "reference";
+      }
+    }
+    study.runs.push_back(r);
+  }
+  for (std::size_t i = 0; i < study.runs.size(); ++i) {
+    auto& r = study.runs[i];
+    if (r.level == 0) continue;
+    const auto& p = study.runs[i - 1];
+    r.order_U = observed_order(p.error_U_max, r.error_U_max, tasks[i - 1].scale, tasks[i].scale);
+    r.order_R = observed_order(p.error_R_l1, r.error_R_l1, tasks[i - 1].scale, tasks[i].scale);
+  }
+  for (const auto& [name, unused] : references) study.reference += (study.reference.empty() ? "" : "; ") + name;
+  if (study.reference.empty()) study.reference = "none (no run completed)";
+  return study;
+}
+
+namespace {
+std::string cell(double v, const char* spec = "{:.6g}") {
+  return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : std::string("nan");
+}
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+}  // namespace
+
+std::string study_csv(const Study& study) {
+  std::string out =
+      "scheme,level,value,elements,h,step,status,error_U_max,error_R_l1,energy_error_end,first_contact,lift_off,"
+      "contact_episodes,cpu_seconds,order_U,order_R,message,warnings\n";
+  for (const auto& r : study.runs) {
+    const std::string warnings = join_warnings(r.warnings);
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.scheme, r.level, quoted(r.value),
+                       r.elements, cell(r.h, "{}"), cell(r.step, "{}"), r.status, cell(r.error_U_max, "{}"),
+                       cell(r.error_R_l1, "{}"), cell(r.energy_error_end, "{}"), cell(r.first_contact, "{}"),
+                       cell(r.lift_off, "{}"), r.contact_episodes, cell(r.cpu_seconds, "{}"), cell(r.order_U, "{}"),
+                       cell(r.order_R, "{}"), quoted(r.message), quoted(warnings));
+  }
+  return out;
+}
+
+std::string study_markdown(const Study& study, const std::string& command) {
+  std::string out = fmt::format("    {}\n\nReference: {}.\n", command, study.reference);
+  std::string current;
+  for (const auto& r : study.runs) {
+    if (r.scheme != current) {
+      current = r.scheme;
+      out += fmt::format(
+          "\n**{}**\n\n| level | {} | M | dt | max err U | order | L1 err R | order | energy err | first contact | "
+          "lift-off | episodes | CPU s | status "
+          "|\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+          r.scheme, r.value.empty() ? "h" : "value");
+    }
+    const std::string abscissa = r.value.empty() ? cell(r.h, "{:.4g}") : r.value;
+    out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.level, abscissa,
+                       r.elements, cell(r.step, "{:.4g}"), cell(r.error_U_max, "{:.3e}"), cell(r.order_U, "{:.2f}"),
+                       cell(r.error_R_l1, "{:.3e}"), cell(r.order_R, "{:.2f}"), cell(r.energy_error_end, "{:.2e}"),
+                       cell(r.first_contact, "{:.4f}"), cell(r.lift_off, "{:.4f}"), r.contact_episodes,
+                       cell(r.cpu_seconds, "{:.3f}"), r.status);
+  }
+  return out;
+}
+
+}  // namespace barimpact

@@ -1,0 +1,376 @@
+#include "barimpact/study/sweep.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "../case/toml_input.hpp"
+#include "barimpact/run/health.hpp"
+#include "barimpact/run/output.hpp"
+#include "barimpact/run/output_directory.hpp"
+#include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/study/executor.hpp"
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string plain_text(const std::string& toml_value) {
+  if (toml_value.size() >= 2 && (toml_value.front() == '\'' || toml_value.front() == '"'))
+    return toml_value.substr(1, toml_value.size() - 2);
+  return toml_value;
+}
+
+double nan_if(bool known, double v) {
+  return known ? v : std::numeric_limits<double>::quiet_NaN();
+}
+
+SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
+  SweepRow r;
+  r.id = p.id;
+  for (const auto& [k, v] : p.values) r.values.push_back(plain_text(v));
+  r.status = std::string(to_string(s.status));
+  r.message = s.message;
+  r.steps_done = s.steps_done;
+  r.t_end = s.t_end;
+  r.contacts = static_cast<int>(s.contacts.size());
+  r.first_contact = nan_if(!s.contacts.empty(), s.contacts.empty() ? 0 : s.contacts.front().start);
+  r.lift_off =
+      nan_if(!s.contacts.empty() && s.contacts.front().closed, s.contacts.empty() ? 0 : s.contacts.front().end);
+  const ContactInterval* last_closed = nullptr;
+  for (const auto& c : s.contacts)
+    if (c.closed) last_closed = &c;
+  r.rebound_velocity = nan_if(last_closed != nullptr, last_closed ? last_closed->rebound_velocity : 0);
+  r.max_penetration = s.max_penetration;
+  r.max_reaction = s.max_reaction;
+  r.energy_error_relative =
+      s.energy_initial != 0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
+  r.run_seconds = s.run_seconds;
+  r.warnings = s.warnings;
+  return r;
+}
+
+}  // namespace
+
+SweepPlan SweepPlan::from_file(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such sweep file", path.string()));
+  return from_string(read_input_file(path, "sweep file"), path.string(), path.parent_path());
+}
+
+SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin, const fs::path& dir) {
+  const std::string source(origin);
+  toml::table root = parse_toml(text, origin);
+  auto where = [&](const toml::node& n) { return fmt::format("{}:{}", source, n.source().begin.line); };
+  for (auto&& [k, v] : root)
+    if (k != "case" && k != "set" && k != "axis" && k != "zip")
+      throw InputError(fmt::format("{}: unknown key {} (known: case, set, axis, zip)", where(v), k.str()));
+  SweepPlan plan;
+  const auto* c = root.get_as<std::string>("case");
+  if (c == nullptr) throw InputError(fmt::format("{}: case = \"CASE.toml\" is required", source));
+  plan.case_file_ = dir / c->get();
+  if (const auto* set = root.get_as<toml::table>("set")) {
+    for (auto&& [section, keys] : *set) {
+      if (!keys.is_table()) throw InputError(fmt::format("{}: [set] takes section.key = value", where(keys)));
+      for (auto&& [key, value] : *keys.as_table())
+        plan.base_sets_.push_back({fmt::format("{}.{}={}", section.str(), key.str(), toml_value_text(value))});
+    }
+  }
+  const auto* axes = root.get_as<toml::array>("axis");
+  if (axes == nullptr || axes->empty()) throw InputError(fmt::format("{}: at least one [[axis]] is required", source));
+  std::vector<SweepAxis> list;
+  for (const auto& node : *axes) {
+    const auto* t = node.as_table();
+    if (t == nullptr) throw InputError(fmt::format("{}: [[axis]] must be a table", where(node)));
+    SweepAxis a;
+    for (auto&& [k, v] : *t)
+      if (k != "key" && k != "values" && k != "from" && k != "to" && k != "count" && k != "scale")
+        throw InputError(
+            fmt::format("{}: unknown key {} in [[axis]] (known: key, values, from, to, count, scale; "
+                        "zip belongs before the first [[axis]])",
+                        where(v), k.str()));
+    const auto* key = t->get_as<std::string>("key");
+    if (key == nullptr) throw InputError(fmt::format("{}: axis.key = \"section.key\" is required", where(node)));
+    a.key = key->get();
+    if (const auto* values = t->get_as<toml::array>("values")) {
+      for (const auto& v : *values) a.values.push_back(toml_value_text(v));
+    } else if (t->contains("from")) {
+      const double bad = std::numeric_limits<double>::quiet_NaN();
+      const double from = (*t)["from"].value_or(bad), to = (*t)["to"].value_or(bad);
+      const int64_t count = (*t)["count"].value_or(int64_t{0});
+      const std::string scale = (*t)["scale"].value_or(std::string("linear"));
+      if (!std::isfinite(from) || !std::isfinite(to) || count < 2 || count > 100000)
+        throw InputError(fmt::format("{}: axis {}: a range needs numbers from, to and count >= 2", where(node), a.key));
+      if (scale != "linear" && scale != "log")
+        throw InputError(fmt::format("{}: axis {}: scale must be linear or log", where(node), a.key));
+      if (scale == "log" && (from <= 0 || to <= 0))
+        throw InputError(fmt::format("{}: axis {}: a log range needs from, to > 0", where(node), a.key));
+      for (int64_t i = 0; i < count; ++i) {
+        const double s = static_cast<double>(i) / static_cast<double>(count - 1);
+        const double x = scale == "log" ? from * std::pow(to / from, s) : from + (to - from) * s;
+        a.values.push_back(fmt::format("{}", x));
+      }
+    } else {
+      throw InputError(fmt::format("{}: axis {}: give values = [...] or from, to, count", where(node), a.key));
+    }
+    if (a.values.empty()) throw InputError(fmt::format("{}: axis {} has no values", where(node), a.key));
+    for (const auto& other : list)
+      if (other.key == a.key) throw InputError(fmt::format("{}: axis {} given twice", where(node), a.key));
+    // An unknown key is the sweep file's error, not a case's.
+    try {
+      std::vector<Case::Override> probe = plan.base_sets_;
+      probe.push_back({a.key + "=" + a.values.front()});
+      (void)Case::from_file(plan.case_file_, probe);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (what.find("unknown") != std::string::npos || what.find("no such case file") != std::string::npos ||
+          what.find("expected section.key") != std::string::npos)
+        throw InputError(fmt::format("{}: axis {}: {}", where(node), a.key, what));
+    }
+    list.push_back(std::move(a));
+  }
+  // Groups: each zip moves its axes together; every other axis is its own group.
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<bool> grouped(list.size(), false);
+  if (const auto* zips = root.get_as<toml::array>("zip")) {
+    for (const auto& z : *zips) {
+      const auto* names = z.as_array();
+      if (names == nullptr || names->size() < 2)
+        throw InputError(fmt::format("{}: zip takes lists of two or more axis keys", where(z)));
+      std::vector<std::size_t> g;
+      for (const auto& n : *names) {
+        const auto name = n.value<std::string>();
+        std::size_t i = 0;
+        while (i < list.size() && (!name || list[i].key != *name)) ++i;
+        if (i == list.size())
+          throw InputError(fmt::format("{}: zip names {}, which is no axis", where(z), toml_value_text(n)));
+        if (grouped[i]) throw InputError(fmt::format("{}: axis {} is zipped twice", where(z), list[i].key));
+        if (list[i].values.size() != list[g.empty() ? i : g.front()].values.size())
+          throw InputError(fmt::format("{}: zipped axes must have as many values each", where(z)));
+        grouped[i] = true;
+        g.push_back(i);
+      }
+      groups.push_back(g);
+    }
+  }
+  for (std::size_t i = 0; i < list.size(); ++i)
+    if (!grouped[i]) groups.push_back({i});
+  std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
+  for (const auto& a : list) plan.keys_.push_back(a.key);
+
+  // The number of cases, refused before the product can wrap around.
+  constexpr std::size_t most = 10'000'000;
+  std::size_t total = 1;
+  for (const auto& g : groups) {
+    const std::size_t size = list[g.front()].values.size();
+    if (total > most / size) throw InputError(fmt::format("{}: more than 1e7 cases", source));
+    total *= size;
+  }
+  const int width = std::max(4, static_cast<int>(std::to_string(total - 1).size()));
+  for (std::size_t n = 0; n < total; ++n) {
+    SweepPoint p;
+    p.id = fmt::format("{:0{}}", n, width);
+    std::vector<std::string> chosen(list.size());
+    std::size_t rest = n;
+    for (auto g = groups.rbegin(); g != groups.rend(); ++g) {  // the last axis varies fastest
+      const std::size_t size = list[g->front()].values.size(), k = rest % size;
+      rest /= size;
+      for (auto i : *g) chosen[i] = list[i].values[k];
+    }
+    for (std::size_t i = 0; i < list.size(); ++i) p.values.emplace_back(list[i].key, chosen[i]);
+    plan.points_.push_back(std::move(p));
+  }
+  return plan;
+}
+
+Case SweepPlan::case_at(const SweepPoint& p) const {
+  std::vector<Case::Override> sets = base_sets_;
+  for (const auto& [k, v] : p.values) sets.push_back({k + "=" + v});
+  return Case::from_file(case_file_, sets);
+}
+
+bool read_row(const SweepPlan& plan, const fs::path& dir, std::size_t point, SweepRow& row) {
+  const auto& p = plan.points()[point];
+  const fs::path run_dir = dir / "runs" / p.id;
+  if (!fs::exists(run_dir / "summary.json")) return false;
+  std::string case_toml;
+  try {
+    case_toml = plan.case_at(p).to_toml();
+  } catch (const InputError&) {
+    return false;  // a refused case has no run directory to resume
+  }
+  const auto run = read_run_directory(run_dir, case_toml);
+  if (!run || run->summary.status == RunStatus::interrupted) return false;
+  row = row_from_summary(p, run->summary);
+  row.resumed = true;
+  return true;
+}
+
+std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, const std::vector<std::size_t>& todo,
+                                const SweepOptions& options) {
+  std::vector<SweepRow> rows(todo.size());
+  auto refused = [&](std::size_t i, const std::string& why, const char* status = "refused") {
+    const auto& p = plan.points()[todo[i]];
+    SweepRow& row = rows[i];
+    row = SweepRow{};
+    row.id = p.id;
+    for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
+    row.status = status;
+    row.message = why;
+    row.t_end = row.first_contact = row.lift_off = row.rebound_velocity = row.max_penetration = row.max_reaction =
+        row.energy_error_relative = row.run_seconds = std::numeric_limits<double>::quiet_NaN();
+  };
+  std::vector<std::optional<Case>> cases(todo.size());
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    try {
+      cases[i] = plan.case_at(plan.points()[todo[i]]);
+    } catch (const InputError& e) {
+      refused(i, e.what());
+    }
+  }
+  // Groups of up to four cases that can share a SIMD batch (on a mesh small
+  // enough for a batch to pay); the rest alone.
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<bool> taken(todo.size(), false);
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    if (!cases[i] || taken[i]) continue;
+    std::vector<std::size_t> g{i};
+    taken[i] = true;
+    if (options.batch && cases[i]->bar.elements <= PaperBatch::largest_mesh &&
+        PaperScheme::batchable(*cases[i], *cases[i]))
+      for (std::size_t k = i + 1; k < todo.size() && g.size() < PaperBatch::width; ++k)
+        if (cases[k] && !taken[k] && PaperScheme::batchable(*cases[i], *cases[k])) {
+          g.push_back(k);
+          taken[k] = true;
+        }
+    groups.push_back(std::move(g));
+  }
+  auto interrupted = [&] { return options.interrupt != nullptr && options.interrupt->load(); };
+  run_parallel(groups.size(), options.jobs, [&](std::size_t gi) {
+    const auto& g = groups[gi];
+    std::vector<RunResult> results;
+    try {
+      if (interrupted()) {
+        for (auto i : g) refused(i, "interrupted before it began", "interrupted");
+        return;
+      }
+      if (g.size() == 1) {
+        RunOptions one;
+        one.interrupt = options.interrupt;
+        results.push_back(run(*cases[g.front()], one));
+      } else {
+        std::vector<const Case*> ptrs;
+        for (auto i : g) ptrs.push_back(&*cases[i]);
+        results = run_batch(ptrs, options.interrupt);
+      }
+    } catch (const std::exception& e) {
+      for (auto i : g) refused(i, e.what());
+      return;
+    }
+    for (std::size_t k = 0; k < g.size(); ++k) {
+      const auto& p = plan.points()[todo[g[k]]];
+      if (results[k].summary.status == RunStatus::interrupted) {
+        refused(g[k], results[k].summary.message, "interrupted");  // not kept: a rerun runs it whole
+        continue;
+      }
+      try {
+        RunDirectory out(dir / "runs" / p.id, false, "sweep", false);  // the caller cleans runs/ once
+        out.commit(*cases[g[k]], results[k]);
+        rows[g[k]] = row_from_summary(p, results[k].summary);
+        rows[g[k]].batched = g.size() > 1;
+      } catch (const std::exception& e) {
+        refused(g[k], e.what());
+      }
+    }
+  });
+  return rows;
+}
+
+namespace {
+std::string cell(double v) {
+  return std::isfinite(v) ? fmt::format("{}", v) : std::string("nan");
+}
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+}  // namespace
+
+std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) {
+  std::string out = "id";
+  for (const auto& k : plan.keys()) {
+    out += ',';
+    out += k;
+  }
+  out +=
+      ",status,steps_done,t_end,contacts,first_contact,lift_off,rebound_velocity,max_penetration,max_reaction,"
+      "energy_error_relative,run_seconds,message,warnings\n";
+  for (const auto& r : rows) {
+    out += r.id;
+    for (const auto& v : r.values) {
+      out += ',';
+      out += quoted(v);
+    }
+    const std::string warnings = join_warnings(r.warnings);
+    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, cell(r.t_end), r.contacts,
+                       cell(r.first_contact), cell(r.lift_off), cell(r.rebound_velocity), cell(r.max_penetration),
+                       cell(r.max_reaction), cell(r.energy_error_relative), cell(r.run_seconds), quoted(r.message),
+                       quoted(warnings));
+  }
+  return out;
+}
+
+std::string row_to_json(const SweepRow& r) {
+  auto num = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); };
+  return nlohmann::json{{"id", r.id},
+                        {"values", r.values},
+                        {"status", r.status},
+                        {"message", r.message},
+                        {"steps_done", r.steps_done},
+                        {"t_end", num(r.t_end)},
+                        {"contacts", r.contacts},
+                        {"first_contact", num(r.first_contact)},
+                        {"lift_off", num(r.lift_off)},
+                        {"rebound_velocity", num(r.rebound_velocity)},
+                        {"max_penetration", num(r.max_penetration)},
+                        {"max_reaction", num(r.max_reaction)},
+                        {"energy_error_relative", num(r.energy_error_relative)},
+                        {"run_seconds", num(r.run_seconds)},
+                        {"warnings", r.warnings}}
+      .dump();
+}
+
+SweepRow row_from_json(const std::string& text) {
+  const auto j = nlohmann::json::parse(text);
+  auto num = [&](const char* k) {
+    return j[k].is_number() ? j[k].get<double>() : std::numeric_limits<double>::quiet_NaN();
+  };
+  SweepRow r;
+  r.id = j["id"];
+  r.values = j["values"].get<std::vector<std::string>>();
+  r.status = j["status"];
+  r.message = j["message"];
+  r.steps_done = j["steps_done"];
+  r.t_end = num("t_end");
+  r.contacts = j["contacts"];
+  r.first_contact = num("first_contact");
+  r.lift_off = num("lift_off");
+  r.rebound_velocity = num("rebound_velocity");
+  r.max_penetration = num("max_penetration");
+  r.max_reaction = num("max_reaction");
+  r.energy_error_relative = num("energy_error_relative");
+  r.run_seconds = num("run_seconds");
+  r.warnings = j["warnings"].get<std::vector<std::string>>();
+  return r;
+}
+
+}  // namespace barimpact
