@@ -421,6 +421,36 @@ std::string_view to_string(FarEnd end) {
   return end == FarEnd::free ? "free" : "clamped";
 }
 
+std::string_view to_string(BodyKind kind) {
+  return kind == BodyKind::bar ? "bar" : "mass";
+}
+
+std::string_view to_string(JointLaw law) {
+  switch (law) {
+    case JointLaw::free:
+      return "free";
+    case JointLaw::clamped:
+      return "clamped";
+    case JointLaw::welded:
+      return "welded";
+    case JointLaw::spring:
+      return "spring";
+    case JointLaw::elastic:
+      return "elastic";
+    case JointLaw::viscoelastic:
+      return "viscoelastic";
+    case JointLaw::rigid:
+      return "rigid";
+    case JointLaw::cushion:
+      return "cushion";
+    case JointLaw::force:
+      return "force";
+    case JointLaw::velocity:
+      return "velocity";
+  }
+  return "?";
+}
+
 std::string Case::to_toml() const {
   const toml::table root{
       {"bar", toml::table{{"length", bar.length},

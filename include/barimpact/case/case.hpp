@@ -29,7 +29,51 @@ struct BarData {
 };
 
 struct LoadData {
-  std::string body_force = "0";  ///< f(x, t)
+  std::string body_force = "0";  ///< f(x, t), force per unit length on every bar
+  double gravity = 0.0;          ///< g, acceleration towards -x on every body
+};
+
+/// A body of the line ([[body]]), listed from the near end (x = 0) outward.
+enum class BodyKind { bar, mass };
+
+struct BodyData {
+  std::string name;
+  BodyKind kind = BodyKind::bar;
+  double length = 1.0;             ///< bar
+  int elements = 100;              ///< bar: uniform P1 elements on this body
+  double area = 1.0;               ///< A
+  double modulus = 1.0;            ///< E (the paper's a = E A)
+  double density = 1.0;            ///< rho, per unit volume (rho A per unit length)
+  double viscosity = 0.0;          ///< Kelvin-Voigt eta (the paper's b = eta A)
+  double mass = 1.0;               ///< mass
+  std::string displacement = "0";  ///< u0(x) (bar), a number (mass)
+  std::string velocity = "0";      ///< v0(x) (bar), a number (mass)
+};
+
+/// A joint's or an end's law. At an end, the obstacle is a joint with the ground.
+enum class JointLaw { free, clamped, welded, spring, elastic, viscoelastic, rigid, cushion, force, velocity };
+
+struct LawData {
+  JointLaw law = JointLaw::free;
+  double stiffness = 100.0;  ///< k: spring, elastic, viscoelastic, cushion (loading)
+  double viscosity = 0.0;    ///< l: spring's dashpot, viscoelastic
+  double restitution = 1.0;  ///< e: cushion in (0, 1]; rigid in [0, 1] (then replaces time.restitution)
+  bool restitution_given = false;
+  double gap = 0.0;         ///< unilateral laws: initial clearance >= 0
+  std::string value = "0";  ///< force or velocity history along +x, an expression in t
+};
+
+struct JointData {
+  std::string name;   ///< default "<lower>-<upper>"
+  std::string lower;  ///< the body nearer x = 0
+  std::string upper;
+  LawData law;
+};
+
+struct GaugeData {
+  std::string name;
+  std::string body;
+  double at = 0.0;  ///< distance from the body's near end
 };
 
 struct InitialData {
@@ -57,12 +101,26 @@ struct OutputData {
 /// A validated case. Construct with `Case::from_file` or `Case::from_string`;
 /// every rule of the case-file contract holds for the result.
 struct Case {
-  BarData bar;
+  // The line: bodies from x = 0 outward, the joints between them (consecutive
+  // bodies without one are welded), the two ends, the gauges.
+  std::vector<BodyData> bodies;
+  std::vector<JointData> joints;
+  LawData near_end;
+  LawData far_end;
+  std::vector<GaugeData> gauges;
   LoadData load;
-  InitialData initial;
-  ObstacleData obstacle;
   TimeData time;
   OutputData output;
+
+  /// True when the line is one uniform bar whose near end meets today's
+  /// obstacle kinds (none, elastic, viscoelastic, rigid) and whose far end is
+  /// free or clamped, without gravity: `bar`, `initial` and `obstacle` then
+  /// hold it in the paper's terms (a = E A, rho A, b = eta A) and the
+  /// single-bar schemes run it, bit for bit as before lines existed.
+  bool single_bar = true;
+  BarData bar;
+  InitialData initial;
+  ObstacleData obstacle;
 
   /// One `section.key=value` override; the value is read as a TOML value,
   /// a bare word as a string.
@@ -91,5 +149,7 @@ struct Case {
 [[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what);
 
 [[nodiscard]] std::string_view to_string(FarEnd end);
+[[nodiscard]] std::string_view to_string(BodyKind kind);
+[[nodiscard]] std::string_view to_string(JointLaw law);
 
 }  // namespace barimpact
