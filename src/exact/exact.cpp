@@ -313,6 +313,7 @@ class TabulatedSolution final : public Scheme {
         a_(c.bar.stiffness),
         rho_(c.bar.density),
         k_(c.obstacle.kind == ObstacleKind::elastic ? c.obstacle.stiffness : 0.0),
+        gap_(c.obstacle.gap),
         nodes_(static_cast<std::size_t>(c.bar.elements) + 1) {}
   void start() override { n_ = 0; }
   void advance() override { ++n_; }
@@ -328,6 +329,13 @@ class TabulatedSolution final : public Scheme {
   void velocity(std::span<double> out) const override {
     fill(out, [&](double x) { return s_->v(x, time()); });
   }
+  double displacement_at(std::size_t j) const override {
+    return j == 0 ? end_displacement() : s_->has_field() ? s_->u(x(j), time()) : nan();
+  }
+  double velocity_at(std::size_t j) const override {
+    return j == 0 ? end_velocity() : s_->has_field() ? s_->v(x(j), time()) : nan();
+  }
+  double link_opening(std::size_t /*i*/) const override { return end_displacement() + gap_; }
   Energies energies() const override {
     Energies e;
     const double U = end_displacement();
@@ -354,8 +362,10 @@ class TabulatedSolution final : public Scheme {
       out[j] = s_->has_field() ? f(L_ * static_cast<double>(j) / static_cast<double>(nodes_ - 1))
                                : std::numeric_limits<double>::quiet_NaN();
   }
+  double x(std::size_t j) const { return L_ * static_cast<double>(j) / static_cast<double>(nodes_ - 1); }
+  static double nan() { return std::numeric_limits<double>::quiet_NaN(); }
   std::shared_ptr<const Solution> s_;
-  double dt_, L_, a_, rho_, k_;
+  double dt_, L_, a_, rho_, k_, gap_;
   std::size_t nodes_;
   long long n_ = 0;
 };

@@ -398,6 +398,16 @@ double PaperScheme::end_velocity() const {
   return (scale(n_ + 1) * next_[0] - scale(n_ - 1) * prev_[0]) / (2.0 * dt_);
 }
 
+double PaperScheme::displacement_at(std::size_t j) const {
+  return j == 0 ? end_displacement() : scale(n_) * cur_[j * stride_];
+}
+
+double PaperScheme::velocity_at(std::size_t j) const {
+  if (j == 0) return end_velocity();
+  if (n_ == 0) return v0_[j];
+  return (scale(n_ + 1) * next_[j * stride_] - scale(n_ - 1) * prev_[j * stride_]) / (2.0 * dt_);
+}
+
 void PaperScheme::displacement(std::span<double> out) const {
   const double s = scale(n_);
   for (std::size_t j = 0; j < out.size(); ++j) out[j] = s * cur_[j * stride_];

@@ -34,6 +34,9 @@ class CosineScheme final : public Scheme {
   }
   Energies energies() const override { return {1.0, 2.0, 0.0, 0.5, 0.25}; }
   bool finite() const override { return true; }
+  double displacement_at(std::size_t) const override { return end_displacement(); }
+  double velocity_at(std::size_t) const override { return end_velocity(); }
+  double link_opening(std::size_t) const override { return end_displacement(); }
 
  private:
   double dt_;
@@ -100,6 +103,9 @@ class TableScheme final : public Scheme {
   void velocity(std::span<double> out) const override { std::fill(out.begin(), out.end(), 0.0); }
   Energies energies() const override { return {}; }
   bool finite() const override { return true; }
+  double displacement_at(std::size_t) const override { return end_displacement(); }
+  double velocity_at(std::size_t) const override { return 0.0; }
+  double link_opening(std::size_t) const override { return end_displacement(); }
 
  private:
   double dt_;

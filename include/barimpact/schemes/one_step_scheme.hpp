@@ -30,6 +30,9 @@ class OneStepScheme : public Scheme {
   void velocity(std::span<double> out) const override;
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double displacement_at(std::size_t j) const override { return j == 0 ? end_displacement() : u_[j]; }
+  [[nodiscard]] double velocity_at(std::size_t j) const override { return j == 0 ? end_velocity() : v_[j]; }
+  [[nodiscard]] double link_opening(std::size_t /*i*/) const override { return end_displacement() + law_.gap(); }
 
  protected:
   /// `kinetic_mass`: the scheme's mass matrix (for E_kin).

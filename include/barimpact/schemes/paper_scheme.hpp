@@ -58,6 +58,9 @@ class PaperScheme final : public Scheme {
   void velocity(std::span<double> out) const override;
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double displacement_at(std::size_t j) const override;
+  [[nodiscard]] double velocity_at(std::size_t j) const override;
+  [[nodiscard]] double link_opening(std::size_t /*i*/) const override { return end_displacement() + law_.gap(); }
 
   /// The level z^{n+1}, node j at [j * stride()] (exposed for tests of the scheme itself).
   [[nodiscard]] const double* next_level() const { return next_; }

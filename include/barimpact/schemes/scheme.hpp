@@ -23,9 +23,10 @@ struct Energies {
   double strain = 0.0;       ///< E_strain
   double obstacle = 0.0;     ///< E_obstacle
   double work = 0.0;         ///< W_ext, cumulative work of f
-  double dissipation = 0.0;  ///< D_visc, cumulative viscous dissipation
+  double dissipation = 0.0;  ///< D_visc, cumulative viscous dissipation (bars and dashpots)
+  double contact = 0.0;      ///< D_contact, cumulative: the laws' hysteresis and inelastic impacts
 
-  [[nodiscard]] double total() const { return kinetic + strain + obstacle - work + dissipation; }
+  [[nodiscard]] double total() const { return kinetic + strain + obstacle - work + dissipation + contact; }
 };
 
 class Scheme {
@@ -52,6 +53,13 @@ class Scheme {
   /// v(x_j, t_n) into `out` (size nodes()).
   virtual void velocity(std::span<double> out) const = 0;
   [[nodiscard]] virtual Energies energies() const = 0;
+  /// u and v at node j at t_n, in the line's numbering (line.hpp).
+  [[nodiscard]] virtual double displacement_at(std::size_t j) const = 0;
+  [[nodiscard]] virtual double velocity_at(std::size_t j) const = 0;
+  /// Link i of the line (line.hpp; for a single bar, link 0 is the obstacle):
+  /// its force p >= 0 (a compression) and its opening y at t_n.
+  [[nodiscard]] virtual double link_force(std::size_t /*i*/) const { return reaction(); }
+  [[nodiscard]] virtual double link_opening(std::size_t i) const = 0;
   /// False once a level holds NaN or infinity.
   [[nodiscard]] virtual bool finite() const = 0;
 };

@@ -40,6 +40,11 @@ class ThreeLevelScheme : public Scheme {
   void velocity(std::span<double> out) const override;
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double displacement_at(std::size_t j) const override { return cur_[j]; }
+  [[nodiscard]] double velocity_at(std::size_t j) const override {
+    return j == 0 ? end_velocity() : n_ == 0 ? v0_[j] : (next_[j] - prev_[j]) / (2.0 * dt_);
+  }
+  [[nodiscard]] double link_opening(std::size_t /*i*/) const override { return cur_[0] + law_.gap(); }
 
  protected:
   /// `consistent_mass`: M_h; else the lumped (row-sum) mass.
