@@ -1,13 +1,15 @@
-"""Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
-directory written by `barimpact run`:
+""
+    "Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
+    directory written by `barimpact run`:
 
-- displacement: U(t), with the exact rigid-obstacle solution when the case is
-  the paper's Example 1 family (its Figure 3);
-- reaction: R(t), likewise with the exact reaction;
-- energy: the budget E_kin, E_strain, E_obstacle, W_ext, D_visc and the
-  balance E_kin + E_strain + E_obstacle - W_ext + D_visc;
-- stress_map: sigma(x, t) over the field snapshots, where the waves and their
-  reflections show;
+    -displacement
+    : U(t),
+      with the exact rigid
+          - obstacle solution when the case is the paper's Example 1 family (its Figure 3); - reaction : R(t),
+      likewise with the exact reaction;
+- energy:the budget E_kin, E_strain, E_obstacle, W_ext,
+         D_visc and the balance E_kin + E_strain + E_obstacle - W_ext + D_visc;
+- stress_map:sigma(x, t)over the field snapshots, where the waves and their reflections show;
 - snapshots: u(x) at up to eight snapshot times (the paper's Figure 2);
 - impacts: U and R with every contact episode shaded (Example 2's second
   impact, the paper's Figure 4).
@@ -24,7 +26,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc")
+COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact")
 FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
 DPI = 120
 
@@ -43,11 +45,14 @@ def load(run_dir):
     d = Path(run_dir)
     if not (d / "history.csv").is_file():
         raise ValueError(f"{run_dir}: no history.csv (not a directory written by barimpact run)")
+    with open(d / "history.csv") as stream:
+        names = stream.readline().strip().split(",")
     h = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
-    history = {name: h[:, i] for i, name in enumerate(COLUMNS)}
+    history = {
+name: h[:, i] for i, name in enumerate(names)}
     x = field_t = u = sigma = np.empty(0)
     if (d / "fields.csv").is_file():
-        f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2)
+        f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2, usecols=range(5))
         if f.size:
             field_t = np.unique(f[:, 0])
             nodes = f.shape[0] // field_t.size
@@ -60,7 +65,8 @@ def load(run_dir):
 
 
 def _from_result(result):
-    history = {name: np.asarray(getattr(result, name)) for name in COLUMNS}
+    history = {
+name: np.asarray(result[name]) for name in result.history_columns}
     return RunData(history, np.asarray(result.x), np.asarray(result.field_t), np.asarray(result.u),
                    np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary)
 
@@ -168,9 +174,11 @@ def plot(source, out=None, formats=("png", "svg")):
 
     fig, ax = _figure("Energy budget")
     for name, label in (("E_kin", "kinetic"), ("E_strain", "strain"), ("E_obstacle", "obstacle"),
-                        ("W_ext", "work of f"), ("D_visc", "viscous dissipation")):
-        ax.plot(t, h[name], lw=1.0, label=label)
-    balance = h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"]
+                        ("W_ext", "external work"), ("D_visc", "viscous dissipation"),
+                        ("D_contact", "contact dissipation")):
+        if name in h and (name != "D_contact" or np.any(h[name] != 0)):
+            ax.plot(t, h[name], lw=1.0, label=label)
+    balance = h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0)
     ax.plot(t, balance, "k-", lw=1.8, label="balance: kin + strain + obstacle - work + dissipation")
     ax.set_xlabel("t")
     ax.set_ylabel("energy")

@@ -112,7 +112,8 @@ py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<p
   return a;
 }
 
-constexpr std::array<const char*, 9> columns{"t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc"};
+constexpr std::array<const char*, 10> columns{"t",        "U",          "V",     "R",      "E_kin",
+                                              "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact"};
 
 }  // namespace
 
@@ -143,11 +144,44 @@ PYBIND11_MODULE(_core, m) {
           "history",
           [](py::object self) {
             const auto& h = self.cast<const PyResult&>().r.history;
-            static_assert(sizeof(HistoryRow) == 9 * sizeof(double));
-            return view(h.empty() ? nullptr : &h.front().t, {static_cast<py::ssize_t>(h.size()), 9},
+            static_assert(sizeof(HistoryRow) == columns.size() * sizeof(double));
+            return view(h.empty() ? nullptr : &h.front().t,
+                        {static_cast<py::ssize_t>(h.size()), static_cast<py::ssize_t>(columns.size())},
                         {sizeof(HistoryRow), sizeof(double)}, self);
           },
-          "All history rows, shape (rows, 9), columns as in history.csv (a view, no copy)")
+          "The budget's history rows, shape (rows, 10), columns as the first ten of history.csv (a view, no copy)")
+      .def_property_readonly(
+          "history_columns",
+          [](const PyResult& p) {
+            py::list names;
+            for (const char* c : columns) names.append(py::str(c));
+            for (const auto& c : p.r.columns) names.append(py::str(c));
+            return names;
+          },
+          "Every column of history.csv, in its order: the budget's, then joints, far end, masses, gauges")
+      .def(
+          "__getitem__",
+          [](py::object self, const std::string& name) -> py::object {
+            const auto& r = self.cast<const PyResult&>().r;
+            const auto rows = static_cast<py::ssize_t>(r.history.size());
+            for (std::size_t i = 0; i < columns.size(); ++i)
+              if (name == columns[i])
+                return view(r.history.empty() ? nullptr : &r.history.front().t + i, {rows}, {sizeof(HistoryRow)}, self);
+            for (std::size_t i = 0; i < r.columns.size(); ++i)
+              if (name == r.columns[i])
+                return view(r.extra.empty() ? nullptr : r.extra.data() + i, {rows},
+                            {static_cast<py::ssize_t>(r.columns.size() * sizeof(double))}, self);
+            throw py::key_error("no history column \"" + name + "\"");
+          },
+          py::arg("column"), "A history column by its name in history.csv, e.g. r['joint.cushion.force'] (a view)")
+      .def_property_readonly(
+          "field_body",
+          [](const PyResult& p) {
+            py::list names;
+            for (std::size_t b : p.r.fields.body) names.append(py::str(p.r.fields.body_names[b]));
+            return names;
+          },
+          "The body of each field row (fields.csv's `body` column)")
       .def_property_readonly("x",
                              [](py::object self) {
                                const auto& f = self.cast<const PyResult&>().r.fields;

@@ -28,7 +28,7 @@ double energy_balance_bound(const Case& c) {
 double energy_scale(const std::vector<HistoryRow>& history) {
   if (history.empty()) return 0.0;
   const auto& h0 = history.front();
-  double scale = std::abs(h0.E_kin + h0.E_strain + h0.E_obstacle - h0.W_ext + h0.D_visc);
+  double scale = std::abs(h0.total());
   for (const auto& h : history) scale = std::max(scale, std::abs(h.W_ext));
   if (scale > 0.0) return scale;
   for (const auto& h : history) scale = std::max(scale, h.E_kin + h.E_strain + h.E_obstacle);

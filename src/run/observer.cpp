@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace barimpact {
 
@@ -9,6 +10,8 @@ void HistoryRecorder::begin(const Scheme& /*scheme*/, long long steps) {
   last_ = steps;
   rows_.clear();
   rows_.reserve(static_cast<std::size_t>(steps / every_ + 2));
+  extra_.clear();
+  if (probes_ != nullptr) extra_.reserve(rows_.capacity() * probes_->size());
 }
 
 bool HistoryRecorder::observe(const Scheme& s) {
@@ -16,19 +19,26 @@ bool HistoryRecorder::observe(const Scheme& s) {
   if (n % every_ != 0 && n != last_) return true;
   const Energies e = s.energies();
   rows_.push_back({s.time(), s.end_displacement(), s.end_velocity(), s.reaction(), e.kinetic, e.strain, e.obstacle,
-                   e.work, e.dissipation});
+                   e.work, e.dissipation, e.contact});
+  if (probes_ != nullptr && probes_->size() > 0) {
+    extra_.resize(extra_.size() + probes_->size());  // within the reserve: no allocation
+    probes_->read(s, extra_.data() + extra_.size() - probes_->size());
+  }
   return true;
 }
 
-FieldRecorder::FieldRecorder(const Case& c, std::vector<double> times)
-    : dt_(c.time.step),
-      h_(c.bar.length / c.bar.elements),
-      a_(c.bar.stiffness),
-      b_(c.bar.viscosity),
-      times_(std::move(times)) {
-  const std::size_t n = static_cast<std::size_t>(c.bar.elements) + 1;
-  fields_.x.resize(n);
-  for (std::size_t j = 0; j < n; ++j) fields_.x[j] = static_cast<double>(j) * h_;
+FieldRecorder::FieldRecorder(const Case& c, const Line& line, std::vector<double> times)
+    : dt_(c.time.step), bonds_(line.bonds), times_(std::move(times)) {
+  for (std::size_t b = 0; b < line.bodies.size(); ++b) {
+    const BodyRange& r = line.bodies[b];
+    if (r.is_mass) continue;
+    fields_.body_names.push_back(r.name);
+    for (std::size_t j = r.first; j <= r.last; ++j) {
+      fields_.x.push_back(line.x[j]);
+      fields_.node.push_back(j);
+      fields_.body.push_back(fields_.body_names.size() - 1);
+    }
+  }
 }
 
 void FieldRecorder::begin(const Scheme& /*scheme*/, long long steps) {
@@ -48,18 +58,29 @@ bool FieldRecorder::observe(const Scheme& s) {
   if (taken_ == steps_.size() || s.step() != steps_[taken_]) return true;
   const std::size_t n = fields_.nodes(), at = taken_ * n;
   fields_.t[taken_++] = s.time();
-  const std::span<double> u(fields_.u.data() + at, n), v(fields_.v.data() + at, n), sigma(fields_.sigma.data() + at, n);
-  s.displacement(u);
-  s.velocity(v);
-  // sigma = a u_x + b v_x, constant per element; nodes take the mean of
-  // their elements (one element at the ends).
+  double* u = fields_.u.data() + at;
+  double* v = fields_.v.data() + at;
+  double* sigma = fields_.sigma.data() + at;
+  for (std::size_t r = 0; r < n; ++r) {
+    u[r] = s.displacement_at(fields_.node[r]);
+    v[r] = s.velocity_at(fields_.node[r]);
+  }
+  // sigma per element, constant; a row takes the mean of its body's elements
+  // beside it (one at the body's ends).
   double left = 0.0;
-  for (std::size_t e = 0; e + 1 < n; ++e) {
-    const double sig = (a_ * (u[e + 1] - u[e]) + b_ * (v[e + 1] - v[e])) / h_;
-    sigma[e] = e == 0 ? sig : 0.5 * (left + sig);
+  for (std::size_t r = 0; r < n; ++r) {
+    const bool last = r + 1 == n || fields_.body[r + 1] != fields_.body[r];
+    const bool first = r == 0 || fields_.body[r - 1] != fields_.body[r];
+    if (last) {
+      sigma[r] = left;
+      continue;
+    }
+    const Bond& b = bonds_[fields_.node[r]];
+    double sig = (b.axial * (u[r + 1] - u[r]) + b.damping * (v[r + 1] - v[r])) / b.h;
+    if (b.area != 1.0) sig /= b.area;
+    sigma[r] = first ? sig : 0.5 * (left + sig);
     left = sig;
   }
-  sigma[n - 1] = left;
   return true;
 }
 
@@ -122,6 +143,43 @@ bool ContactMonitor::observe(const Scheme& s) {
   have_previous_ = true;
   previous_t_ = t;
   previous_d_ = d;
+  return true;
+}
+
+LinkMonitor::LinkMonitor(const Line& line) {
+  for (const auto& l : line.links) {
+    names_.push_back(l.name);
+    a_.push_back(l.a);
+    b_.push_back(l.b);
+  }
+}
+
+void LinkMonitor::begin(const Scheme& /*scheme*/, long long steps) {
+  episodes_.assign(names_.size(), {});
+  for (auto& e : episodes_) e.reserve(static_cast<std::size_t>(std::min<long long>(steps / 2 + 1, 4096)));
+  in_contact_.assign(names_.size(), 0);
+}
+
+bool LinkMonitor::observe(const Scheme& s) {
+  const double t = s.time();
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    const double p = s.link_force(i);
+    const bool contact = p > 0.0 || s.link_opening(i) < 0.0;
+    auto& list = episodes_[i];
+    if (contact && !in_contact_[i]) list.push_back({t, t, false, 0.0, 0.0, 0.0});
+    if (!contact && in_contact_[i]) {
+      auto& last = list.back();
+      last.closed = true;
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      last.velocity_lower = a_[i] == Link::ground ? nan : s.velocity_at(a_[i]);
+      last.velocity_upper = b_[i] == Link::ground ? nan : s.velocity_at(b_[i]);
+    }
+    if (contact) {
+      list.back().end = t;
+      list.back().max_force = std::max(list.back().max_force, p);
+    }
+    in_contact_[i] = contact ? 1 : 0;
+  }
   return true;
 }
 

@@ -48,21 +48,31 @@ RunDirectory::~RunDirectory() {
 namespace {
 
 // Shortest text that reads back to the same double.
-void write_history(const fs::path& path, const std::vector<HistoryRow>& rows) {
+constexpr std::string_view budget_header = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact";
+
+void write_history(const fs::path& path, const RunResult& result) {
   auto out = fmt::output_file(path.string());
-  out.print("t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc\n");
-  for (const auto& r : rows)
-    out.print("{},{},{},{},{},{},{},{},{}\n", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext, r.D_visc);
+  const std::size_t n = result.columns.size();
+  out.print("{}", budget_header);
+  for (const auto& name : result.columns) out.print(",{}", name);
+  out.print("\n");
+  for (std::size_t k = 0; k < result.history.size(); ++k) {
+    const HistoryRow& r = result.history[k];
+    out.print("{},{},{},{},{},{},{},{},{},{}", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext, r.D_visc,
+              r.D_contact);
+    for (std::size_t i = 0; i < n; ++i) out.print(",{}", result.extra[k * n + i]);
+    out.print("\n");
+  }
   out.close();
 }
 
 void write_fields(const fs::path& path, const RunResult& result) {
   auto out = fmt::output_file(path.string());
-  out.print("t,x,u,v,sigma\n");
+  out.print("t,x,u,v,sigma,body\n");
   const Fields& f = result.fields;
   for (std::size_t s = 0; s < f.count(); ++s)
     for (std::size_t j = 0, i = s * f.nodes(); j < f.nodes(); ++j, ++i)
-      out.print("{},{},{},{},{}\n", f.t[s], f.x[j], f.u[i], f.v[i], f.sigma[i]);
+      out.print("{},{},{},{},{},{}\n", f.t[s], f.x[j], f.u[i], f.v[i], f.sigma[i], f.body_names[f.body[j]]);
   out.close();
 }
 
@@ -86,7 +96,7 @@ void replace_text(const fs::path& path, const std::string& text) {
 
 void RunDirectory::commit(const Case& c, const RunResult& result) {
   commit([&](const fs::path& dir) {
-    write_history(dir / "history.csv", result.history);
+    write_history(dir / "history.csv", result);
     write_fields(dir / "fields.csv", result);
     write_text(dir / "case.toml", c.to_toml());
     write_text(dir / "summary.json", summary_json(c, result.summary));
@@ -156,24 +166,30 @@ std::string read_text(const fs::path& path) {
   return in ? text.str() : std::string();
 }
 
-std::vector<HistoryRow> read_history(const fs::path& path) {
+void read_history(const fs::path& path, RunResult& result) {
   std::ifstream in(path);
   std::string line;
-  if (!std::getline(in, line) || line != "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc")
-    throw std::runtime_error("not a history.csv");
-  std::vector<HistoryRow> rows;
+  if (!std::getline(in, line) || line.rfind(budget_header, 0) != 0) throw std::runtime_error("not a history.csv");
+  result.columns.clear();
+  for (std::size_t at = budget_header.size(); at < line.size();) {
+    const std::size_t end = std::min(line.find(',', at + 1), line.size());
+    result.columns.push_back(line.substr(at + 1, end - at - 1));
+    at = end;
+  }
   while (std::getline(in, line)) {
     HistoryRow r{};
-    double* cells[] = {&r.t, &r.U, &r.V, &r.R, &r.E_kin, &r.E_strain, &r.E_obstacle, &r.W_ext, &r.D_visc};
+    double* cells[] = {&r.t, &r.U, &r.V, &r.R, &r.E_kin, &r.E_strain, &r.E_obstacle, &r.W_ext, &r.D_visc, &r.D_contact};
     std::size_t at = 0;
-    for (double* cell : cells) {
+    auto next = [&] {
       const std::size_t end = std::min(line.find(',', at), line.size());
-      *cell = std::stod(line.substr(at, end - at));  // "nan" and "inf" read back too
+      const double v = std::stod(line.substr(at, end - at));  // "nan" and "inf" read back too
       at = end + 1;
-    }
-    rows.push_back(r);
+      return v;
+    };
+    for (double* cell : cells) *cell = next();
+    for (std::size_t i = 0; i < result.columns.size(); ++i) result.extra.push_back(next());
+    result.history.push_back(r);
   }
-  return rows;
 }
 
 double number_or_nan(const nlohmann::json& j, const char* key) {
@@ -219,7 +235,7 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
     s.energy_error_max = number_or_nan(j, "energy_error_max");
     s.run_seconds = number_or_nan(j, "run_seconds");
     s.warnings = j.value("warnings", std::vector<std::string>{});
-    r.history = read_history(dir / "history.csv");
+    read_history(dir / "history.csv", r);
     return r;
   } catch (const std::exception&) {
     return std::nullopt;  // not a run directory barimpact wrote whole: run it again
@@ -235,6 +251,18 @@ std::string summary_json(const Case& c, const Summary& s) {
                         {"exit_velocity", ci.closed ? number_or_null(ci.exit_velocity) : nlohmann::json(nullptr)},
                         {"rebound_velocity", ci.closed ? number_or_null(ci.rebound_velocity) : nlohmann::json(nullptr)},
                         {"max_reaction", ci.max_reaction}});
+  nlohmann::json links = nlohmann::json::object();
+  for (std::size_t i = 0; i < s.link_names.size(); ++i) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& e : s.link_episodes[i])
+      list.push_back({{"start", e.start},
+                      {"end", e.end},
+                      {"closed", e.closed},
+                      {"max_force", e.max_force},
+                      {"velocity_lower", e.closed ? number_or_null(e.velocity_lower) : nlohmann::json(nullptr)},
+                      {"velocity_upper", e.closed ? number_or_null(e.velocity_upper) : nlohmann::json(nullptr)}});
+    links[s.link_names[i]] = list;
+  }
   const double rel = s.energy_initial != 0.0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   const nlohmann::json j = {
       {"complete", s.complete},
@@ -250,6 +278,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"contact_count", s.contacts.size()},
       {"max_penetration", s.max_penetration},
       {"max_reaction", s.max_reaction},
+      {"links", links},
       {"energy_initial", number_or_null(s.energy_initial)},
       {"energy_final", number_or_null(s.energy_final)},
       {"energy_error_max", number_or_null(s.energy_error_max)},
@@ -278,6 +307,13 @@ std::string summary_text(const Case& c, const Summary& s) {
   if (s.contacts.size() > shown)
     out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);
   out += fmt::format("  max penetration {:.4g}, max reaction {:.4g}\n", s.max_penetration, s.max_reaction);
+  for (std::size_t i = 0; i < s.link_names.size(); ++i) {
+    if (s.link_names[i] == "near_end") continue;  // the contacts above
+    double largest = 0.0;
+    for (const auto& e : s.link_episodes[i]) largest = std::max(largest, e.max_force);
+    out += fmt::format("  {}: {} contact episode(s), largest force {:.4g}\n", s.link_names[i],
+                       s.link_episodes[i].size(), largest);
+  }
   if (std::isfinite(s.energy_initial))
     out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",
                        s.energy_initial, s.energy_final, s.energy_error_max,

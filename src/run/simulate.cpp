@@ -1,5 +1,7 @@
 #include "barimpact/run/simulate.hpp"
 
+#include "barimpact/case/line_builder.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -62,11 +64,20 @@ RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOp
 
 // The observers of one run and the summary they add up to.
 struct Recorders {
+  Line line;
+  Probes probes;
   HistoryRecorder history;
   FieldRecorder fields;
   ContactMonitor contact;
-  explicit Recorders(const Case& c) : history(c.output.every), fields(c, c.output.fields_at), contact(c.obstacle) {}
-  std::array<Observer*, 3> all() { return {&history, &fields, &contact}; }
+  LinkMonitor links;
+  explicit Recorders(const Case& c)
+      : line(build_line(c)),
+        probes(c, line),
+        history(c.output.every, &probes),
+        fields(c, line, c.output.fields_at),
+        contact(c.obstacle),
+        links(line) {}
+  std::array<Observer*, 4> all() { return {&history, &fields, &contact, &links}; }
 };
 
 RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
@@ -152,7 +163,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
   Recorders rec(c);
-  std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact};
+  std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact, &rec.links};
   if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
   return collect(c, loop, steps, rec, started, finite_rows);
@@ -162,6 +173,8 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
                   std::chrono::steady_clock::time_point started, bool finite_rows) {
   RunResult r;
   r.history = rec.history.rows();
+  r.columns = rec.probes.names();
+  r.extra = rec.history.extra();
   if (finite_rows && loop.status == RunStatus::complete) {
     // The state can stay finite while what is read off it overflows (a
     // blowing-up run squares (u^{n+1} - u^n)/dt in its energies first): the
@@ -169,9 +182,10 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
     const auto bad = std::find_if(r.history.begin(), r.history.end(), [](const HistoryRow& h) {
       return !(std::isfinite(h.t) && std::isfinite(h.U) && std::isfinite(h.V) && std::isfinite(h.R) &&
                std::isfinite(h.E_kin) && std::isfinite(h.E_strain) && std::isfinite(h.E_obstacle) &&
-               std::isfinite(h.W_ext) && std::isfinite(h.D_visc));
+               std::isfinite(h.W_ext) && std::isfinite(h.D_visc) && std::isfinite(h.D_contact));
     });
     if (bad != r.history.end()) {
+      r.extra.resize(static_cast<std::size_t>(bad - r.history.begin()) * r.columns.size());
       const long long step = std::llround(bad->t / c.time.step);
       loop.status = RunStatus::non_finite;
       loop.message = fmt::format("the history became non-finite at step {} (t = {})", step, bad->t);
@@ -188,10 +202,12 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
   s.steps_done = loop.steps_done;
   s.t_end = static_cast<double>(loop.steps_done) * c.time.step;
   s.contacts = rec.contact.intervals();
+  s.link_names = rec.links.names();
+  s.link_episodes = rec.links.episodes();
   s.max_penetration = rec.contact.max_penetration();
   s.max_reaction = rec.contact.max_reaction();
   if (!r.history.empty()) {
-    auto total = [](const HistoryRow& h) { return h.E_kin + h.E_strain + h.E_obstacle - h.W_ext + h.D_visc; };
+    auto total = [](const HistoryRow& h) { return h.total(); };
     s.energy_initial = total(r.history.front());
     s.energy_final = total(r.history.back());
     for (const auto& h : r.history)

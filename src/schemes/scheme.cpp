@@ -1,5 +1,7 @@
 #include "barimpact/schemes/scheme.hpp"
 
+#include "barimpact/schemes/line_scheme.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -106,8 +108,13 @@ std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
   return std::nullopt;
 }
 
+double Scheme::far_force() const {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 std::unique_ptr<Scheme> make_scheme(const Case& c) {
   const auto& name = c.time.scheme;
+  if (!c.single_bar) return make_line_scheme(c);
   if (name == "paper") return std::make_unique<PaperScheme>(c);
   if (name == "newmark") return std::make_unique<NewmarkScheme>(c);
   if (name == "central-difference") return std::make_unique<CentralDifferenceScheme>(c);

@@ -274,7 +274,7 @@ Study converge(const Case& base, const StudyOptions& o) {
         r.first_contact = s.contacts.front().start;
         r.lift_off = s.contacts.front().closed ? s.contacts.front().end : nan;
       }
-      auto total = [](const HistoryRow& x) { return x.E_kin + x.E_strain + x.E_obstacle - x.W_ext + x.D_visc; };
+      auto total = [](const HistoryRow& x) { return x.total(); };
       r.energy_error_end = std::abs(total(h.back()) - total(h.front())) / std::abs(total(h.front()));
 
       std::unique_ptr<exact::Solution> solution;

@@ -23,7 +23,7 @@ inline Case example(const std::string& name, const std::vector<std::string>& set
 }
 
 inline double total_energy(const HistoryRow& r) {
-  return r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc;
+  return r.total();
 }
 
 }  // namespace barimpact::testing

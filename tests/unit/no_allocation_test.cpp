@@ -8,6 +8,7 @@
 #include <new>
 
 #include "../support/run_case.hpp"
+#include "barimpact/case/line_builder.hpp"
 #include "barimpact/run/observer.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
@@ -50,10 +51,13 @@ lambda = 0.25
 fields_at = [1.0, 2.5]
 )toml");
   auto scheme = make_scheme(c);
-  HistoryRecorder history(c.output.every);
-  FieldRecorder fields(c, c.output.fields_at);
+  const Line line = build_line(c);
+  const Probes probes(c, line);
+  HistoryRecorder history(c.output.every, &probes);
+  FieldRecorder fields(c, line, c.output.fields_at);
   ContactMonitor contact(c.obstacle);
-  const std::array<Observer*, 3> observers{&history, &fields, &contact};
+  LinkMonitor links(line);
+  const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
   const long long steps = c.step_count();
   for (auto* o : observers) o->begin(*scheme, steps);
   scheme->start();

@@ -37,6 +37,8 @@ struct Bond {
   double mass = 0.0;       ///< m_j = rho A h
   double area = 1.0;       ///< A, to turn a force into a stress
   std::size_t body = 0;    ///< the body the element belongs to (elements only)
+  double axial = 0.0;      ///< E A (elements), so that stresses read (E A du + eta A dv) / h / A
+  double damping = 0.0;    ///< eta A (elements)
 };
 
 /// A unilateral law on the opening y = u_b - u_a + gap (y < 0: penetrating)

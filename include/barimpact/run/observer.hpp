@@ -8,10 +8,12 @@
 #include <cstddef>
 #include <functional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/model/obstacle.hpp"
+#include "barimpact/run/probe.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact {
@@ -28,26 +30,39 @@ class Observer {
 
 /// One row of history.csv, at t_n.
 struct HistoryRow {
-  double t, U, V, R, E_kin, E_strain, E_obstacle, W_ext, D_visc;
+  double t, U, V, R, E_kin, E_strain, E_obstacle, W_ext, D_visc, D_contact;
+
+  /// E_total: constant for an exact solution, the budget's test.
+  [[nodiscard]] double total() const { return E_kin + E_strain + E_obstacle - W_ext + D_visc + D_contact; }
 };
 
 /// Rows at steps 0, every, 2 every, ... and always at the last step.
 class HistoryRecorder final : public Observer {
  public:
-  explicit HistoryRecorder(int every) : every_(every) {}
+  /// `probes`: the columns after the budget (probe.hpp), read at every row.
+  explicit HistoryRecorder(int every, const Probes* probes = nullptr) : every_(every), probes_(probes) {}
   void begin(const Scheme& scheme, long long steps) override;
   bool observe(const Scheme& scheme) override;
   [[nodiscard]] const std::vector<HistoryRow>& rows() const { return rows_; }
+  /// The probes' values, row-major (probes->size() per row).
+  [[nodiscard]] const std::vector<double>& extra() const { return extra_; }
 
  private:
   long long every_;
+  const Probes* probes_;
   long long last_ = 0;
   std::vector<HistoryRow> rows_;
+  std::vector<double> extra_;
 };
 
-/// Field snapshots, snapshot-major: u[s * x.size() + j] is u(x_j, t_s).
+/// Field snapshots, snapshot-major: u[s * x.size() + j] is u at row j, t_s.
+/// Rows are the nodes of each bar body in line order (a welded node once per
+/// body): row j is node `node[j]` of body `body[j]`.
 struct Fields {
   std::vector<double> x;
+  std::vector<std::size_t> node;
+  std::vector<std::size_t> body;
+  std::vector<std::string> body_names;
   std::vector<double> t;
   std::vector<double> u, v, sigma;
 
@@ -55,12 +70,12 @@ struct Fields {
   [[nodiscard]] std::size_t nodes() const { return x.size(); }
 };
 
-/// u, v and sigma = a u_x + b v_x at every node, at the steps nearest the
-/// requested times (each step once). Nodal sigma: the mean of the two
-/// adjacent elements' constant values, the end element's at x = 0 and L.
+/// u, v and the stress sigma = (E A u_x + eta A v_x) / A at every row, at the
+/// steps nearest the requested times (each step once). Nodal sigma: the mean
+/// of the body's two elements beside the node, its end element at its ends.
 class FieldRecorder final : public Observer {
  public:
-  FieldRecorder(const Case& c, std::vector<double> times);
+  FieldRecorder(const Case& c, const Line& line, std::vector<double> times);
   void begin(const Scheme& scheme, long long steps) override;
   bool observe(const Scheme& scheme) override;
   /// How many snapshots were recorded so far.
@@ -69,7 +84,8 @@ class FieldRecorder final : public Observer {
   [[nodiscard]] Fields take();
 
  private:
-  double dt_, h_, a_, b_;
+  double dt_;
+  std::vector<Bond> bonds_;
   std::vector<double> times_;
   std::vector<long long> steps_;  // sorted, unique
   std::size_t taken_ = 0;
@@ -107,6 +123,35 @@ class ContactMonitor final : public Observer {
   double previous_t_ = 0.0, previous_d_ = 0.0;
   double max_penetration_ = 0.0, max_reaction_ = 0.0;
   std::vector<double> velocity_;
+};
+
+/// A link's contact episode (line.hpp): force > 0 or opening < 0 from
+/// `start` to `end` (at steps), the largest force, and the two faces'
+/// velocities at the first step after they part (NaN for the ground).
+struct LinkEpisode {
+  double start = 0.0;
+  double end = 0.0;
+  bool closed = false;
+  double max_force = 0.0;
+  double velocity_lower = 0.0;
+  double velocity_upper = 0.0;
+};
+
+/// Contact episodes of every link of the line.
+class LinkMonitor final : public Observer {
+ public:
+  explicit LinkMonitor(const Line& line);
+  void begin(const Scheme& scheme, long long steps) override;
+  /// Allocates only when an episode begins beyond the 4096 reserved per link.
+  bool observe(const Scheme& scheme) override;
+  [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
+  [[nodiscard]] const std::vector<std::vector<LinkEpisode>>& episodes() const { return episodes_; }
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<std::size_t> a_, b_;
+  std::vector<std::vector<LinkEpisode>> episodes_;
+  std::vector<char> in_contact_;
 };
 
 /// Where a run stands, for progress reports.

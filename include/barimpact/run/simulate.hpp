@@ -37,6 +37,9 @@ struct Summary {
   long long steps_done = 0;
   double t_end = 0.0;  ///< t of the last step observed
   std::vector<ContactInterval> contacts;
+  /// Every link's episodes (observer.hpp), named as the line's links.
+  std::vector<std::string> link_names;
+  std::vector<std::vector<LinkEpisode>> link_episodes;
   double max_penetration = 0.0;
   double max_reaction = 0.0;
   double energy_initial = 0.0;    ///< E_total at t = 0
@@ -50,6 +53,10 @@ struct Summary {
 struct RunResult {
   Summary summary;
   std::vector<HistoryRow> history;
+  /// The history's columns after the budget (probe.hpp) and their values,
+  /// row-major: columns.size() per row.
+  std::vector<std::string> columns;
+  std::vector<double> extra;
   Fields fields;
 };
 

@@ -60,6 +60,9 @@ class Scheme {
   /// its force p >= 0 (a compression) and its opening y at t_n.
   [[nodiscard]] virtual double link_force(std::size_t /*i*/) const { return reaction(); }
   [[nodiscard]] virtual double link_opening(std::size_t i) const = 0;
+  /// The force (compression > 0) on a held or loaded far end at t_n, when the
+  /// scheme computes it; NaN: read it off the last element instead.
+  [[nodiscard]] virtual double far_force() const;
   /// False once a level holds NaN or infinity.
   [[nodiscard]] virtual bool finite() const = 0;
 };

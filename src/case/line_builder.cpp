@@ -1,0 +1,196 @@
+#include "barimpact/case/line_builder.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace barimpact {
+
+namespace {
+
+bool unilateral(JointLaw law) {
+  return law == JointLaw::elastic || law == JointLaw::viscoelastic || law == JointLaw::rigid ||
+         law == JointLaw::cushion;
+}
+
+ContactLaw contact_law(const Case& c, const LawData& d) {
+  ContactLaw l;
+  l.stiffness = d.stiffness;
+  l.viscosity = d.viscosity;
+  l.restitution = d.restitution;
+  switch (d.law) {
+    case JointLaw::elastic:
+      l.kind = LawKind::elastic;
+      l.viscosity = 0.0;
+      break;
+    case JointLaw::viscoelastic:
+      l.kind = LawKind::viscoelastic;
+      break;
+    case JointLaw::cushion:
+      l.kind = LawKind::cushion;
+      l.viscosity = 0.0;
+      break;
+    default:
+      l.kind = LawKind::rigid;
+      l.stiffness = l.viscosity = 0.0;
+      l.restitution = rigid_restitution(c, d);
+      break;
+  }
+  return l;
+}
+
+const JointData* joint_between(const Case& c, const std::string& lower, const std::string& upper) {
+  for (const auto& j : c.joints)
+    if (j.lower == lower && j.upper == upper) return &j;
+  return nullptr;
+}
+
+End end_of(const LawData& d, std::size_t node) {
+  End e;
+  e.node = node;
+  e.value = d.value;
+  switch (d.law) {
+    case JointLaw::clamped:
+      e.kind = EndKind::clamped;
+      break;
+    case JointLaw::force:
+      e.kind = EndKind::force;
+      break;
+    case JointLaw::velocity:
+      e.kind = EndKind::velocity;
+      break;
+    default:
+      e.kind = EndKind::free;
+      break;
+  }
+  return e;
+}
+
+// Appends node at x, joined to the previous node (if any) by `bond`.
+void add_node(Line& line, double x, const Bond& bond) {
+  if (!line.x.empty()) line.bonds.push_back(bond);
+  line.x.push_back(x);
+  line.point_mass.push_back(0.0);
+}
+
+// Body i's nodes; `join` is the bond to the previous body (ignored when welded).
+void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, const Bond& join, double start) {
+  BodyRange range{b.name, b.kind == BodyKind::mass, 0, 0, b.displacement, b.velocity};
+  if (!welded || line.x.empty()) add_node(line, start, join);
+  range.first = line.x.size() - 1;
+  if (b.kind == BodyKind::mass) {
+    line.point_mass[range.first] += b.mass;
+  } else {
+    const double h = b.length / b.elements;
+    const double ea = b.modulus * b.area, eta_a = b.viscosity * b.area;
+    const Bond e{BondKind::element, h, ea / h, eta_a / h, b.density * b.area * h, b.area, index, ea, eta_a};
+    for (int k = 1; k <= b.elements; ++k) add_node(line, start + static_cast<double>(k) * h, e);
+  }
+  range.last = line.x.size() - 1;
+  line.bodies.push_back(range);
+}
+
+GaugePoint gauge_point(const Line& line, const Case& c, const GaugeData& g) {
+  std::size_t i = 0;
+  while (c.bodies[i].name != g.body) ++i;
+  const BodyData& b = c.bodies[i];
+  const BodyRange& r = line.bodies[i];
+  const double s = g.at / (b.length / b.elements);  // in elements
+  const double k = std::round(s);
+  GaugePoint p{g.name, 0, 0, 0, 0.0};
+  const std::size_t last_bond = r.last - 1;
+  if (std::abs(s - k) <= 1e-9 * std::max(1.0, s)) {  // on a node
+    const auto kn = static_cast<std::size_t>(k);
+    p.left = kn == 0 ? r.first : r.first + kn - 1;
+    p.right = kn == static_cast<std::size_t>(b.elements) ? last_bond : r.first + kn;
+    p.node = std::min(r.first + kn, last_bond);
+    p.weight = r.first + kn > last_bond ? 1.0 : 0.0;
+  } else {
+    const auto e = std::min(static_cast<std::size_t>(std::floor(s)), static_cast<std::size_t>(b.elements) - 1);
+    p.left = p.right = p.node = r.first + e;
+    p.weight = s - static_cast<double>(e);
+  }
+  return p;
+}
+
+// A single-bar case's line comes from its paper view (bar, initial,
+// obstacle), which studies refine in place (converge sets bar.elements).
+Case line_view(const Case& c) {
+  Case v = c;
+  BodyData b = c.bodies.empty() ? BodyData{} : c.bodies.front();
+  if (b.name.empty()) b.name = "bar";
+  b.kind = BodyKind::bar;
+  b.length = c.bar.length;
+  b.elements = c.bar.elements;
+  b.modulus = c.bar.stiffness / b.area;
+  b.density = c.bar.density / b.area;
+  b.viscosity = c.bar.viscosity / b.area;
+  b.displacement = c.initial.displacement;
+  b.velocity = c.initial.velocity;
+  v.bodies = {b};
+  v.joints.clear();
+  LawData near = c.near_end;
+  near.stiffness = c.obstacle.stiffness;
+  near.gap = c.obstacle.gap;
+  near.viscosity = c.obstacle.viscosity;
+  const ObstacleKind k = c.obstacle.kind;
+  near.law = k == ObstacleKind::none      ? JointLaw::free
+             : k == ObstacleKind::elastic ? JointLaw::elastic
+             : k == ObstacleKind::rigid   ? JointLaw::rigid
+                                          : JointLaw::viscoelastic;
+  v.near_end = near;
+  v.far_end.law = c.bar.far_end == FarEnd::clamped ? JointLaw::clamped : JointLaw::free;
+  return v;
+}
+
+Line build(const Case& c);
+
+}  // namespace
+
+double rigid_restitution(const Case& c, const LawData& law) {
+  return law.restitution_given ? law.restitution : c.time.restitution;
+}
+
+Line build_line(const Case& c) {
+  return c.single_bar ? build(line_view(c)) : build(c);
+}
+
+namespace {
+
+Line build(const Case& c) {
+  Line line;
+  double x = 0.0;
+  for (std::size_t i = 0; i < c.bodies.size(); ++i) {
+    const BodyData& b = c.bodies[i];
+    const JointData* j = i > 0 ? joint_between(c, c.bodies[i - 1].name, b.name) : nullptr;
+    const bool welded = i > 0 && (j == nullptr || j->law.law == JointLaw::welded);
+    Bond join{BondKind::open, 0.0, 0.0, 0.0, 0.0, 1.0, i, 0.0, 0.0};
+    if (j != nullptr && j->law.law == JointLaw::spring) {
+      join.kind = BondKind::spring;
+      join.stiffness = j->law.stiffness;
+      join.viscosity = j->law.viscosity;
+    }
+    const std::size_t lower_last = line.x.empty() ? 0 : line.x.size() - 1;
+    if (j != nullptr && unilateral(j->law.law)) x += j->law.gap;
+    add_body(line, b, i, welded, join, x);
+    if (b.kind == BodyKind::bar) x += b.length;
+    if (j != nullptr && unilateral(j->law.law))
+      line.links.push_back(
+          {"joint." + j->name, contact_law(c, j->law), lower_last, line.bodies.back().first, j->law.gap, false});
+  }
+  const std::size_t last = line.x.size() - 1;
+  if (unilateral(c.near_end.law))
+    line.links.insert(line.links.begin(),
+                      Link{"near_end", contact_law(c, c.near_end), Link::ground, 0, c.near_end.gap, true});
+  if (unilateral(c.far_end.law))
+    line.links.push_back({"far_end", contact_law(c, c.far_end), last, Link::ground, c.far_end.gap, true});
+  line.near = end_of(c.near_end, 0);
+  line.far = end_of(c.far_end, last);
+  for (const auto& g : c.gauges) line.gauges.push_back(gauge_point(line, c, g));
+  line.body_force = c.load.body_force;
+  line.gravity = c.load.gravity;
+  return line;
+}
+
+}  // namespace
+
+}  // namespace barimpact

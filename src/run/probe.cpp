@@ -1,0 +1,110 @@
+#include "barimpact/run/probe.hpp"
+
+#include <cmath>
+
+namespace barimpact {
+
+namespace {
+std::size_t link_named(const Line& line, const std::string& name) {
+  for (std::size_t i = 0; i < line.links.size(); ++i)
+    if (line.links[i].name == name) return i;
+  return Link::ground;
+}
+std::size_t body_index(const Case& c, const std::string& name) {
+  for (std::size_t i = 0; i < c.bodies.size(); ++i)
+    if (c.bodies[i].name == name) return i;
+  return 0;
+}
+}  // namespace
+
+Probes::Probes(const Case& c, const Line& line) : line_(line) {
+  auto add = [&](std::string name, Kind kind, std::size_t index) {
+    names_.push_back(std::move(name));
+    columns_.push_back({kind, index});
+  };
+  for (const auto& j : c.joints) {
+    const std::string stem = "joint." + j.name;
+    if (const std::size_t i = link_named(line, stem); i != Link::ground) {
+      add(stem + ".force", Kind::link_force, i);
+      add(stem + ".opening", Kind::link_opening, i);
+      continue;
+    }
+    // A spring or welded joint: the bond (or, welded, the first element of
+    // the upper body, else the last of the lower) that carries its force.
+    const BodyRange& upper = line.bodies[body_index(c, j.upper)];
+    const BodyRange& lower = line.bodies[body_index(c, j.lower)];
+    const bool welded = j.law.law == JointLaw::welded;
+    std::size_t bond = upper.first - 1;
+    if (welded) bond = upper.last > upper.first ? upper.first : lower.last - 1;
+    add(stem + ".force", Kind::bond_force, bond);
+    add(stem + ".opening", welded ? Kind::link_opening : Kind::bond_opening, welded ? Link::ground : bond);
+  }
+  if (c.far_end.law != JointLaw::free) {
+    add("far_end.force", Kind::far_force, link_named(line, "far_end"));
+    add("far_end.opening", Kind::far_opening, link_named(line, "far_end"));
+  }
+  for (const auto& b : line.bodies)
+    if (b.is_mass) {
+      add("body." + b.name + ".u", Kind::node_u, b.first);
+      add("body." + b.name + ".v", Kind::node_v, b.first);
+    }
+  for (std::size_t g = 0; g < line.gauges.size(); ++g) {
+    const std::string stem = "gauge." + line.gauges[g].name;
+    add(stem + ".strain", Kind::gauge_strain, g);
+    add(stem + ".velocity", Kind::gauge_velocity, g);
+    add(stem + ".force", Kind::gauge_force, g);
+  }
+}
+
+// k (u_{j+1} - u_j) + c (v_{j+1} - v_j): the bond's tension.
+double Probes::tension(const Scheme& s, std::size_t j) const {
+  const Bond& b = line_.bonds[j];
+  double t = b.stiffness * (s.displacement_at(j + 1) - s.displacement_at(j));
+  if (b.viscosity != 0.0) t += b.viscosity * (s.velocity_at(j + 1) - s.velocity_at(j));
+  return t;
+}
+
+double Probes::value(const Scheme& s, const Column& col) const {
+  const std::size_t i = col.index;
+  switch (col.kind) {
+    case Kind::link_force:
+      return s.link_force(i);
+    case Kind::link_opening:
+      return i == Link::ground ? 0.0 : s.link_opening(i);
+    case Kind::bond_force:
+      return -tension(s, i);
+    case Kind::bond_opening:
+      return s.displacement_at(i + 1) - s.displacement_at(i);
+    case Kind::far_force: {
+      if (i != Link::ground) return s.link_force(i);
+      const double f = s.far_force();
+      return std::isnan(f) ? -tension(s, line_.bonds.size() - 1) : f;
+    }
+    case Kind::far_opening:
+      return i != Link::ground ? s.link_opening(i) : -s.displacement_at(line_.nodes() - 1);
+    case Kind::node_u:
+      return s.displacement_at(i);
+    case Kind::node_v:
+      return s.velocity_at(i);
+    case Kind::gauge_strain: {
+      const GaugePoint& g = line_.gauges[i];
+      auto strain = [&](std::size_t j) { return (s.displacement_at(j + 1) - s.displacement_at(j)) / line_.bonds[j].h; };
+      return 0.5 * (strain(g.left) + strain(g.right));
+    }
+    case Kind::gauge_velocity: {
+      const GaugePoint& g = line_.gauges[i];
+      return (1.0 - g.weight) * s.velocity_at(g.node) + g.weight * s.velocity_at(g.node + 1);
+    }
+    case Kind::gauge_force: {
+      const GaugePoint& g = line_.gauges[i];
+      return 0.5 * (tension(s, g.left) + tension(s, g.right));
+    }
+  }
+  return 0.0;
+}
+
+void Probes::read(const Scheme& s, double* out) const {
+  for (std::size_t k = 0; k < columns_.size(); ++k) out[k] = value(s, columns_[k]);
+}
+
+}  // namespace barimpact

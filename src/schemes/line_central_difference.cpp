@@ -1,0 +1,222 @@
+#include "barimpact/schemes/line_central_difference.hpp"
+
+#include <cmath>
+
+namespace barimpact {
+
+LineCentralDifference::LineCentralDifference(const Case& c, Line line) : LineScheme(c, std::move(line)) {
+  const std::size_t n = line_.nodes();
+  for (const auto& b : line_.bonds) {
+    k_.push_back(b.stiffness);
+    c_.push_back(b.viscosity);
+    viscous_ = viscous_ || b.viscosity > 0.0;
+  }
+  m_ = line_.lumped_mass();
+  inv_m_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) inv_m_[j] = line_.fixed(j) ? 0.0 : 1.0 / m_[j];
+  r_.assign(n, 0.0);
+  rigid_.assign(line_.links.size(), 0.0);
+  for (auto& l : levels_) l.assign(n, 0.0);
+}
+
+void LineCentralDifference::predict(const double* um, const double* u, double* up, double t, bool taylor) {
+  const std::size_t n = line_.nodes();
+  load_at(t);
+  double* __restrict r = r_.data();
+  for (std::size_t j = 0; j < n; ++j) r[j] = load_zero_ ? 0.0 : load_[j];
+  const double inv_dt = 1.0 / dt_;
+  for (std::size_t j = 0; j + 1 < n; ++j) {
+    double tension = k_[j] * (u[j + 1] - u[j]);
+    if (viscous_) tension += c_[j] * ((u[j + 1] - u[j]) - (um[j + 1] - um[j])) * inv_dt;
+    r[j] += tension;
+    r[j + 1] -= tension;
+  }
+  if (has_penalty_) penalty_forces(u, um, r);
+  if (line_.near.kind == EndKind::force) r[line_.near.node] += near_value(t);
+  if (line_.far.kind == EndKind::force) r[line_.far.node] += far_value(t);
+  const double dt2 = dt_ * dt_;
+  const double* __restrict inv_m = inv_m_.data();
+  if (taylor) {
+    for (std::size_t j = 0; j < n; ++j) up[j] = u[j] + dt_ * v0_[j] + 0.5 * dt2 * r[j] * inv_m[j];
+  } else {
+    for (std::size_t j = 0; j < n; ++j) up[j] = 2.0 * u[j] - um[j] + dt2 * r[j] * inv_m[j];
+  }
+}
+
+void LineCentralDifference::hold_ends(const double* u, double* up, double t) const {
+  for (const End* e : {&line_.near, &line_.far}) {
+    if (e->kind == EndKind::clamped) up[e->node] = 0.0;
+    if (e->kind == EndKind::velocity)
+      up[e->node] = u[e->node] + dt_ * (e == &line_.near ? near_value(t + 0.5 * dt_) : far_value(t + 0.5 * dt_));
+  }
+}
+
+void LineCentralDifference::project(double* up, double force_scale) {
+  if (!has_rigid_) return;
+  std::fill(rigid_.begin(), rigid_.end(), 0.0);
+  const double scale = 1.0 / (dt_ * dt_);
+  for (int sweep = 0; sweep < 1000; ++sweep) {
+    double moved = 0.0;
+    for (std::size_t i = 0; i < line_.links.size(); ++i) {
+      const Link& l = line_.links[i];
+      if (!l.law.rigid()) continue;
+      const double wa = l.a == Link::ground ? 0.0 : inv_m_[l.a];
+      const double wb = l.b == Link::ground ? 0.0 : inv_m_[l.b];
+      if (wa + wb == 0.0) continue;
+      const double y = line_.opening(i, up);
+      const double lambda = std::max(0.0, rigid_[i] - y / (wa + wb));  // accumulated impulse, kept >= 0
+      const double d = lambda - rigid_[i];
+      if (d == 0.0) continue;
+      rigid_[i] = lambda;
+      if (l.a != Link::ground) up[l.a] -= d * wa;
+      if (l.b != Link::ground) up[l.b] += d * wb;
+      moved = std::max(moved, std::abs(d) * (wa + wb));
+    }
+    if (moved <= 1e-15 * (1.0 + std::abs(up[0]))) break;
+  }
+  for (std::size_t i = 0; i < rigid_.size(); ++i)
+    if (line_.links[i].law.rigid()) force_[i] = rigid_[i] = rigid_[i] * scale * force_scale;
+}
+
+void LineCentralDifference::end_forces(const double* um, const double* u, const double* up, double t, double scale) {
+  const double inv_dt2 = 1.0 / (dt_ * dt_);
+  auto support = [&](const End& e) {
+    const std::size_t j = e.node;
+    return scale * m_[j] * (up[j] - 2.0 * u[j] + um[j]) * inv_dt2 - r_[j];
+  };
+  const bool near_held = line_.near.kind == EndKind::clamped || line_.near.kind == EndKind::velocity;
+  const bool far_held = line_.far.kind == EndKind::clamped || line_.far.kind == EndKind::velocity;
+  near_support_ = near_held ? support(line_.near) : 0.0;
+  far_support_ = far_held ? support(line_.far) : 0.0;
+  const bool near_link = !line_.links.empty() && line_.links.front().name == "near_end";
+  const bool far_link = !line_.links.empty() && line_.links.back().name == "far_end";
+  near_force_ = near_link ? force_.front() : line_.near.kind == EndKind::force ? near_value(t) : near_support_;
+  far_force_ = far_link ? force_.back() : line_.far.kind == EndKind::force ? -far_value(t) : -far_support_;
+}
+
+void LineCentralDifference::start() {
+  const std::size_t n = line_.nodes();
+  prev_ = levels_[2].data();
+  cur_ = levels_[0].data();
+  next_ = levels_[1].data();
+  n_ = 0;
+  std::fill(c_max_.begin(), c_max_.end(), 0.0);
+  // u^1 = u^0 + dt v^0 + dt^2/2 a^0 (second order, exact for a rigid motion);
+  // rates at t = 0 from v^0 through a level u^0 - dt v^0.
+  std::vector<double> before(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j] = prev_[j] = u0_[j];
+    before[j] = u0_[j] - dt_ * v0_[j];
+  }
+  predict(before.data(), cur_, next_, 0.0, true);
+  hold_ends(cur_, next_, 0.0);
+  // The Taylor step moves by dt^2/2 a^0: a correction's force is twice a full step's.
+  project(next_, 2.0);
+  end_forces(before.data(), cur_, next_, 0.0, 2.0);
+  // The first half step's share of the budget, dt/2 times the rates at t = 0.
+  double power = 0.0, viscous = 0.0, contact = 0.0;
+  for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : load_[j]) * v0_[j];
+  power += near_support_ * v0_[line_.near.node] + far_support_ * v0_[line_.far.node];
+  if (line_.near.kind == EndKind::force) power += near_value(0.0) * v0_[line_.near.node];
+  if (line_.far.kind == EndKind::force) power += far_value(0.0) * v0_[line_.far.node];
+  for (std::size_t j = 0; j + 1 < n; ++j) viscous += c_[j] * (v0_[j + 1] - v0_[j]) * (v0_[j + 1] - v0_[j]);
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const Link& l = line_.links[i];
+    const double rate = -line_.opening(i, v0_.data()) + l.gap;  // dc/dt
+    if (l.law.rigid()) contact += force_[i] * rate;
+    if (l.law.kind == LawKind::viscoelastic)
+      viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, cur_))) * rate;
+  }
+  work_half_ = 0.5 * dt_ * power;
+  dissipation_half_ = 0.5 * dt_ * viscous;
+  contact_half_ = 0.5 * dt_ * contact;
+  work_last_ = dissipation_last_ = contact_last_ = 0.0;
+}
+
+void LineCentralDifference::advance() {
+  const long long m = n_ + 1;
+  const double t = static_cast<double>(m) * dt_;
+  const double* um = cur_;
+  const double* u = next_;
+  double* up = prev_;
+  predict(um, u, up, t, false);
+  hold_ends(u, up, t);
+  project(up, 1.0);
+  end_forces(um, u, up, t, 1.0);
+  prev_ = cur_;
+  cur_ = next_;
+  next_ = up;
+  n_ = m;
+  double dw = 0.0, dd = 0.0, dc = 0.0;
+  book_budget(prev_, cur_, next_, dw, dd, dc);
+  work_last_ = dw;
+  dissipation_last_ = dd;
+  contact_last_ = dc;
+  work_half_ += dw;
+  dissipation_half_ += dd;
+  contact_half_ += dc;
+}
+
+// Level m's increments, each force at t_m tested with (u^{m+1} - u^{m-1}) / 2.
+void LineCentralDifference::book_budget(const double* um, const double* u, const double* up, double& dw, double& dd,
+                                        double& dc) const {
+  const std::size_t n = line_.nodes();
+  if (!load_zero_)
+    for (std::size_t j = 0; j < n; ++j) dw += load_[j] * 0.5 * (up[j] - um[j]);
+  const double t = time();
+  auto moved = [&](std::size_t j) { return 0.5 * (up[j] - um[j]); };
+  dw += near_support_ * moved(line_.near.node) + far_support_ * moved(line_.far.node);
+  if (line_.near.kind == EndKind::force) dw += near_value(t) * moved(line_.near.node);
+  if (line_.far.kind == EndKind::force) dw += far_value(t) * moved(line_.far.node);
+  if (viscous_) {
+    const double inv_dt = 1.0 / dt_;
+    for (std::size_t j = 0; j + 1 < n; ++j)
+      dd += c_[j] * ((u[j + 1] - u[j]) - (um[j + 1] - um[j])) * inv_dt * 0.5 *
+            ((up[j + 1] - up[j]) - (um[j + 1] - um[j]));
+  }
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const Link& l = line_.links[i];
+    const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
+    if (l.law.rigid()) dc += force_[i] * dcomp;
+    if (l.law.kind == LawKind::viscoelastic)
+      dd += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, u))) * dcomp;
+  }
+}
+
+double LineCentralDifference::half_step(const double* a, const double* b, BondKind kind, double& kinetic) const {
+  kinetic = 0.0;
+  for (std::size_t j = 0; j < line_.nodes(); ++j) {
+    const double w = (b[j] - a[j]) / dt_;
+    kinetic += 0.5 * m_[j] * w * w;
+  }
+  return 0.5 * line_.bond_form(kind, false, a, b);
+}
+
+Energies LineCentralDifference::energies() const {
+  Energies e;
+  e.obstacle = link_energy(cur_);
+  if (n_ == 0) {
+    for (std::size_t j = 0; j < line_.nodes(); ++j) e.kinetic += 0.5 * m_[j] * v0_[j] * v0_[j];
+    e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
+    e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
+    return e;
+  }
+  double k1 = 0, k2 = 0;
+  const double s1 = half_step(prev_, cur_, BondKind::element, k1), s2 = half_step(cur_, next_, BondKind::element, k2);
+  e.kinetic = 0.5 * (k1 + k2);
+  e.strain = 0.5 * (s1 + s2);
+  e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +
+                        line_.bond_form(BondKind::spring, false, cur_, next_));
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  e.contact = contact_half_ - 0.5 * contact_last_ + link_hysteresis();
+  return e;
+}
+
+bool LineCentralDifference::finite() const {
+  const std::size_t last = line_.nodes() - 1;
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
+         std::isfinite(work_half_) && std::isfinite(dissipation_half_);
+}
+
+}  // namespace barimpact

@@ -1,0 +1,150 @@
+// The line schemes (schemes/line_*.hpp) on lines built in code: the same
+// numbers as the single-bar schemes on one bar, momentum and the energy
+// budget on lines of several bodies.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "../support/run_case.hpp"
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/run/simulate.hpp"
+
+namespace barimpact {
+namespace {
+
+BodyData bar(const std::string& name, double length, int elements, const std::string& velocity = "0") {
+  BodyData b;
+  b.name = name;
+  b.length = length;
+  b.elements = elements;
+  b.velocity = velocity;
+  return b;
+}
+
+BodyData mass(const std::string& name, double m, double v) {
+  BodyData b;
+  b.name = name;
+  b.kind = BodyKind::mass;
+  b.mass = m;
+  b.velocity = fmt::format("{}", v);
+  return b;
+}
+
+JointData joint(const std::string& lower, const std::string& upper, JointLaw law) {
+  JointData j;
+  j.name = lower + "-" + upper;
+  j.lower = lower;
+  j.upper = upper;
+  j.law.law = law;
+  return j;
+}
+
+// A case run through the line engine: single_bar off.
+Case line_case(std::vector<BodyData> bodies, std::vector<JointData> joints, double dt, double end,
+               const std::string& scheme = "central-difference") {
+  Case c;
+  c.bodies = std::move(bodies);
+  c.joints = std::move(joints);
+  c.single_bar = false;
+  c.time.scheme = scheme;
+  c.time.step = dt;
+  c.time.end = end;
+  return c;
+}
+
+double column(const RunResult& r, const std::string& name, std::size_t row) {
+  for (std::size_t i = 0; i < r.columns.size(); ++i)
+    if (r.columns[i] == name) return r.extra[row * r.columns.size() + i];
+  ADD_FAILURE() << "no column " << name;
+  return 0.0;
+}
+
+// The line engine on one bar against the single-bar scheme: the same
+// equations with per-bond coefficients, so the same numbers up to the order
+// of summation (1e-12 of the scale: a few hundred steps of round-off).
+TEST(LineCentralDifference, MatchesTheSingleBarSchemeOnOneBar) {
+  for (const char* kind : {"elastic", "rigid", "viscoelastic"}) {
+    Case single =
+        testing::example("paper-example1.toml",
+                         {"time.scheme=central-difference", "time.step=0.002", "time.end=3", "output.fields_at=[1.0]",
+                          std::string("obstacle.kind=") + kind, "obstacle.viscosity=2", "bar.viscosity=0.01"});
+    Case line = single;
+    line.single_bar = false;
+    line.bodies = {bar("bar", 1.0, 100, single.initial.velocity)};
+    line.bodies[0].viscosity = 0.01;
+    line.near_end.law = std::string(kind) == "elastic" ? JointLaw::elastic
+                        : std::string(kind) == "rigid" ? JointLaw::rigid
+                                                       : JointLaw::viscoelastic;
+    line.near_end.stiffness = single.obstacle.stiffness;
+    line.near_end.viscosity = single.obstacle.viscosity;
+    const RunResult a = run(single), b = run(line);
+    ASSERT_EQ(a.history.size(), b.history.size());
+    for (std::size_t k = 0; k < a.history.size(); ++k) {
+      const HistoryRow &x = a.history[k], &y = b.history[k];
+      for (auto [p, q] : {std::pair{x.U, y.U}, std::pair{x.V, y.V}, std::pair{x.R, y.R}, std::pair{x.E_kin, y.E_kin},
+                          std::pair{x.E_strain, y.E_strain}, std::pair{x.D_visc, y.D_visc}})
+        ASSERT_NEAR(p, q, 1e-12 * (1.0 + std::abs(p))) << kind << " row " << k;
+    }
+  }
+}
+
+// Saint-Venant: two rods of one material, the lower at v = 1, the upper at
+// rest, through a rigid joint. Momentum is conserved exactly by the impulses
+// (equal and opposite), and the budget closes with D_contact to round-off
+// (the central-difference identity; tolerance 1e-12 of the initial energy).
+TEST(LineCentralDifference, RigidJointConservesMomentumAndClosesTheBudget) {
+  Case c = line_case({bar("a", 1.0, 50, "1"), bar("b", 2.0, 100)}, {joint("a", "b", JointLaw::rigid)}, 0.01, 6.0);
+  c.joints[0].law.gap = 0.05;
+  const Line line = build_line(c);
+  ASSERT_EQ(line.links.size(), 1u);
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.complete) << r.summary.message;
+  const double e0 = r.history.front().total();
+  for (const auto& h : r.history) EXPECT_NEAR(h.total(), e0, 1e-12 * e0) << h.t;
+  EXPECT_GT(r.history.back().D_contact, 0.0);  // a plastic clamp at every contact step
+  // Contact: the joint pushes while the faces touch, from t = gap / 1 for about 2 L1 / c = 2.
+  double first = -1, last = -1;
+  for (std::size_t k = 0; k < r.history.size(); ++k)
+    if (column(r, "joint.a-b.force", k) > 0) {
+      if (first < 0) first = r.history[k].t;
+      last = r.history[k].t;
+    }
+  EXPECT_NEAR(first, 0.05, 0.011);
+  EXPECT_NEAR(last - first, 2.0, 0.1);  // the clamp holds the faces to within a few steps (h / c = 0.02)
+}
+
+// A mass on a cushion on a bar on an elastic near end, under gravity: the
+// budget closes with the cushion's hysteresis in D_contact (to O(dt^2) for
+// the penalty laws: tolerance 1% of the scale at dt = 1e-3).
+TEST(LineCentralDifference, CushionAndGravityBudgetCloses) {
+  JointData cushion = joint("pile", "ram", JointLaw::cushion);
+  cushion.law.stiffness = 200.0;
+  cushion.law.restitution = 0.6;
+  Case c = line_case({bar("pile", 1.0, 100), mass("ram", 2.0, -1.0)}, {cushion}, 0.001, 4.0);
+  c.near_end.law = JointLaw::elastic;
+  c.near_end.stiffness = 1000.0;
+  c.load.gravity = 0.5;
+  GaugeData g;
+  g.name = "G";
+  g.body = "pile";
+  g.at = 0.5;
+  c.gauges = {g};
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.complete) << r.summary.message;
+  double scale = 0.0;
+  for (const auto& h : r.history) scale = std::max({scale, h.E_kin + h.E_strain + h.E_obstacle, std::abs(h.W_ext)});
+  const double e0 = r.history.front().total();
+  for (const auto& h : r.history) EXPECT_NEAR(h.total(), e0, 1e-2 * scale) << h.t;
+  EXPECT_GT(r.history.back().D_contact, 0.0);
+  EXPECT_GT(r.history.back().W_ext, 0.0);  // gravity pulls the ram down: positive work
+  EXPECT_EQ(r.columns.size(), 2u + 2u + 3u);
+  EXPECT_EQ(r.columns[0], "joint.pile-ram.force");
+  EXPECT_EQ(r.columns[2], "body.ram.u");
+  EXPECT_EQ(r.columns[4], "gauge.G.strain");
+  EXPECT_NEAR(column(r, "body.ram.v", 0), -1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace barimpact
