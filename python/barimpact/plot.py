@@ -1,15 +1,13 @@
-""
-    "Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
-    directory written by `barimpact run`:
+"""Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
+directory written by `barimpact run`:
 
-    -displacement
-    : U(t),
-      with the exact rigid
-          - obstacle solution when the case is the paper's Example 1 family (its Figure 3); - reaction : R(t),
-      likewise with the exact reaction;
-- energy:the budget E_kin, E_strain, E_obstacle, W_ext,
-         D_visc and the balance E_kin + E_strain + E_obstacle - W_ext + D_visc;
-- stress_map:sigma(x, t)over the field snapshots, where the waves and their reflections show;
+- displacement: U(t), with the exact rigid-obstacle solution when the case is
+  the paper's Example 1 family (its Figure 3);
+- reaction: R(t), likewise with the exact reaction;
+- energy: the budget E_kin, E_strain, E_obstacle, W_ext, D_visc and the
+  balance E_kin + E_strain + E_obstacle - W_ext + D_visc;
+- stress_map: sigma(x, t) over the field snapshots, where the waves and their
+  reflections show;
 - snapshots: u(x) at up to eight snapshot times (the paper's Figure 2);
 - impacts: U and R with every contact episode shaded (Example 2's second
   impact, the paper's Figure 4).
@@ -48,8 +46,7 @@ def load(run_dir):
     with open(d / "history.csv") as stream:
         names = stream.readline().strip().split(",")
     h = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
-    history = {
-name: h[:, i] for i, name in enumerate(names)}
+    history = {name: h[:, i] for i, name in enumerate(names)}
     x = field_t = u = sigma = np.empty(0)
     if (d / "fields.csv").is_file():
         f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2, usecols=range(5))
@@ -65,8 +62,7 @@ name: h[:, i] for i, name in enumerate(names)}
 
 
 def _from_result(result):
-    history = {
-name: np.asarray(result[name]) for name in result.history_columns}
+    history = {name: np.asarray(result[name]) for name in result.history_columns}
     return RunData(history, np.asarray(result.x), np.asarray(result.field_t), np.asarray(result.u),
                    np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary)
 

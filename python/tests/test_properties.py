@@ -1,14 +1,9 @@
-""
-    "Properties of the command line over random valid small cases (hypothesis).
+"""Properties of the command line over random valid small cases (hypothesis).
 
-    Every case is a TOML file run by `barimpact run CASE-- out DIR` in a child process.Whatever the case,
-    the run either completes(exit 0, summary.json "complete"
-                             : true) or
-        stops with exit 2(refused
-                          : one line on stderr, nothing written) or
-        3(non - finite
-          : one line, summary.json "complete"
-          : false); never a
+Every case is a TOML file run by `barimpact run CASE --out DIR` in a child
+process. Whatever the case, the run either completes (exit 0, summary.json
+"complete": true) or stops with exit 2 (refused: one line on stderr, nothing
+written) or 3 (non-finite: one line, summary.json "complete": false); never a
 signal, never exit 1, never a sanitizer report. For the configurations that
 docs/methods.md proves to conserve energy, the budget holds (see
 `energy_claim` and `check_energy` for the bounds and why).
@@ -34,7 +29,7 @@ settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 SCHEMES = ["paper", "newmark", "central-difference", "characteristic", "mass-redistribution", "paoli-schatzman",
            "moreau-jean"]
-#Which obstacles each scheme accepts(docs / methods.md); another pairing is refused(exit 2).
+# Which obstacles each scheme accepts (docs/methods.md); another pairing is refused (exit 2).
 FITS = {
     "none": SCHEMES,
     "elastic": ["paper", "newmark", "central-difference"],
@@ -42,7 +37,7 @@ FITS = {
     "rigid": ["central-difference", "characteristic", "mass-redistribution", "paoli-schatzman", "moreau-jean"],
 }
 ELASTIC_BAR_ONLY = {"characteristic", "mass-redistribution"}
-#The schemes with an energy claim in contact(`energy_claim`) drawn most.
+# The schemes with an energy claim in contact (`energy_claim`) drawn most.
 CONSERVING_FITS = {
     "none": SCHEMES,
     "elastic": ["paper"],
@@ -50,26 +45,26 @@ CONSERVING_FITS = {
               "mass-redistribution", "paoli-schatzman"],
 }
 
-#Row 1 on, without contact(or through Moreau - Jean's impacts at theta = 1/2,
-#e = 1), a conserving scheme keeps E_kin + E_strain + E_obstacle - W_ext +
-#D_visc to round - off : docs / methods.md and tests / verification(1e-10 of the
-#budget over 600 steps, 5e-10 over 10 ^ 4 for the paper's three-level form,
-#which loses digits to cancellation every step).These runs take at most
-# 300 steps, at Courant numbers down to 0.05(more cancellation); measured
-#over 1500 random conserving cases : at most 2.7e-11 of the budget
-#(mass redistribution; the paper's scheme 1.4e-11). The claim: 1e-9.
+# Row 1 on, without contact (or through Moreau-Jean's impacts at theta = 1/2,
+# e = 1), a conserving scheme keeps E_kin + E_strain + E_obstacle - W_ext +
+# D_visc to round-off: docs/methods.md and tests/verification (1e-10 of the
+# budget over 600 steps, 5e-10 over 10^4 for the paper's three-level form,
+# which loses digits to cancellation every step). These runs take at most
+# 300 steps, at Courant numbers down to 0.05 (more cancellation); measured
+# over 1500 random conserving cases: at most 2.7e-11 of the budget
+# (mass redistribution; the paper's scheme 1.4e-11). The claim: 1e-9.
 ROUND_OFF = 1e-9
-#The paper's scheme against an elastic obstacle splits the penalty into an
-#implicit linear half and an explicit |.| half : they cancel, and the
-#explicit half's work is returned, only as dt -> 0 (docs/methods.md: the
-#budget's error falls at order about 2 in dt at fixed h and k; for
-#k dt ^ 2 / (rho h)well above 1 energy grows).So the claim is a bound in
-#that number, on the budget's size (the largest |E_kin| + |E_strain| +
-#| E_obstacle | + | W_ext | + | D_visc | of the run, not E(0) : a load can pour in
-#far more than the bar starts with).Measured with k dt ^ 2 / (rho h) <= 0.01:
-#at most 1.1 k dt ^ 2 / (rho h)of the budget over 945 random cases, 2.3 in
-#the worst case hypothesis found(2 elements, two contacts : chattering adds
-#up).The claim : 5 k dt ^ 2 / (rho h), i.e.at most 5 % of the budget.
+# The paper's scheme against an elastic obstacle splits the penalty into an
+# implicit linear half and an explicit |.| half: they cancel, and the
+# explicit half's work is returned, only as dt -> 0 (docs/methods.md: the
+# budget's error falls at order about 2 in dt at fixed h and k; for
+# k dt^2 / (rho h) well above 1 energy grows). So the claim is a bound in
+# that number, on the budget's size (the largest |E_kin| + |E_strain| +
+# |E_obstacle| + |W_ext| + |D_visc| of the run, not E(0): a load can pour in
+# far more than the bar starts with). Measured with k dt^2 / (rho h) <= 0.01:
+# at most 1.1 k dt^2 / (rho h) of the budget over 945 random cases, 2.3 in
+# the worst case hypothesis found (2 elements, two contacts: chattering adds
+# up). The claim: 5 k dt^2 / (rho h), i.e. at most 5% of the budget.
 PENALTY_REGIME = 0.01
 PENALTY_FACTOR = 5.0
 
@@ -90,7 +85,7 @@ def cases(draw, conserving=False):
     elements = draw(st.integers(2, 60))
     far_end = draw(st.sampled_from(["free", "free", "clamped"]))
     kind = draw(st.sampled_from(["none", "elastic", "rigid"] + ([] if conserving else ["viscoelastic"])))
-#Mostly a scheme that fits the obstacle; now and then any(refused : exit 2).
+    # Mostly a scheme that fits the obstacle; now and then any (refused: exit 2).
     if conserving:
         scheme = draw(st.sampled_from(CONSERVING_FITS[kind]))
     else:
@@ -100,8 +95,8 @@ def cases(draw, conserving=False):
                     viscosity=number(draw(st.floats(0.001, 0.1)) if viscous else 0.0), elements=str(elements),
                     far_end=f'"{far_end}"')
 
-#The bar moves towards the obstacle at 0.1..2 with a smooth shape on
-#top(so E(0) > 0); a clamped end x = L must start at rest there.
+    # The bar moves towards the obstacle at 0.1 .. 2 with a smooth shape on
+    # top (so E(0) > 0); a clamped end x = L must start at rest there.
     speed = draw(st.floats(0.1, 2.0))
     shape = draw(st.sampled_from(["", "ramp", "sine"]))
     b = number(draw(st.floats(-0.5, 0.5)))
@@ -131,7 +126,7 @@ def cases(draw, conserving=False):
         time["end"] = number(steps * h / wave)  # the scheme sets dt = h/c
     else:
         if kind == "elastic" and (conserving or draw(st.booleans())):
-#k dt ^ 2 / (rho h)in 1e-4..0.01, where the penalty's energy error is claimed.
+            # k dt^2 / (rho h) in 1e-4 .. 0.01, where the penalty's energy error is claimed.
             dt = math.sqrt(10 ** draw(st.floats(-4.0, -2.0)) * density * h / float(obstacle["stiffness"]))
         else:
             dt = draw(st.floats(0.05, 1.0 if conserving else 2.0)) * h / wave  # Courant number
@@ -175,21 +170,19 @@ def energy_claim(c, summary):
         return None
     theta, e = value(c, "time", "theta", 0.5), value(c, "time", "restitution", 0.0)
     conserving = {
-  "paper" : True,
-            #every alpha(the alpha term is in E_strain) "newmark" : c["time"].get("beta") == "0.25" and
-                c["time"].get("gamma") == "0.5",
-            "central-difference" : True,
-                                   #exit 0 : within the enforced stable limit "paoli-schatzman"
-      : True,
-        "moreau-jean" : theta == 0.5,
-        "mass-redistribution" : True,
-                                #while the contact status holds "characteristic" : True,
+        "paper": True,  # every alpha (the alpha term is in E_strain)
+        "newmark": c["time"].get("beta") == "0.25" and c["time"].get("gamma") == "0.5",
+        "central-difference": True,  # exit 0: within the enforced stable limit
+        "paoli-schatzman": True,
+        "moreau-jean": theta == 0.5,
+        "mass-redistribution": True,  # while the contact status holds
+        "characteristic": True,
     }[scheme]
     if not conserving:
         return None
     if scheme == "paper" and kind == "elastic":
-#The split penalty acts before any contact too : its implicit and
-#explicit halves cancel only to O(dt ^ 2)(docs / methods.md).
+        # The split penalty acts before any contact too: its implicit and
+        # explicit halves cancel only to O(dt^2) (docs/methods.md).
         h = float(c["bar"]["length"]) / int(c["bar"]["elements"])
         ratio = float(c["obstacle"]["stiffness"]) * float(c["time"]["step"]) ** 2 / (float(c["bar"]["density"]) * h)
         if value(c, "time", "alpha", 0.25) == 0.25 and ratio <= PENALTY_REGIME:
@@ -213,13 +206,13 @@ def check_energy(c, out, summary):
     size = np.max(np.abs(kin) + np.abs(strain) + np.abs(obst) + np.abs(work) + np.abs(diss))
     e0 = abs(total[0])
     assert e0 > 0  # the bar starts moving
-#summary.json 's number is the history' s max | E(t_n) - E(0) | / | E(0) |.
+    # summary.json's number is the history's max |E(t_n) - E(0)| / |E(0)|.
     measured = np.max(np.abs(total - total[0])) / e0
     assert math.isclose(summary["energy_error_relative"], measured, rel_tol=1e-9, abs_tol=1e-15)
-#Row 0->row 1 carries the start 's error: a three-level scheme' s first
-#level, mass redistribution 's modified mass, the characteristic scheme' s
-#nodal start(docs / methods.md, "the step from row 0 to row 1 carries the
-#start's O(dt) error"); the claims below are about the rows after it.
+    # Row 0 -> row 1 carries the start's error: a three-level scheme's first
+    # level, mass redistribution's modified mass, the characteristic scheme's
+    # nodal start (docs/methods.md, "the step from row 0 to row 1 carries the
+    # start's O(dt) error"); the claims below are about the rows after it.
     start = abs(total[1] - total[0]) / e0 if len(total) > 1 else 0.0
     if claim == "exact":
         drift = np.max(np.abs(total[1:] - total[1])) if len(total) > 1 else 0.0
@@ -240,7 +233,7 @@ def run_cli(c, work):
     described = f"exit {p.returncode}\n--- case\n{case.read_text()}--- stderr\n{p.stderr}"
     assert p.returncode in (0, 2, 3), described  # negative: killed by a signal; 1: an internal error
     assert "Sanitizer" not in p.stderr and "runtime error" not in p.stderr, described
-#Health warnings(one line each, also in summary.json) may stand before the failure's line.
+    # Health warnings (one line each, also in summary.json) may stand before the failure's line.
     warnings = [w for w in p.stderr.splitlines() if w.startswith("barimpact: warning: ")]
     if p.returncode == 0:
         summary = json.loads((out / "summary.json").read_text())

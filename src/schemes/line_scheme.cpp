@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
+
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/line_central_difference.hpp"
 
@@ -81,6 +84,55 @@ double LineScheme::link_hysteresis() const {
   double d = 0.0;
   for (std::size_t i = 0; i < line_.links.size(); ++i) d += line_.links[i].law.hysteresis(c_max_[i]);
   return d;
+}
+
+double line_stable_step(const Line& line, bool consistent_mass) {
+  const std::size_t n = line.nodes();
+  std::vector<double> stiff(n, 0.0), damp(n, 0.0);
+  for (std::size_t j = 0; j + 1 < n; ++j) {
+    for (std::size_t i : {j, j + 1}) {
+      stiff[i] += 2.0 * line.bonds[j].stiffness;
+      damp[i] += 2.0 * line.bonds[j].viscosity;
+    }
+  }
+  for (const auto& l : line.links) {
+    if (l.law.rigid()) continue;
+    // A cushion unloads along k / e^2.
+    const double k =
+        l.law.kind == LawKind::cushion ? l.law.stiffness / (l.law.restitution * l.law.restitution) : l.law.stiffness;
+    for (std::size_t i : {l.a, l.b})
+      if (i != Link::ground) {
+        stiff[i] += (l.a != Link::ground && l.b != Link::ground ? 2.0 : 1.0) * k;
+        damp[i] += (l.a != Link::ground && l.b != Link::ground ? 2.0 : 1.0) * l.law.viscosity;
+      }
+  }
+  const std::vector<double> m = line.lumped_mass();
+  double omega2 = 0.0, eta = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (line.fixed(j)) continue;
+    omega2 = std::max(omega2, stiff[j] / m[j]);
+    eta = std::max(eta, damp[j] / m[j]);
+  }
+  if (consistent_mass) {
+    omega2 *= 3.0;
+    eta *= 3.0;
+  }
+  if (omega2 == 0.0) return eta > 0.0 ? 2.0 / eta : std::numeric_limits<double>::infinity();
+  // (u^{n+1} - 2u^n + u^{n-1})/dt^2 + eta (u^n - u^{n-1})/dt + omega^2 u^n = 0
+  // is stable for omega^2 dt^2 + 2 eta dt <= 4.
+  return (-eta + std::sqrt(eta * eta + 4.0 * omega2)) / omega2;
+}
+
+std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
+  const std::string& name = c.time.scheme;
+  if (name == "central-difference") {
+    const double limit = line_stable_step(line, false);
+    if (c.time.step > limit * (1.0 + 1e-12))
+      return LineMisfit{"step", fmt::format("= {} is above central-difference's stable limit {:.6g} for this line",
+                                            c.time.step, limit)};
+    return std::nullopt;
+  }
+  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (central-difference can)", name)};
 }
 
 std::unique_ptr<Scheme> make_line_scheme(const Case& c) {

@@ -1,132 +1,92 @@
-#!/ usr / bin / env bash
-#The command line 's contract: files and columns, exit codes, one-line errors,
-#nothing written on bad input.Usage : cli_test.sh BARIMPACT EXAMPLES_DIR
-set - u bin = $1 examples = $2 work = $(mktemp - d) trap 'rm -rf "$work"' EXIT passed = 0 failed = 0 ok() {
-  passed = $((passed + 1));
+#!/usr/bin/env bash
+# The command line's contract: files and columns, exit codes, one-line errors,
+# nothing written on bad input. Usage: cli_test.sh BARIMPACT EXAMPLES_DIR
+set -u
+bin=$1
+examples=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); }
+bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
+
+# A run writes the four files; history.csv starts with the contract's columns.
+if "$bin" run "$examples/paper-example1.toml" --out "$work/ex1" > "$work/stdout" 2> "$work/stderr"; then ok; else bad "example 1 exit $?"; fi
+for f in history.csv fields.csv case.toml summary.json; do
+  [ -s "$work/ex1/$f" ] && ok || bad "missing $f"
+done
+[ "$(head -1 "$work/ex1/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact" ] && ok || bad "history columns"
+[ "$(head -1 "$work/ex1/fields.csv")" = "t,x,u,v,sigma,body" ] && ok || bad "fields columns"
+[ "$(wc -l < "$work/ex1/history.csv")" -eq 402 ] && ok || bad "history rows: $(wc -l < "$work/ex1/history.csv")"
+[ "$(wc -l < "$work/ex1/fields.csv")" -eq $((101 * 101 + 1)) ] && ok || bad "fields rows"
+grep -q '"complete": true' "$work/ex1/summary.json" && ok || bad "summary complete"
+grep -q "contact 1" "$work/stdout" && ok || bad "stdout summary"
+ls -a "$work" | grep -q partial && bad "staging left behind" || ok
+
+# The resolved case.toml repeats the run exactly.
+"$bin" run "$work/ex1/case.toml" --out "$work/again" > /dev/null && ok || bad "rerun from case.toml"
+cmp -s "$work/ex1/history.csv" "$work/again/history.csv" && ok || bad "rerun differs"
+
+# Rows at 0, N, 2N, ... and always the last step.
+"$bin" run "$examples/paper-example1.toml" --out "$work/every" --set output.every=7 > /dev/null && ok || bad "every"
+[ "$(tail -1 "$work/every/history.csv" | cut -d, -f1)" = "4" ] && ok || bad "last row at t = 4"
+[ "$(wc -l < "$work/every/history.csv")" -eq $((400 / 7 + 1 + 1 + 1)) ] && ok || bad "every rows"
+
+# Rerunning into an existing directory replaces it.
+"$bin" run "$examples/paper-example2.toml" --out "$work/ex1" > /dev/null && ok || bad "replace"
+grep -q 'body_force = .-1.' "$work/ex1/case.toml" && ok || bad "replaced case"
+
+# Bad input: exit 2, one line on stderr naming the key or option, nothing written.
+expect_refused() {  # expected-substring, then the arguments
+  local want=$1
+  shift
+  "$bin" "$@" > "$work/out" 2> "$work/err"
+  local code=$?
+  if [ $code -ne 2 ]; then bad "exit $code, not 2, for: $*"; return; fi
+  if [ "$(wc -l < "$work/err")" -ne 1 ]; then bad "not one line for: $*: $(cat "$work/err")"; return; fi
+  grep -qF -- "$want" "$work/err" || { bad "'$want' not in: $(cat "$work/err")"; return; }
+  [ -e "$work/refused" ] && { bad "output written for: $*"; return; }
+  ls -a "$work" | grep -q partial && { bad "staging left for: $*"; return; }
+  ok
 }
-bad() {
-  failed = $((failed + 1));
-  echo "FAIL: $*";
-}
+ex1="$examples/paper-example1.toml"
+expect_refused "bar.stiffness" run "$ex1" --out "$work/refused" --set bar.stiffness=0
+expect_refused "bar.density" run "$ex1" --out "$work/refused" --set bar.density=-1
+expect_refused "bar.viscosity" run "$ex1" --out "$work/refused" --set bar.viscosity=-1
+expect_refused "bar.length" run "$ex1" --out "$work/refused" --set bar.length=0
+expect_refused "bar.elements" run "$ex1" --out "$work/refused" --set bar.elements=0
+expect_refused "obstacle.stiffness" run "$ex1" --out "$work/refused" --set obstacle.stiffness=-1
+expect_refused "time.step" run "$ex1" --out "$work/refused" --set time.step=0
+expect_refused "time.end" run "$ex1" --out "$work/refused" --set time.end=0.001
+expect_refused "time.alpha" run "$ex1" --out "$work/refused" --set time.alpha=0.75
+expect_refused "time.lambda" run "$ex1" --out "$work/refused" --set time.lambda=-0.5
+expect_refused "output.every" run "$ex1" --out "$work/refused" --set output.every=0
+expect_refused "unknown key bar.mass" run "$ex1" --out "$work/refused" --set bar.mass=1
+expect_refused "must be a number" run "$ex1" --out "$work/refused" --set bar.length=long
+expect_refused "initial.velocity" run "$ex1" --out "$work/refused" --set 'initial.velocity=-1 +* x'
+expect_refused 'unknown name "z"' run "$ex1" --out "$work/refused" --set 'load.body_force=z'
+expect_refused "finite" run "$ex1" --out "$work/refused" --set 'initial.displacement=log(x)'
+expect_refused "no such case file" run "$work/nope.toml" --out "$work/refused"
+expect_refused "--out" run "$ex1" --out "$work/no/such/dir"
+expect_refused "--out" run "$ex1" --out "$ex1"
+expect_refused "--out" run "$ex1" --out /proc/barimpact-cannot-write-here
+expect_refused "--set" run "$ex1" --out "$work/refused" --set nodot
+expect_refused "--out" run "$ex1"
+expect_refused "run" bogus
+printf '[bar]\nlength = 1\n[time]\nstep = "0.1"\n' > "$work/typed.toml"
+expect_refused "typed.toml:4" run "$work/typed.toml" --out "$work/refused"
+printf '[bar]\nlength = 1\n[extra]\n' > "$work/section.toml"
+expect_refused "unknown section [extra]" run "$work/section.toml" --out "$work/refused"
+printf '[bar\n' > "$work/broken.toml"
+expect_refused "broken.toml:1" run "$work/broken.toml" --out "$work/refused"
+chmod 000 "$work/typed.toml"
+if [ "$(id -u)" -ne 0 ]; then expect_refused "cannot read" run "$work/typed.toml" --out "$work/refused"; fi
+ro="$work/readonly"
+mkdir "$ro" && chmod 555 "$ro"
+if [ "$(id -u)" -ne 0 ]; then expect_refused "--out" run "$ex1" --out "$ro/x"; fi
 
-#A run writes the four files; history.csv starts with the contract's columns.
-if
-  "$bin" run "$examples/paper-example1.toml" --out "$work/ex1" > "$work/stdout" 2 > "$work/stderr";
-then ok;
-else bad "example 1 exit $?"; fi
-for f in history.csv fields.csv case.toml summary.json;
-do
-  [-s "$work/ex1/$f"] && ok ||
-      bad "missing $f" done["$(head -1 " $work / ex1 /
-                                history.csv ")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact"] &&
-          ok ||
-      bad "history columns"["$(head -1 " $work / ex1 / fields.csv ")" = "t,x,u,v,sigma,body"] && ok ||
-      bad "fields columns"["$(wc -l < " $work / ex1 / history.csv ")" - eq 402] && ok ||
-      bad "history rows: $(wc -l < " $work / ex1 /
-          history.csv ")"["$(wc -l < " $work / ex1 / fields.csv ")" - eq $((101 * 101 + 1))] &&ok ||
-      bad "fields rows" grep - q '"complete": true' "$work/ex1/summary.json" &&ok ||
-      bad "summary complete" grep - q
-          "contact 1"
-          "$work/stdout" &&ok ||
-      bad "stdout summary" ls - a "$work" | grep - q partial &&bad "staging left behind" ||
-      ok
-#The resolved case.toml repeats the run exactly.
-          "$bin" run "$work/ex1/case.toml" --out "$work/again" > / dev / null &&ok ||
-      bad "rerun from case.toml" cmp - s
-          "$work/ex1/history.csv"
-          "$work/again/history.csv" &&ok ||
-      bad
-      "rerun differs"
-
-#Rows at 0, N, 2N, ... and always the last step.
-      "$bin" run "$examples/paper-example1.toml" --out "$work/every" --set output.every =
-      7 > / dev / null &&ok || bad "every"["$(tail -1 " $work / every / history.csv " | cut -d, -f1)" = "4"] && ok ||
-      bad "last row at t = 4"["$(wc -l < " $work / every / history.csv ")" - eq $((400 / 7 + 1 + 1 + 1))] && ok ||
-      bad "every rows"
-
-#Rerunning into an existing directory replaces it.
-          "$bin" run "$examples/paper-example2.toml" --out "$work/ex1" > / dev / null &&ok ||
-      bad "replace" grep - q 'body_force = .-1.' "$work/ex1/case.toml" && ok ||
-      bad "replaced case"
-
-#Bad input : exit 2, one line on stderr naming the key or option, nothing written.
-      expect_refused() {
-#expected - substring, then the arguments local want = $1 shift
-                           "$bin"
-                           "$@"> "$work/out" 2> "$work/err" local code =
-                               $ ? if[$code - ne 2];
-    then bad "exit $code, not 2, for: $*";
-    return;
-    fi if["$(wc -l < " $work / err ")" - ne 1];
-    then bad "not one line for: $*: $(cat " $work / err ")";
-    return;
-    fi
-  grep -qF -- "$want" "$work/err" || {
-      bad "'$want' not in: $(cat " $work / err ")";
-      return;
-    }
-    [-e "$work/refused"] && {
-      bad "output written for: $*";
-      return;
-    }
-    ls - a "$work" | grep - q partial && {
-      bad "staging left for: $*";
-      return;
-    }
-    ok
-  }
-ex1 = "$examples/paper-example1.toml" expect_refused "bar.stiffness" run "$ex1" --out
-      "$work/refused" --set bar.stiffness = 0 expect_refused "bar.density" run "$ex1" --out
-                                            "$work/refused" --set bar.density = -1 expect_refused "bar.viscosity" run
-                                                                                                  "$ex1" --out
-                                                                                 "$work/refused" --set bar.viscosity =
-    -1 expect_refused "bar.length" run "$ex1" --out
-     "$work/refused" --set bar.length = 0 expect_refused "bar.elements" run "$ex1" --out
-                                        "$work/refused" --set bar.elements = 0 expect_refused "obstacle.stiffness" run
-                                                                                              "$ex1" --out
-                                                                             "$work/refused" --set obstacle.stiffness =
-        -1 expect_refused "time.step" run "$ex1" --out
-         "$work/refused" --set time.step = 0 expect_refused "time.end" run "$ex1" --out
-                                           "$work/refused" --set time.end = 0.001 expect_refused
-                                                                            "time.alpha" run
-                                                                            "$ex1" --out
-                                                                            "$work/refused" --set time.alpha =
-            0.75 expect_refused
-            "time.lambda" run "$ex1" --out
-            "$work/refused" --set time.lambda = -0.5 expect_refused "output.every" run
-                                                                    "$ex1" --out "$work/refused" --set output.every =
-                0 expect_refused "unknown key bar.mass" run
-                                 "$ex1" --out
-                "$work/refused" --set bar.mass =
-                    1 expect_refused "must be a number" run "$ex1" --out
-                    "$work/refused" --set bar.length =
-                        long expect_refused
-                                "initial.velocity" run "$ex1" --out
-                                "$work/refused" --set 'initial.velocity=-1 +* x' expect_refused 'unknown name "z"' run
-                                "$ex1" --out "$work/refused" --set 'load.body_force=z' expect_refused "finite" run
-                                                                                                      "$ex1" --out
-                                "$work/refused" --set 'initial.displacement=log(x)' expect_refused
-                                "no such case file" run "$work/nope.toml" --out "$work/refused" expect_refused
-                                                                                "--out" run "$ex1" --out
-                                "$work/no/such/dir" expect_refused "--out" run "$ex1" --out "$ex1" expect_refused
-                                                                                            "--out" run "$ex1" --out /
-                                proc / barimpact -
-                            cannot - write -
-                            here expect_refused "--set" run "$ex1" --out "$work/refused" --set nodot expect_refused
-                            "--out" run "$ex1" expect_refused
-                            "run" bogus printf '[bar]\nlength = 1\n[time]\nstep = "0.1"\n' >
-                        "$work/typed.toml" expect_refused "typed.toml:4" run "$work/typed.toml" --out
-                        "$work/refused" printf '[bar]\nlength = 1\n[extra]\n' >
-                        "$work/section.toml" expect_refused "unknown section [extra]" run "$work/section.toml" --out
-                        "$work/refused" printf '[bar\n' > "$work/broken.toml" expect_refused "broken.toml:1" run
-                                                          "$work/broken.toml" --out
-                        "$work/refused" chmod 000 "$work/typed.toml" if["$(id -u)" - ne 0];
-then expect_refused "cannot read" run "$work/typed.toml" --out "$work/refused";
-fi ro = "$work/readonly" mkdir "$ro" && chmod 555 "$ro" if["$(id -u)" - ne 0];
-then expect_refused "--out" run "$ex1" --out "$ro/x";
-fi
-
-#A run that blows up : exit 3, the step named, rows so far kept, marked incomplete.
+# A run that blows up: exit 3, the step named, rows so far kept, marked incomplete.
 "$bin" run "$ex1" --out "$work/blow" --set time.alpha=0 --set time.step=0.1 --set time.end=400 \
   > /dev/null 2> "$work/err"
 code=$?
@@ -135,8 +95,8 @@ grep -q "step" "$work/err" && ok || bad "non-finite message: $(cat "$work/err")"
 grep -q '"complete": false' "$work/blow/summary.json" && ok || bad "incomplete mark"
 [ "$(wc -l < "$work/blow/history.csv")" -gt 2 ] && ok || bad "rows kept"
 
-#Every scheme runs every example it fits; the others are refused with the
-#schemes that do fit named.
+# Every scheme runs every example it fits; the others are refused with the
+# schemes that do fit named.
 rigid_schemes="central-difference paoli-schatzman moreau-jean mass-redistribution characteristic"
 penalty_schemes="paper newmark central-difference"
 for ex in "$examples"/*.toml; do
@@ -144,27 +104,22 @@ for ex in "$examples"/*.toml; do
   kind=$(grep -E '^kind' "$ex" | head -1 | sed 's/.*"\(.*\)".*/\1/')
   small=0.002
   [ "$name" = steel-bar ] && small=1e-6
-  for scheme in paper newmark central-difference paoli-schatzman moreau-jean mass-redistribution characteristic;
-do
+  for scheme in paper newmark central-difference paoli-schatzman moreau-jean mass-redistribution characteristic; do
     args=(run "$ex" --out "$work/scheme-run" --set "time.scheme=$scheme" --set output.fields_at=[])
     case $scheme in
-      characteristic) ;
-;
-      paper | newmark | moreau-jean | mass-redistribution) [ "$name" = steel-bar ] && args+=(--set "time.step=$small") ;
-      ;
-      *) args+=(--set "time.step=$small") ;
-      ;
-      esac fits = no if["$kind" = rigid]; then
-      case " $rigid_schemes " in *" $scheme "*) fits=yes ;
-      ; esac
+      characteristic) ;;
+      paper | newmark | moreau-jean | mass-redistribution) [ "$name" = steel-bar ] && args+=(--set "time.step=$small") ;;
+      *) args+=(--set "time.step=$small") ;;
+    esac
+    fits=no
+    if [ "$kind" = rigid ]; then
+      case " $rigid_schemes " in *" $scheme "*) fits=yes ;; esac
     else
-      case " $penalty_schemes " in *" $scheme "*) fits=yes ;
-      ;
-      esac fi
-          "$bin"
-          "${args[@]}" > / dev / null 2 >
-          "$work/err" code =
-          $ ? if[$fits = yes]; then
+      case " $penalty_schemes " in *" $scheme "*) fits=yes ;; esac
+    fi
+    "$bin" "${args[@]}" > /dev/null 2> "$work/err"
+    code=$?
+    if [ $fits = yes ]; then
       [ $code -eq 0 ] && ok || bad "$scheme on $name: exit $code: $(cat "$work/err")"
     else
       [ $code -eq 2 ] && grep -q "schemes that do" "$work/err" && ok || bad "$scheme on $name not refused: $code $(cat "$work/err")"
@@ -178,16 +133,15 @@ expect_refused "time.restitution" run "$ex1" --out "$work/refused" --set time.re
 expect_refused "bar.far_end" run "$ex1" --out "$work/refused" --set bar.far_end=pinned
 expect_refused "vanish at the clamped end" run "$ex1" --out "$work/refused" --set bar.far_end=clamped
 
-#barimpact exact : the same files for a case that admits an exact solution, exit 2 otherwise.
+# barimpact exact: the same files for a case that admits an exact solution, exit 2 otherwise.
 "$bin" exact "$examples/clamped-periodic.toml" --out "$work/exact" > /dev/null && ok || bad "exact clamped"
 [ "$(head -1 "$work/exact/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact" ] && ok || bad "exact columns"
 expect_refused "admits no exact solution" exact "$examples/paper-example2.toml" --out "$work/refused"
 
-#barimpact converge : files, bad options refused, a failing run reported and not fatal.
+# barimpact converge: files, bad options refused, a failing run reported and not fatal.
 "$bin" converge "$examples/paper-example1-rigid.toml" --out "$work/conv" --levels 2 \
   --schemes central-difference,characteristic > "$work/out" 2> "$work/err" && ok || bad "converge: $(cat "$work/err")"
-for f in convergence.csv convergence.md;
-      do [-s "$work/conv/$f"] && ok || bad "converge $f"; done
+for f in convergence.csv convergence.md; do [ -s "$work/conv/$f" ] && ok || bad "converge $f"; done
 grep -q "Reference: exact solution" "$work/conv/convergence.md" && ok || bad "converge reference"
 [ "$(grep -c '^central-difference,\|^characteristic,' "$work/conv/convergence.csv")" -eq 4 ] && ok || bad "converge rows"
 "$bin" converge "$ex1" --out "$work/conv-fail" --set time.step=0.1 --set time.end=40 --set output.fields_at=[] \
@@ -200,36 +154,34 @@ expect_refused "--vary" converge "$ex1" --out "$work/refused" --vary stiffness=1
 expect_refused "--schemes" converge "$ex1" --out "$work/refused" --schemes paper,euler
 expect_refused "--refine none" converge "$ex1" --out "$work/refused" --refine none
 
-#barimpact sweep : one row and one complete run directory per case; resume; failures recorded.
+# barimpact sweep: one row and one complete run directory per case; resume; failures recorded.
 sweeps="$examples/sweeps"
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" --jobs 2 > "$work/out" && ok || bad "sweep"
 [ "$(ls "$work/sweep/runs" | wc -l)" -eq 12 ] && ok || bad "sweep run directories"
 [ "$(tail -n +2 "$work/sweep/sweep.csv" | wc -l)" -eq 12 ] && ok || bad "sweep rows"
 [ "$(grep -c ',complete,' "$work/sweep/sweep.csv")" -eq 12 ] && ok || bad "sweep statuses"
-for f in history.csv fields.csv case.toml summary.json;
-      do [-s "$work/sweep/runs/0005/$f"] && ok || bad "run file $f";
-      done
-#The run directory of a case equals barimpact run on that case's resolved file.
+for f in history.csv fields.csv case.toml summary.json; do [ -s "$work/sweep/runs/0005/$f" ] && ok || bad "run file $f"; done
+# The run directory of a case equals barimpact run on that case's resolved file.
 "$bin" run "$work/sweep/runs/0005/case.toml" --out "$work/single" > /dev/null
 cmp -s "$work/single/history.csv" "$work/sweep/runs/0005/history.csv" && ok || bad "sweep case differs from run"
 cut -d, -f1-14 "$work/sweep/sweep.csv" > "$work/first.csv"
-#Resume : a removed case is redone, a half - written one(staging) ignored, the others skipped.
+# Resume: a removed case is redone, a half-written one (staging) ignored, the others skipped.
 rm -rf "$work/sweep/runs/0007"
 mkdir -p "$work/sweep/runs/.0008.partial-1" && rm -rf "$work/sweep/runs/0008" && touch "$work/sweep/runs/.0008.partial-1/history.csv" "$work/sweep/runs/.0008.partial-1/.barimpact-staging"
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" > "$work/out" && ok || bad "resume"
 grep -q "12 cases: 2 run (.*), 10 resumed" "$work/out" && ok || bad "resume counts: $(cat "$work/out")"
 cmp -s <(cut -d, -f1-14 "$work/sweep/sweep.csv") "$work/first.csv" && ok || bad "resumed sweep.csv differs"
-#SIMD batches change nothing : the same bits with and without them.
+# SIMD batches change nothing: the same bits with and without them.
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-nobatch" --no-batch > "$work/out" && ok || bad "no-batch"
 grep -q "(0 in SIMD batches)" "$work/out" && ok || bad "no-batch still batched"
 cmp -s <(cut -d, -f1-14 "$work/sweep-nobatch/sweep.csv") "$work/first.csv" && ok || bad "batched and unbatched rows differ"
 cmp -s "$work/sweep-nobatch/runs/0009/history.csv" "$work/sweep/runs/0009/history.csv" && ok || bad "batched history differs"
-#A mesh too large for a batch to pay is run case by case.
+# A mesh too large for a batch to pay is run case by case.
 printf 'case = "%s"\n[set]\nbar.elements = 300000\ntime.step = 0.0001\ntime.end = 0.0002\noutput.fields_at = []\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0]\n' \
   "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/bigsweep.toml"
 "$bin" sweep "$work/bigsweep.toml" --out "$work/sweep-big" > "$work/out" && ok || bad "large-mesh sweep"
 grep -q "2 run (0 in SIMD batches)" "$work/out" && ok || bad "large meshes batched: $(cat "$work/out")"
-#Failures : recorded in their rows, the others run.
+# Failures: recorded in their rows, the others run.
 "$bin" sweep "$sweeps/with-failures.toml" --out "$work/sweep-fail" > "$work/out" && ok || bad "sweep with failures"
 grep -q "^0000,.*,non-finite," "$work/sweep-fail/sweep.csv" && ok || bad "non-finite row"
 grep -q "^0001,.*,refused,.*time.alpha" "$work/sweep-fail/sweep.csv" && ok || bad "refused row"
@@ -238,21 +190,13 @@ printf 'case = "nope.toml"\n[[axis]]\nkey = "bar.length"\nvalues = [1]\n' > "$wo
 expect_refused "no such case file" sweep "$work/badsweep.toml" --out "$work/refused"
 printf 'case = "%s"\n[[axis]]\nkey = "bar.lenght"\nvalues = [1]\n' "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/badsweep.toml"
 expect_refused "unknown key bar.lenght" sweep "$work/badsweep.toml" --out "$work/refused"
-#Under MPI(when built with it) : two ranks give the same sweep.csv but for run times.
-if [ -n "${BARIMPACT_MPIEXEC:-}" ];
-      then OMPI_ALLOW_RUN_AS_ROOT = 1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM =
-          1 timeout 300 "$BARIMPACT_MPIEXEC" - n 2 --oversubscribe "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out
-                      "$work/sweep-mpi" >
-                  "$work/out" 2 > "$work/err" &&
-              ok ||
-          bad "mpi sweep: $(cat " $work / err ")" grep - q
-                  "on 2 ranks"
-                  "$work/out" &&
-              ok ||
-          bad "mpi sweep did not run distributed: $(cat " $work / out ")" cmp - s <
-                  (cut - d, -f1 - 14 "$work/sweep-mpi/sweep.csv") "$work/first.csv" &&
-              ok
-          ||
-          bad "mpi sweep.csv differs" fi
+# Under MPI (when built with it): two ranks give the same sweep.csv but for run times.
+if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 "$BARIMPACT_MPIEXEC" -n 2 --oversubscribe \
+    "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-mpi" > "$work/out" 2> "$work/err" && ok || bad "mpi sweep: $(cat "$work/err")"
+  grep -q "on 2 ranks" "$work/out" && ok || bad "mpi sweep did not run distributed: $(cat "$work/out")"
+  cmp -s <(cut -d, -f1-14 "$work/sweep-mpi/sweep.csv") "$work/first.csv" && ok || bad "mpi sweep.csv differs"
+fi
 
-          echo "$passed passed, $failed failed"[$failed - eq 0]
+echo "$passed passed, $failed failed"
+[ $failed -eq 0 ]
