@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
+#include "barimpact/case/line_builder.hpp"
 #include "barimpact/model/mesh.hpp"
 
 namespace barimpact {
@@ -62,17 +64,48 @@ void check_penalty(const Case& c, std::vector<std::string>& out) {
         tau, c.time.step, tau));
 }
 
+// A line's penalty links: the time constant of each, Z/k beside a bar
+// element (Z = A sqrt(E rho), the impedance of the node's element), or
+// sqrt(m/k) on a point mass, the smaller of the two faces'.
+void check_line_penalties(const Case& c, const Line& line, std::vector<std::string>& out) {
+  const std::vector<double> m = line.lumped_mass();
+  auto time_constant = [&](std::size_t node, double k) {
+    for (std::size_t j : {node, node - 1})  // the node's elements: bond node (above), node - 1 (below)
+      if (j < line.bonds.size() && line.bonds[j].kind == BondKind::element && (j == node || j + 1 == node))
+        return std::sqrt(line.bonds[j].axial * line.bonds[j].mass / line.bonds[j].h) / k;
+    return std::sqrt(m[node] / k);
+  };
+  for (const auto& l : line.links) {
+    if (l.law.rigid() || !(l.law.stiffness > 0.0)) continue;
+    double tau = std::numeric_limits<double>::infinity();
+    for (std::size_t node : {l.a, l.b})
+      if (node != Link::ground) tau = std::min(tau, time_constant(node, l.law.stiffness));
+    if (tau < c.time.step)
+      out.push_back(fmt::format(
+          "penalty-unresolved: {}'s time constant {:.3g} (Z/k, or sqrt(m/k) on a mass) is below time.step = {:.3g}, "
+          "so its force is not resolved in time (take time.step below {:.3g}, or a rigid law)",
+          l.name, tau, c.time.step, tau));
+  }
+}
+
 // omega_max^2, the largest eigenvalue of K x = omega^2 M x (consistent mass,
 // the penalty k at x = 0, a clamped end fixed), by power iteration from the
 // sawtooth (-1)^j, which is nearly the top mode already: the Rayleigh
 // quotient settles to a few digits in tens of iterations.
 double largest_frequency_squared(const Case& c) {
-  const Mesh mesh(c.bar.length, c.bar.elements);
-  const Tridiagonal M = mesh.mass(c.bar.density);
-  Tridiagonal K = mesh.stiffness(c.bar.stiffness);
-  const auto kind = c.obstacle.kind;
-  if (kind == ObstacleKind::elastic || kind == ObstacleKind::viscoelastic) K.diag[0] += c.obstacle.stiffness;
-  const bool clamped = c.bar.far_end == FarEnd::clamped;
+  const Line line = build_line(c);
+  const Tridiagonal M = line.mass(true);
+  Tridiagonal K = line.stiffness();
+  // Every penalty link as a spring (its stiffness while in contact).
+  for (const auto& l : line.links) {
+    if (l.law.rigid()) continue;
+    const double k =
+        l.law.kind == LawKind::cushion ? l.law.stiffness / (l.law.restitution * l.law.restitution) : l.law.stiffness;
+    if (l.a != Link::ground) K.diag[l.a] += k;
+    if (l.b != Link::ground) K.diag[l.b] += k;
+    if (l.a != Link::ground && l.b != Link::ground) K.off[l.a] -= k;
+  }
+  const bool clamped = line.fixed(line.nodes() - 1);
   const FactoredTridiagonal solver(M, clamped);
   std::vector<double> x(M.size()), y(M.size());
   for (std::size_t j = 0; j < x.size(); ++j) x[j] = j % 2 == 0 ? 1.0 : -1.0;
@@ -125,6 +158,19 @@ void check_chatter(const Case& c, const Summary& s, std::vector<std::string>& ou
         "contact-chatter: {} of {} contact episodes last under {:.3g} (2.5 steps); the contact switches on and off "
         "numerically (refine time.step, or add restitution or damping)",
         brief, s.contacts.size(), short_episode));
+  // The line's other links (the near end is the obstacle above): measured
+  // between the steps that saw the contact, so a one-step episode lasts 0.
+  for (std::size_t i = 0; i < s.link_names.size(); ++i) {
+    const auto& list = s.link_episodes[i];
+    if (s.link_names[i] == "near_end" || list.size() < many) continue;
+    const auto few = static_cast<std::size_t>(std::count_if(
+        list.begin(), list.end(), [&](const LinkEpisode& e) { return e.closed && e.end - e.start < short_episode; }));
+    if (2 * few > list.size())
+      out.push_back(fmt::format(
+          "contact-chatter: {} of {} contact episodes of {} last under {:.3g} (2.5 steps); the contact switches on "
+          "and off numerically (refine time.step, or add restitution or damping)",
+          few, list.size(), s.link_names[i], short_episode));
+  }
 }
 
 }  // namespace
@@ -139,7 +185,10 @@ std::vector<std::string> check_health(const Case& c, const Summary& s, const std
   std::vector<std::string> out;
   if (s.method == "exact") return out;
   check_energy(c, s, history, out);
-  check_penalty(c, out);
+  if (c.single_bar)
+    check_penalty(c, out);
+  else
+    check_line_penalties(c, build_line(c), out);
   check_stability(c, out);
   check_chatter(c, s, out);
   return out;

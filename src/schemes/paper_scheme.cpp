@@ -510,7 +510,7 @@ namespace barimpact {
 
 bool PaperScheme::batchable(const Case& a, const Case& b) {
   auto fits = [](const Case& c) {
-    return c.time.scheme == "paper" && c.obstacle.kind != ObstacleKind::viscoelastic &&
+    return c.single_bar && c.time.scheme == "paper" && c.obstacle.kind != ObstacleKind::viscoelastic &&
            !Expression(c.load.body_force).depends_on_t();
   };
   return fits(a) && fits(b) && a.bar.elements == b.bar.elements && a.step_count() == b.step_count() &&
