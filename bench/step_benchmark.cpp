@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
-#include "barimpact/schemes/mass_redistribution_scheme.hpp"
 #include "barimpact/model/mesh.hpp"
+#include "barimpact/schemes/mass_redistribution_scheme.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
@@ -135,6 +135,40 @@ void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigi
       "[bar]\nelements = {}\n[initial]\nvelocity = \"-1\"\n[obstacle]\nkind = \"{}\"\n[time]\n"
       "scheme = \"{}\"\n{}end = 1\n",
       M, rigid ? "rigid" : "elastic", scheme, scheme == "characteristic" ? "" : fmt::format("step = {}\n", h / 2)));
+  auto s = barimpact::make_scheme(c);
+  s->start();
+  for (auto _ : state) {
+    s->advance();
+    benchmark::DoNotOptimize(s->end_displacement());
+  }
+  per_node_step(state, s->nodes());
+}
+
+// A line of three bars of M elements in all (M/3, M/3, the rest; a rigid
+// joint, a welded one, the rigid obstacle at x = 0), all moving at -1: the
+// line engine's step, to set beside the single bar's bare loop of M elements.
+void BM_LineStep(benchmark::State& state, const std::string& scheme) {
+  const long long M = state.range(0), third = M / 3;
+  barimpact::Case c;
+  c.single_bar = false;
+  for (auto [name, elements] : {std::pair{"a", third}, std::pair{"b", third}, std::pair{"c", M - 2 * third}}) {
+    barimpact::BodyData b;
+    b.name = name;
+    b.length = static_cast<double>(elements) / static_cast<double>(M);
+    b.elements = static_cast<int>(elements);
+    b.velocity = "-1";
+    c.bodies.push_back(b);
+  }
+  barimpact::JointData j;
+  j.name = "a-b";
+  j.lower = "a";
+  j.upper = "b";
+  j.law.law = barimpact::JointLaw::rigid;
+  c.joints = {j};
+  c.near_end.law = barimpact::JointLaw::rigid;
+  c.time.scheme = scheme;
+  c.time.step = 0.5 / static_cast<double>(M);
+  c.time.end = 1.0;
   auto s = barimpact::make_scheme(c);
   s->start();
   for (auto _ : state) {
@@ -390,6 +424,12 @@ const bool registered = [] {
         std::pair{"moreau-jean", true}, std::pair{"mass-redistribution", true}}) {
     const std::string name = fmt::format("BM_Scheme/{}/{}", scheme, rigid ? "rigid" : "elastic");
     benchmark::RegisterBenchmark(name.c_str(), BM_SchemeStep, std::string(scheme), rigid)
+        ->RangeMultiplier(10)
+        ->Range(100, 1'000'000);
+  }
+  for (const char* scheme : {"central-difference"}) {
+    const std::string name = fmt::format("BM_Line/{}", scheme);
+    benchmark::RegisterBenchmark(name.c_str(), BM_LineStep, std::string(scheme))
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }

@@ -17,6 +17,69 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line) : LineSch
   r_.assign(n, 0.0);
   rigid_.assign(line_.links.size(), 0.0);
   for (auto& l : levels_) l.assign(n, 0.0);
+  // Uniform interior nodes: both bonds the same element, no point mass, not held.
+  auto uniform = [&](std::size_t j) {
+    if (j == 0 || j + 1 >= n || line_.fixed(j) || line_.point_mass[j] != 0.0) return false;
+    const Bond &a = line_.bonds[j - 1], &b = line_.bonds[j];
+    return a.kind == BondKind::element && b.kind == BondKind::element && a.stiffness == b.stiffness &&
+           a.viscosity == b.viscosity && a.mass == b.mass;
+  };
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!uniform(j)) {
+      special_.push_back(j);
+      continue;
+    }
+    const Bond& b = line_.bonds[j];
+    if (!stretches_.empty() && stretches_.back().last == j && stretches_.back().k == b.stiffness &&
+        stretches_.back().c == b.viscosity && stretches_.back().inv_m == inv_m_[j])
+      ++stretches_.back().last;
+    else
+      stretches_.push_back({j, j + 1, b.stiffness, b.viscosity, inv_m_[j]});
+  }
+}
+
+double LineCentralDifference::row_force(const double* um, const double* u, std::size_t j) const {
+  const std::size_t n = line_.nodes();
+  const double inv_dt = 1.0 / dt_;
+  double r = load_zero_ ? 0.0 : load_[j];
+  auto tension = [&](std::size_t b) {
+    double t = k_[b] * (u[b + 1] - u[b]);
+    if (viscous_) t += c_[b] * ((u[b + 1] - u[b]) - (um[b + 1] - um[b])) * inv_dt;
+    return t;
+  };
+  if (j + 1 < n) r += tension(j);
+  if (j > 0) r -= tension(j - 1);
+  return r;
+}
+
+template <bool viscous, bool loaded>
+void LineCentralDifference::uniform_rows(const double* __restrict um, const double* __restrict u,
+                                         double* __restrict up) const {
+  const double dt2 = dt_ * dt_, inv_dt = 1.0 / dt_;
+  const double* __restrict f = load_.data();
+  for (const Stretch& s : stretches_) {
+    const double k = s.k, c = s.c * inv_dt, scale = dt2 * s.inv_m;
+    for (std::size_t j = s.first; j < s.last; ++j) {
+      double r = -k * (2.0 * u[j] - u[j - 1] - u[j + 1]);
+      if constexpr (loaded) r += f[j];
+      if constexpr (viscous) r -= c * (2.0 * (u[j] - um[j]) - (u[j - 1] - um[j - 1]) - (u[j + 1] - um[j + 1]));
+      up[j] = 2.0 * u[j] - um[j] + scale * r;
+    }
+  }
+}
+
+void LineCentralDifference::advance_levels(const double* um, const double* u, double* up, double t) {
+  load_at(t);
+  for (std::size_t j : special_) r_[j] = row_force(um, u, j);
+  if (has_penalty_) penalty_forces(u, um, r_.data());  // links join special nodes only
+  if (line_.near.kind == EndKind::force) r_[line_.near.node] += near_value(t);
+  if (line_.far.kind == EndKind::force) r_[line_.far.node] += far_value(t);
+  const double dt2 = dt_ * dt_;
+  for (std::size_t j : special_) up[j] = 2.0 * u[j] - um[j] + dt2 * r_[j] * inv_m_[j];
+  if (viscous_)
+    load_zero_ ? uniform_rows<true, false>(um, u, up) : uniform_rows<true, true>(um, u, up);
+  else
+    load_zero_ ? uniform_rows<false, false>(um, u, up) : uniform_rows<false, true>(um, u, up);
 }
 
 void LineCentralDifference::predict(const double* um, const double* u, double* up, double t, bool taylor) {
@@ -139,7 +202,7 @@ void LineCentralDifference::advance() {
   const double* um = cur_;
   const double* u = next_;
   double* up = prev_;
-  predict(um, u, up, t, false);
+  advance_levels(um, u, up, t);
   hold_ends(u, up, t);
   project(up, 1.0);
   end_forces(um, u, up, t, 1.0);

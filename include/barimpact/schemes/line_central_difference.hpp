@@ -55,6 +55,23 @@ class LineCentralDifference final : public LineScheme {
   void book_budget(const double* um, const double* u, const double* up, double& dw, double& dd, double& dc) const;
   [[nodiscard]] double half_step(const double* a, const double* b, BondKind kind, double& kinetic) const;
 
+  /// The fast step: each uniform stretch of bar nodes in one vectorised pass
+  /// with constant stencils (as the single bar's), the other nodes (body
+  /// ends, joints, masses, held ends) by the general rows.
+  void advance_levels(const double* um, const double* u, double* up, double t);
+  template <bool viscous, bool loaded>
+  void uniform_rows(const double* um, const double* u, double* up) const;
+  /// r_j = F_j + N_j - N_{j-1} at node j (bond tensions from u, rates from um).
+  [[nodiscard]] double row_force(const double* um, const double* u, std::size_t j) const;
+
+  // A stretch of interior nodes [first, last) of one uniform body: stencils
+  // k (2u_j - u_{j-1} - u_{j+1}), the same with c, and one lumped mass.
+  struct Stretch {
+    std::size_t first, last;
+    double k, c, inv_m;
+  };
+  std::vector<Stretch> stretches_;
+  std::vector<std::size_t> special_;       // the nodes outside every stretch
   std::vector<double> k_, c_, inv_m_, m_;  // per bond; per node
   std::vector<double> r_, rigid_;          // forces at the level; rigid links' impulse forces
   std::array<std::vector<double>, 3> levels_;
