@@ -32,10 +32,11 @@ DPI = 120
 class RunData:
     """What the figures need: history columns, field snapshots, case, summary."""
 
-    def __init__(self, history, x, field_t, u, sigma, case, summary):
+    def __init__(self, history, x, field_t, u, sigma, case, summary, body=None):
         self.history = history  # dict column -> 1-D array
         self.x, self.field_t, self.u, self.sigma = x, field_t, u, sigma
         self.case, self.summary = case, summary
+        self.body = body  # the body of each field row (None: one bar)
 
 
 def load(run_dir):
@@ -48,6 +49,7 @@ def load(run_dir):
     h = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
     history = {name: h[:, i] for i, name in enumerate(names)}
     x = field_t = u = sigma = np.empty(0)
+    body = None
     if (d / "fields.csv").is_file():
         f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2, usecols=range(5))
         if f.size:
@@ -56,15 +58,17 @@ def load(run_dir):
             x = f[:nodes, 1]
             u = f[:, 2].reshape(field_t.size, nodes)
             sigma = f[:, 4].reshape(field_t.size, nodes)
+            body = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=1, usecols=5, dtype=str)[:nodes]
     case = tomllib.loads((d / "case.toml").read_text())
     summary = json.loads((d / "summary.json").read_text())
-    return RunData(history, x, field_t, u, sigma, case, summary)
+    return RunData(history, x, field_t, u, sigma, case, summary, body)
 
 
 def _from_result(result):
     history = {name: np.asarray(result[name]) for name in result.history_columns}
     return RunData(history, np.asarray(result.x), np.asarray(result.field_t), np.asarray(result.u),
-                   np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary)
+                   np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary,
+                   np.asarray(result.field_body))
 
 
 def _number(text):
@@ -75,15 +79,47 @@ def _number(text):
 
 
 def exact_parameters(case):
-    """(L, a, rho, v0) when the case is the paper's Example 1 family (uniform
-    v0 < 0, no load, no initial strain, elastic bar, no gap), else None."""
-    bar, obstacle = case["bar"], case["obstacle"]
-    v0 = _number(case["initial"]["velocity"])
-    if (obstacle["kind"] == "none" or obstacle["gap"] != 0 or bar["viscosity"] != 0
-            or _number(case["load"]["body_force"]) != 0 or _number(case["initial"]["displacement"]) != 0
-            or v0 is None or v0 >= 0):
+    """(L, a, rho, v0) when the case is the paper's Example 1 family (one
+    elastic bar, uniform v0 < 0, no load, no initial strain, an obstacle at
+    x = 0 without gap), else None."""
+    bodies, near = case.get("body", []), case.get("near_end", {})
+    if len(bodies) != 1 or bodies[0].get("kind") != "bar" or case.get("joint"):
         return None
-    return bar["length"], bar["stiffness"], bar["density"], v0
+    bar = bodies[0]
+    v0 = _number(bar["velocity"])
+    if (near.get("law", "free") not in ("elastic", "viscoelastic", "rigid", "cushion") or near.get("gap", 0) != 0
+            or bar["viscosity"] != 0 or _number(case["load"]["body_force"]) != 0
+            or case["load"].get("gravity", 0) != 0 or _number(bar["displacement"]) != 0 or v0 is None or v0 >= 0):
+        return None
+    return bar["length"], bar["modulus"] * bar["area"], bar["density"] * bar["area"], v0
+
+
+def _body_rows(data):
+    """Index arrays of each bar body's rows in the field snapshots."""
+    if data.body is None or len(data.body) == 0:
+        return [np.arange(data.x.size)]
+    names = list(dict.fromkeys(data.body))
+    return [np.flatnonzero(data.body == name) for name in names]
+
+
+def _line_figures(data, out, formats, written):
+    """Joint and end forces, gauges, mass motions: the columns a line adds."""
+    h, t = data.history, data.history["t"]
+    groups = (("joint_forces", "Joint and end forces (compression > 0)", "force",
+               [c for c in h if c.startswith("joint.") and c.endswith(".force") or c == "far_end.force"]),
+              ("gauges", "Gauges: axial force (tension > 0)", "force",
+               [c for c in h if c.startswith("gauge.") and c.endswith(".force")]),
+              ("masses", "Mass displacements", "u", [c for c in h if c.startswith("body.") and c.endswith(".u")]))
+    for name, title, ylabel, columns in groups:
+        if not columns:
+            continue
+        fig, ax = _figure(title)
+        for c in columns:
+            ax.plot(t, h[c], lw=1.0, label=c)
+        ax.set_xlabel("t")
+        ax.set_ylabel(ylabel)
+        ax.legend(fontsize=8)
+        _save(fig, out, name, formats, written)
 
 
 def _figure(title, grid=True):
@@ -146,21 +182,23 @@ def plot(source, out=None, formats=("png", "svg")):
         ref = exact_example1(0.0, fine_t, *exact)
         ref_U = ref["u"]
     scheme = data.case["time"]["scheme"]
-    k = data.case["obstacle"]["stiffness"]
+    near = data.case.get("near_end", {})
+    law = near.get("law", "free")
+    label = f"{scheme}, k = {near['stiffness']:g}" if "stiffness" in near else f"{scheme}, {law} near end"
 
     fig, ax = _figure("End displacement U(t) = u(0, t)")
-    ax.plot(t, h["U"], ".", ms=3, label=f"{scheme}, k = {k:g}")
+    ax.plot(t, h["U"], ".", ms=3, label=label)
     if exact is not None:
         ax.plot(fine_t, ref_U, "k-", lw=1.2, label="exact, rigid obstacle")
-    if data.case["obstacle"]["kind"] != "none":
-        ax.axhline(-data.case["obstacle"]["gap"], color="gray", lw=0.8, ls="--", label="obstacle face")
+    if law in ("elastic", "viscoelastic", "rigid", "cushion"):
+        ax.axhline(-near.get("gap", 0.0), color="gray", lw=0.8, ls="--", label="obstacle face")
     ax.set_xlabel("t")
     ax.set_ylabel("U")
     ax.legend()
     _save(fig, out, "displacement", formats, written)
 
     fig, ax = _figure("Reaction of the obstacle R(t)")
-    ax.plot(t, h["R"], "-", lw=0.9, label=f"{scheme}, k = {k:g}")
+    ax.plot(t, h["R"], "-", lw=0.9, label=label)
     if exact is not None:
         ax.plot(fine_t, ref["R"], "k-", lw=1.2, label="exact, rigid obstacle")
     ax.set_xlabel("t")
@@ -184,8 +222,9 @@ def plot(source, out=None, formats=("png", "svg")):
     if data.field_t.size >= 2:
         fig, ax = _figure("Stress sigma(x, t)", grid=False)
         limit = float(np.max(np.abs(data.sigma))) or 1.0
-        mesh = ax.pcolormesh(data.x, data.field_t, data.sigma, cmap="RdBu_r", vmin=-limit, vmax=limit,
-                             shading="nearest")
+        for rows in _body_rows(data):  # one map per bar body: the gaps between them stay blank
+            mesh = ax.pcolormesh(data.x[rows], data.field_t, data.sigma[:, rows], cmap="RdBu_r", vmin=-limit,
+                                 vmax=limit, shading="nearest")
         fig.colorbar(mesh, ax=ax, label="sigma (tension > 0)")
         ax.set_xlabel("x")
         ax.set_ylabel("t")
@@ -195,7 +234,10 @@ def plot(source, out=None, formats=("png", "svg")):
         fig, ax = _figure("Displacement u(x) at snapshot times")
         chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
         for i in chosen:
-            ax.plot(data.x, data.u[i], lw=1.2, label=f"t = {data.field_t[i]:.3g}")
+            for n, rows in enumerate(_body_rows(data)):
+                line, = ax.plot(data.x[rows], data.u[i, rows], lw=1.2,
+                                label=f"t = {data.field_t[i]:.3g}" if n == 0 else None,
+                                color=None if n == 0 else line.get_color())
         ax.set_xlabel("x")
         ax.set_ylabel("u")
         ax.legend(fontsize=8, ncol=2)
@@ -215,4 +257,5 @@ def plot(source, out=None, formats=("png", "svg")):
     if contacts:
         top.legend(loc="best")
     _save(fig, out, "impacts", formats, written)
+    _line_figures(data, out, formats, written)
     return written

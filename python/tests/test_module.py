@@ -49,7 +49,7 @@ def test_case_from_file_text_dict_and_overrides_agree():
     })
     assert a.to_toml() == b.to_toml() == c.to_toml() == d.to_toml()
     e = barimpact.Case(path, set={"bar.elements": 50, "obstacle.kind": "none", "time.lambda": 0.25})
-    assert "elements = 50" in e.to_toml() and "kind = 'none'" in e.to_toml()
+    assert "elements = 50" in e.to_toml() and '[near_end]\nlaw = "free"' in e.to_toml()
     assert barimpact.Case(path, set=["bar.elements=50"]).steps == 400
 
 
@@ -115,7 +115,7 @@ def test_exact_tabulates_like_the_command_line(tmp_path):
     case = EXAMPLES / "clamped-periodic.toml"
     e = barimpact.exact(case)
     subprocess.run([CLI, "exact", str(case), "--out", str(tmp_path / "ex")], check=True, capture_output=True)
-    assert np.array_equal(e.history, read_history(tmp_path / "ex"))
+    assert np.array_equal(e.history, read_history(tmp_path / "ex")[:, :10])  # then far_end.force, far_end.opening
     r = barimpact.run(case)
     assert np.max(np.abs(r.U - e.U)) < 1e-12  # characteristic is exact here
     with pytest.raises(barimpact.InputError, match="no exact solution"):

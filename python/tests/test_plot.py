@@ -48,9 +48,9 @@ def test_plot_refuses_a_directory_that_is_not_a_run(tmp_path):
 
 def test_the_exact_solution_is_drawn_only_when_it_applies():
     from barimpact.plot import exact_parameters
-    case = {"bar": {"length": 2.0, "stiffness": 4.0, "density": 1.0, "viscosity": 0.0},
-            "obstacle": {"kind": "elastic", "gap": 0.0},
-            "load": {"body_force": "0"}, "initial": {"displacement": "0", "velocity": "-0.5"}}
+    case = {"body": [{"kind": "bar", "length": 2.0, "modulus": 4.0, "density": 1.0, "area": 1.0, "viscosity": 0.0,
+                      "displacement": "0", "velocity": "-0.5"}],
+            "near_end": {"law": "elastic", "gap": 0.0}, "load": {"body_force": "0", "gravity": 0.0}}
     assert exact_parameters(case) == (2.0, 4.0, 1.0, -0.5)
     case["load"]["body_force"] = "-1"
     assert exact_parameters(case) is None

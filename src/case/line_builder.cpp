@@ -112,36 +112,6 @@ GaugePoint gauge_point(const Line& line, const Case& c, const GaugeData& g) {
   return p;
 }
 
-// A single-bar case's line comes from its paper view (bar, initial,
-// obstacle), which studies refine in place (converge sets bar.elements).
-Case line_view(const Case& c) {
-  Case v = c;
-  BodyData b = c.bodies.empty() ? BodyData{} : c.bodies.front();
-  if (b.name.empty()) b.name = "bar";
-  b.kind = BodyKind::bar;
-  b.length = c.bar.length;
-  b.elements = c.bar.elements;
-  b.modulus = c.bar.stiffness / b.area;
-  b.density = c.bar.density / b.area;
-  b.viscosity = c.bar.viscosity / b.area;
-  b.displacement = c.initial.displacement;
-  b.velocity = c.initial.velocity;
-  v.bodies = {b};
-  v.joints.clear();
-  LawData near = c.near_end;
-  near.stiffness = c.obstacle.stiffness;
-  near.gap = c.obstacle.gap;
-  near.viscosity = c.obstacle.viscosity;
-  const ObstacleKind k = c.obstacle.kind;
-  near.law = k == ObstacleKind::none      ? JointLaw::free
-             : k == ObstacleKind::elastic ? JointLaw::elastic
-             : k == ObstacleKind::rigid   ? JointLaw::rigid
-                                          : JointLaw::viscoelastic;
-  v.near_end = near;
-  v.far_end.law = c.bar.far_end == FarEnd::clamped ? JointLaw::clamped : JointLaw::free;
-  return v;
-}
-
 Line build(const Case& c);
 
 }  // namespace
@@ -151,7 +121,7 @@ double rigid_restitution(const Case& c, const LawData& law) {
 }
 
 Line build_line(const Case& c) {
-  return c.single_bar ? build(line_view(c)) : build(c);
+  return build(c.line_view());
 }
 
 namespace {

@@ -1,5 +1,6 @@
 #include "barimpact/schemes/scheme.hpp"
 
+#include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 
 #include <fmt/format.h>
@@ -78,6 +79,10 @@ double stable_step(const Case& c, bool consistent_mass) {
 }
 
 std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
+  if (!c.single_bar) {
+    if (auto m = line_scheme_misfit(c, build_line(c))) return SchemeMisfit{m->key, m->rule};
+    return std::nullopt;
+  }
   const SchemeSpec& s = spec(c.time.scheme);
   if (std::find(s.kinds.begin(), s.kinds.end(), c.obstacle.kind) == s.kinds.end()) {
     std::vector<std::string_view> fit;

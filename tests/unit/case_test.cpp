@@ -191,7 +191,7 @@ TEST(Case, RefusesBadOverridesNamingTheOption) {
   };
   bad("bar.stiffness=-1", "> 0");
   bad("bar.elements", "section.key=value");
-  bad("elements=3", "one dot");
+  bad("elements=3", "section.key=value");
   bad("bar.lenght=2", "unknown key");
   bad("nosuch.key=2", "unknown section");
   bad("bar.elements=many", "integer");

@@ -139,8 +139,14 @@ struct Case {
   /// (up to a relative 1e-9, so that end = 4, step = 0.01 gives 400).
   [[nodiscard]] long long step_count() const;
 
-  /// The resolved case as TOML, every default filled in: running it
-  /// reproduces this case exactly.
+  /// The case with its line spelled out: for a single bar, bodies, near_end
+  /// and far_end taken from bar, initial and obstacle (which studies change
+  /// in place); otherwise the case itself.
+  [[nodiscard]] Case line_view() const;
+
+  /// The resolved case as TOML in the line's spelling ([[body]], [near_end],
+  /// ...), with only the keys each law uses, every default filled in:
+  /// running it reproduces this case exactly.
   [[nodiscard]] std::string to_toml() const;
 };
 
