@@ -1,6 +1,7 @@
 #include "barimpact/run/simulate.hpp"
 
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/exact/lines.hpp"
 
 #include <fmt/format.h>
 
@@ -139,7 +140,27 @@ std::vector<RunResult> run_batch(const std::vector<const Case*>& cases, const st
   return out;
 }
 
+namespace {
+RunResult run_exact_line(const Case& c, const RunOptions& options) {
+  std::shared_ptr<const exact::LineSolution> solution = exact::for_line_case(c);
+  if (!solution)
+    throw InputError(
+        "exact: this line admits no exact solution barimpact knows (two free bars of one material through a rigid "
+        "joint; a mass on a rigid joint striking a bar clamped at x = 0; two welded bars under a constant force at x "
+        "= 0; each at rest or in uniform motion, without viscosity, body force or gravity)");
+  auto scheme = exact::as_line_scheme(c, solution);
+  const double known = solution->valid_until();
+  long long steps = c.step_count();
+  if (std::isfinite(known)) steps = std::min(steps, static_cast<long long>(std::floor(known / c.time.step)));
+  RunResult r = run_scheme(c, *scheme, steps, options, false);
+  r.summary.method = "exact";
+  r.summary.message = solution->name();
+  return r;
+}
+}  // namespace
+
 RunResult run_exact(const Case& c, const RunOptions& options) {
+  if (!c.single_bar) return run_exact_line(c, options);
   std::shared_ptr<const exact::Solution> solution = exact::for_case(c);
   if (!solution)
     throw InputError(

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact::exact {
 
@@ -274,5 +275,15 @@ class Junction final : public LineSolution {
 /// data given as constants. A rigid joint's restitution is not read: in
 /// the continuum the contact stores and dissipates nothing.
 [[nodiscard]] std::unique_ptr<LineSolution> for_line_case(const Case& c);
+
+}  // namespace barimpact::exact
+
+namespace barimpact::exact {
+
+/// A line solution seen through the Scheme interface on the case's time grid
+/// and line (model/line.hpp), so that the ordinary loop and observers
+/// tabulate it: nodal u and v, link forces and openings, energies by the
+/// midpoint rule on 20000 cells of the bars (a mass's kinetic energy exact).
+[[nodiscard]] std::unique_ptr<Scheme> as_line_scheme(const Case& c, std::shared_ptr<const LineSolution> solution);
 
 }  // namespace barimpact::exact

@@ -1,0 +1,93 @@
+#include <cmath>
+#include <limits>
+
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/exact/lines.hpp"
+#include "barimpact/model/expression.hpp"
+
+namespace barimpact::exact {
+
+namespace {
+
+class TabulatedLine final : public Scheme {
+ public:
+  TabulatedLine(const Case& c, std::shared_ptr<const LineSolution> s)
+      : s_(std::move(s)), line_(build_line(c)), dt_(c.time.step) {
+    for (std::size_t b = 0; b < line_.bodies.size(); ++b)
+      for (std::size_t j = line_.bodies[b].first; j <= line_.bodies[b].last; ++j) body_of_.push_back(b);
+    body_of_.resize(line_.nodes());
+    for (std::size_t b = line_.bodies.size(); b-- > 0;)  // a shared node belongs to the lower body
+      for (std::size_t j = line_.bodies[b].first; j <= line_.bodies[b].last; ++j) body_of_[j] = b;
+    if (line_.near.kind == EndKind::force) near_force_ = std::make_unique<Expression>(line_.near.value);
+    near_link_ = !line_.links.empty() && line_.links.front().name == "near_end";
+    for (std::size_t b = 0; b < line_.bodies.size(); ++b)
+      if (line_.bodies[b].is_mass) masses_.push_back({b, c.bodies[b].mass});
+  }
+  void start() override { n_ = 0; }
+  void advance() override { ++n_; }
+  long long step() const override { return n_; }
+  double time() const override { return static_cast<double>(n_) * dt_; }
+  std::size_t nodes() const override { return line_.nodes(); }
+  double end_displacement() const override { return displacement_at(0); }
+  double end_velocity() const override { return velocity_at(0); }
+  double reaction() const override {
+    if (near_link_) return link_force(0);
+    if (near_force_) return (*near_force_)(0.0, time());
+    if (line_.near.kind == EndKind::free) return 0.0;
+    return -s_->fields(0, line_.x[0], time()).axial_force;  // the support's push on a held end
+  }
+  void displacement(std::span<double> out) const override {
+    for (std::size_t j = 0; j < out.size(); ++j) out[j] = displacement_at(j);
+  }
+  void velocity(std::span<double> out) const override {
+    for (std::size_t j = 0; j < out.size(); ++j) out[j] = velocity_at(j);
+  }
+  double displacement_at(std::size_t j) const override { return s_->fields(body_of_[j], line_.x[j], time()).u; }
+  double velocity_at(std::size_t j) const override { return s_->fields(body_of_[j], line_.x[j], time()).v; }
+  double link_force(std::size_t i) const override { return s_->link_force(i, time()); }
+  double link_opening(std::size_t i) const override { return s_->link_opening(i, time()); }
+  Energies energies() const override;
+  bool finite() const override { return true; }
+
+ private:
+  std::shared_ptr<const LineSolution> s_;
+  Line line_;
+  double dt_;
+  long long n_ = 0;
+  std::vector<std::size_t> body_of_;
+  std::unique_ptr<Expression> near_force_;
+  bool near_link_ = false;
+  std::vector<std::pair<std::size_t, double>> masses_;  // body, mass
+};
+
+Energies TabulatedLine::energies() const {
+  Energies e;
+  const double t = time();
+  constexpr int cells = 20000;
+  for (std::size_t b = 0; b < line_.bodies.size(); ++b) {
+    const BodyRange& r = line_.bodies[b];
+    if (r.is_mass) continue;
+    const Bond& bond = line_.bonds[r.first];
+    const double rho_a = bond.mass / bond.h, near = s_->body_near(b), far = s_->body_far(b);
+    const double h = (far - near) / cells;
+    for (int i = 0; i < cells; ++i) {
+      const LineFields f = s_->fields(b, near + (i + 0.5) * h, t);
+      e.kinetic += 0.5 * rho_a * f.v * f.v * h;
+      e.strain += 0.5 * bond.axial * f.strain * f.strain * h;
+    }
+  }
+  for (const auto& [b, m] : masses_) {
+    const double v = s_->fields(b, s_->body_near(b), t).v;
+    e.kinetic += 0.5 * m * v * v;
+  }
+  e.work = s_->work(t);
+  return e;
+}
+
+}  // namespace
+
+std::unique_ptr<Scheme> as_line_scheme(const Case& c, std::shared_ptr<const LineSolution> solution) {
+  return std::make_unique<TabulatedLine>(c, std::move(solution));
+}
+
+}  // namespace barimpact::exact
