@@ -26,45 +26,61 @@ struct PyResult {
   RunResult r;
 };
 
-// {section: {key: value}} -> TOML text, so that the library's reader checks
-// a dict exactly as it checks a file.
+// One table's keys: numbers, strings, booleans, lists of them.
+toml::table keys_table(const py::dict& keys) {
+  toml::table t;
+  for (auto [key, value] : keys) {
+    const auto k = py::str(key).cast<std::string>();
+    if (py::isinstance<py::bool_>(value)) {
+      t.insert(k, value.cast<bool>());
+    } else if (py::isinstance<py::int_>(value)) {
+      t.insert(k, value.cast<long long>());
+    } else if (py::isinstance<py::float_>(value)) {
+      t.insert(k, value.cast<double>());
+    } else if (py::isinstance<py::str>(value)) {
+      t.insert(k, value.cast<std::string>());
+    } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) ||
+               py::isinstance<py::array>(value)) {
+      toml::array a;
+      for (auto item : value) {
+        if (py::isinstance<py::int_>(item))
+          a.push_back(item.cast<long long>());
+        else if (py::isinstance<py::float_>(item) || py::hasattr(item, "__float__"))
+          a.push_back(item.cast<double>());
+        else
+          a.push_back(py::str(item).cast<std::string>());
+      }
+      t.insert(k, std::move(a));
+    } else if (py::hasattr(value, "__float__")) {
+      t.insert(k, value.cast<double>());
+    } else {
+      t.insert(k, py::str(value).cast<std::string>());
+    }
+  }
+  return t;
+}
+
+// {section: {key: value}, array: [{key: value}, ...]} -> TOML text, so that
+// the library's reader checks a dict exactly as it checks a file.
 toml::table table_from_dict(const py::dict& d) {
   toml::table root;
   for (auto [section, keys] : d) {
     const auto name = py::str(section).cast<std::string>();
-    if (!py::isinstance<py::dict>(keys))
-      throw InputError("dict: [" + name + "] must be a dict of keys (got " +
-                       py::str(keys.get_type().attr("__name__")).cast<std::string>() + ")");
-    toml::table t;
-    for (auto [key, value] : keys.cast<py::dict>()) {
-      const auto k = py::str(key).cast<std::string>();
-      if (py::isinstance<py::bool_>(value)) {
-        t.insert(k, value.cast<bool>());
-      } else if (py::isinstance<py::int_>(value)) {
-        t.insert(k, value.cast<long long>());
-      } else if (py::isinstance<py::float_>(value)) {
-        t.insert(k, value.cast<double>());
-      } else if (py::isinstance<py::str>(value)) {
-        t.insert(k, value.cast<std::string>());
-      } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) ||
-                 py::isinstance<py::array>(value)) {
-        toml::array a;
-        for (auto item : value) {
-          if (py::isinstance<py::int_>(item))
-            a.push_back(item.cast<long long>());
-          else if (py::isinstance<py::float_>(item) || py::hasattr(item, "__float__"))
-            a.push_back(item.cast<double>());
-          else
-            a.push_back(py::str(item).cast<std::string>());
-        }
-        t.insert(k, std::move(a));
-      } else if (py::hasattr(value, "__float__")) {
-        t.insert(k, value.cast<double>());
-      } else {
-        t.insert(k, py::str(value).cast<std::string>());
+    // [[body]], [[joint]], [[gauge]]: a list of dicts.
+    if ((py::isinstance<py::list>(keys) || py::isinstance<py::tuple>(keys)) && py::len(keys) > 0 &&
+        py::isinstance<py::dict>(*keys.begin())) {
+      toml::array tables;
+      for (auto item : keys) {
+        if (!py::isinstance<py::dict>(item)) throw InputError("dict: [[" + name + "]] must be a list of dicts");
+        tables.push_back(keys_table(item.cast<py::dict>()));
       }
+      root.insert(name, std::move(tables));
+      continue;
     }
-    root.insert(name, std::move(t));
+    if (!py::isinstance<py::dict>(keys))
+      throw InputError("dict: [" + name + "] must be a dict of keys, or a list of dicts for [[" + name + "]] (got " +
+                       py::str(keys.get_type().attr("__name__")).cast<std::string>() + ")");
+    root.insert(name, keys_table(keys.cast<py::dict>()));
   }
   return root;
 }

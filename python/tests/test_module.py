@@ -174,3 +174,24 @@ def test_ctrl_c_stops_a_long_run():
     with pytest.raises(KeyboardInterrupt):
         barimpact.run(case)
     assert time.monotonic() - start < 5.0  # the whole run would take minutes
+
+
+def test_a_line_of_bodies_by_name():
+    # The new spelling from a dict, the line's columns by name (views), and the
+    # fields' body of each row.
+    r = barimpact.run({
+        "body": [{"name": "a", "length": 1.0, "elements": 50, "velocity": "1"},
+                 {"name": "b", "length": 2.0, "elements": 100}],
+        "joint": [{"between": ["a", "b"], "law": "rigid", "gap": 0.05}],
+        "time": {"scheme": "central-difference", "step": 0.01, "end": 4.0},
+        "output": {"fields_at": [1.0]},
+    })
+    assert r.history_columns[9:12] == ["D_contact", "joint.a-b.force", "joint.a-b.opening"]
+    force = r["joint.a-b.force"]
+    assert force.shape == r.t.shape and np.max(force) > 0.4
+    assert np.shares_memory(r.t, r["t"])
+    assert set(r.field_body) == {"a", "b"} and len(r.field_body) == 51 + 101
+    total = r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc + r.D_contact
+    assert np.max(np.abs(total - total[0])) < 1e-12  # central differences' identity with rigid links
+    with pytest.raises(KeyError):
+        r["joint.nope.force"]

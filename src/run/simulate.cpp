@@ -64,6 +64,22 @@ RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOp
                      bool finite_rows = true);
 
 // The observers of one run and the summary they add up to.
+// What the near-end contact monitor watches: the obstacle of a single bar,
+// or the near end's unilateral law on a line (none for free, held or loaded ends).
+ObstacleData near_obstacle(const Case& c) {
+  if (c.single_bar) return c.obstacle;
+  ObstacleData o;
+  const JointLaw law = c.near_end.law;
+  o.kind = law == JointLaw::rigid                                 ? ObstacleKind::rigid
+           : law == JointLaw::elastic || law == JointLaw::cushion ? ObstacleKind::elastic
+           : law == JointLaw::viscoelastic                        ? ObstacleKind::viscoelastic
+                                                                  : ObstacleKind::none;
+  o.stiffness = c.near_end.stiffness;
+  o.gap = c.near_end.gap;
+  o.viscosity = c.near_end.viscosity;
+  return o;
+}
+
 struct Recorders {
   Line line;
   Probes probes;
@@ -76,7 +92,7 @@ struct Recorders {
         probes(c, line),
         history(c.output.every, &probes),
         fields(c, line, c.output.fields_at),
-        contact(c.obstacle),
+        contact(near_obstacle(c)),
         links(line) {}
   std::array<Observer*, 4> all() { return {&history, &fields, &contact, &links}; }
 };

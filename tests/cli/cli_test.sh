@@ -198,5 +198,30 @@ if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
   cmp -s <(cut -d, -f1-14 "$work/sweep-mpi/sweep.csv") "$work/first.csv" && ok || bad "mpi sweep.csv differs"
 fi
 
+# Lines of bodies: the four examples run, their columns, the line's rules refused with the key.
+lines="$examples/lines"
+for ex in saint-venant drop-mass hopkinson pile-hammer; do
+  "$bin" run "$lines/$ex.toml" --out "$work/line-$ex" > /dev/null 2> "$work/err" && ok || bad "line $ex: $(cat "$work/err")"
+done
+[ "$(head -1 "$work/line-saint-venant/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,joint.short-long.force,joint.short-long.opening,gauge.mid.strain,gauge.mid.velocity,gauge.mid.force" ] && ok || bad "saint-venant columns"
+[ "$(head -1 "$work/line-pile-hammer/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,joint.capblock.force,joint.capblock.opening,body.ram.u,body.ram.v,gauge.head.strain,gauge.head.velocity,gauge.head.force" ] && ok || bad "pile-hammer columns"
+[ "$(cut -d, -f6 "$work/line-saint-venant/fields.csv" | sort -u | tr '\n' ' ')" = "body long short " ] && ok || bad "fields body column"
+"$bin" run "$work/line-saint-venant/case.toml" --out "$work/line-again" > /dev/null && ok || bad "resolved line case"
+cmp -s "$work/line-saint-venant/history.csv" "$work/line-again/history.csv" && ok || bad "resolved line case differs"
+"$bin" exact "$lines/saint-venant.toml" --out "$work/line-exact" > /dev/null && ok || bad "line exact"
+expect_refused "joint.short-long.gap must be >= 0" run "$lines/saint-venant.toml" --out "$work/refused" --set joint.short-long.gap=-1
+expect_refused "no body named" run "$lines/saint-venant.toml" --out "$work/refused" --set body.nope.length=1
+expect_refused "cannot run a line" run "$lines/saint-venant.toml" --out "$work/refused" --set time.scheme=paper
+expect_refused "joint.capblock.viscosity is not used by law" run "$lines/pile-hammer.toml" --out "$work/refused" --set joint.capblock.viscosity=1
+expect_refused "restitution must be in (0, 1]" run "$lines/pile-hammer.toml" --out "$work/refused" --set joint.capblock.restitution=0
+expect_refused "gauge.head.at must lie in the body" run "$lines/pile-hammer.toml" --out "$work/refused" --set gauge.head.at=11
+expect_refused "body.ram.mass must be > 0" run "$lines/pile-hammer.toml" --out "$work/refused" --set body.ram.mass=0
+printf '[[body]]\nname = "a"\n[[body]]\nname = "b"\n[[body]]\nname = "c"\n[[joint]]\nbetween = ["a", "c"]\nlaw = "rigid"\n' > "$work/badline.toml"
+expect_refused "consecutive" run "$work/badline.toml" --out "$work/refused"
+printf '[[body]]\nname = "a"\n[[body]]\nname = "a"\n' > "$work/badline.toml"
+expect_refused "repeats the body name" run "$work/badline.toml" --out "$work/refused"
+printf '[bar]\n[[body]]\nname = "a"\n' > "$work/badline.toml"
+expect_refused "cannot be combined with [[body]]" run "$work/badline.toml" --out "$work/refused"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

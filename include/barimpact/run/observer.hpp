@@ -125,7 +125,8 @@ class ContactMonitor final : public Observer {
   std::vector<double> velocity_;
 };
 
-/// A link's contact episode (line.hpp): force > 0 or opening < 0 from
+/// A link's contact episode (line.hpp): force > 0 (above 1e-9 of the
+/// largest link force so far) from
 /// `start` to `end` (at steps), the largest force, and the two faces'
 /// velocities at the first step after they part (NaN for the ground).
 struct LinkEpisode {
@@ -152,6 +153,7 @@ class LinkMonitor final : public Observer {
   std::vector<std::size_t> a_, b_;
   std::vector<std::vector<LinkEpisode>> episodes_;
   std::vector<char> in_contact_;
+  double largest_ = 0.0;
 };
 
 /// Where a run stands, for progress reports.
