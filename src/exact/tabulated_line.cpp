@@ -2,6 +2,7 @@
 #include <limits>
 
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/exact/exact.hpp"
 #include "barimpact/exact/lines.hpp"
 #include "barimpact/model/expression.hpp"
 
@@ -84,7 +85,39 @@ Energies TabulatedLine::energies() const {
   return e;
 }
 
+// A line solution at x = 0, through the single bar's interface.
+class LineEnd final : public Solution {
+ public:
+  LineEnd(const Case& c, std::unique_ptr<LineSolution> s) : s_(std::move(s)), line_(build_line(c)) {
+    near_link_ = !line_.links.empty() && line_.links.front().name == "near_end";
+    if (line_.near.kind == EndKind::force) force_ = std::make_unique<Expression>(line_.near.value);
+  }
+  double U(double t) const override { return s_->fields(0, line_.x[0], t).u; }
+  double V(double t) const override { return s_->fields(0, line_.x[0], t).v; }
+  double R(double t) const override {
+    if (near_link_) return s_->link_force(0, t);
+    if (force_) return (*force_)(0.0, t);
+    if (line_.near.kind == EndKind::free) return 0.0;
+    return -s_->fields(0, line_.x[0], t).axial_force;
+  }
+  double valid_until() const override { return s_->valid_until(); }
+  double energy() const override { return s_->energy(0.0); }
+  const char* name() const override { return s_->name(); }
+
+ private:
+  std::unique_ptr<LineSolution> s_;
+  Line line_;
+  bool near_link_ = false;
+  std::unique_ptr<Expression> force_;
+};
+
 }  // namespace
+
+std::unique_ptr<Solution> line_end(const Case& c) {
+  auto s = for_line_case(c);
+  if (!s) return nullptr;
+  return std::make_unique<LineEnd>(c, std::move(s));
+}
 
 std::unique_ptr<Scheme> as_line_scheme(const Case& c, std::shared_ptr<const LineSolution> solution) {
   return std::make_unique<TabulatedLine>(c, std::move(solution));

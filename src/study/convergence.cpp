@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "barimpact/exact/exact.hpp"
+#include "barimpact/exact/lines.hpp"
 #include "barimpact/run/health.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
@@ -179,6 +180,7 @@ void check_study(const Case& base, const StudyOptions& o) {
     }
   }
   if (o.reference == Reference::rigid) {
+    if (!base.single_bar) throw InputError("--reference rigid: applies to a single bar's obstacle, not to a line");
     Case rigid = base;
     rigid.obstacle.kind = ObstacleKind::rigid;
     if (!exact::for_case(rigid))
@@ -212,10 +214,13 @@ Study converge(const Case& base, const StudyOptions& o) {
       const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
       const long long elements = base.bar.elements * (refine_h ? f : 1);
       double step = base.time.step / static_cast<double>(refine_dt ? f : 1);
-      std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""},
-                                       {"output.every=1"},
-                                       {"output.fields_at=[]"},
-                                       {fmt::format("bar.elements={}", elements)}};
+      std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""}, {"output.every=1"}, {"output.fields_at=[]"}};
+      if (base.single_bar)
+        sets.push_back({fmt::format("bar.elements={}", elements)});
+      else  // every bar of the line refined alike
+        for (const auto& b : base.bodies)
+          if (b.kind == BodyKind::bar)
+            sets.push_back({fmt::format("body.{}.elements={}", b.name, b.elements * (refine_h ? f : 1))});
       if (o.vary) {
         t.value = o.vary->values[static_cast<std::size_t>(i)];
         sets.push_back({o.vary->key + "=" + t.value});
@@ -278,7 +283,8 @@ Study converge(const Case& base, const StudyOptions& o) {
       r.energy_error_end = std::abs(total(h.back()) - total(h.front())) / std::abs(total(h.front()));
 
       std::unique_ptr<exact::Solution> solution;
-      if (o.reference == Reference::automatic) solution = exact::for_case(*t.c);
+      if (o.reference == Reference::automatic && t.c->single_bar) solution = exact::for_case(*t.c);
+      if (o.reference == Reference::automatic && !t.c->single_bar) solution = exact::line_end(*t.c);
       if (o.reference == Reference::rigid) {
         Case rigid = *t.c;
         rigid.obstacle.kind = ObstacleKind::rigid;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/exact/exact.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact::exact {
@@ -285,5 +286,15 @@ namespace barimpact::exact {
 /// tabulate it: nodal u and v, link forces and openings, energies by the
 /// midpoint rule on 20000 cells of the bars (a mass's kinetic energy exact).
 [[nodiscard]] std::unique_ptr<Scheme> as_line_scheme(const Case& c, std::shared_ptr<const LineSolution> solution);
+
+}  // namespace barimpact::exact
+
+namespace barimpact::exact {
+
+/// The line solution `c` admits (for_line_case) seen at the near end, as a
+/// single bar's Solution: U, V and R (the near link's force, the force end's
+/// value, or a held end's support force), so that studies measure a line's
+/// errors as a bar's. nullptr when the line admits none.
+[[nodiscard]] std::unique_ptr<Solution> line_end(const Case& c);
 
 }  // namespace barimpact::exact
