@@ -159,10 +159,7 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
     b.velocity = "-1";
     c.bodies.push_back(b);
   }
-  barimpact::JointData j;
-  j.name = "a-b";
-  j.lower = "a";
-  j.upper = "b";
+  barimpact::JointData j{std::string("a-b"), std::string("a"), std::string("b"), barimpact::LawData{}};
   j.law.law = barimpact::JointLaw::rigid;
   c.joints = {j};
   c.near_end.law = barimpact::JointLaw::rigid;
