@@ -67,6 +67,9 @@ void MoreauJeanScheme::step() {
   if (active) p = std::max(0.0, (-restitution_ * V) / inv[0] - y0);
   // Away from x = 0: v^{n+1}, and u += dt (theta v^{n+1} + (1 - theta) v^n) in the same pass.
   double x = (y0 + p) * inv[0];
+  // The impulse against the mean velocity of the step: at theta = 1/2 the
+  // step's energy identity then closes with it in D_contact.
+  contact_ -= p * 0.5 * (x + V);
   auto update = [&](std::size_t j) {
     u[j] += dt * (th * x + (1.0 - th) * v[j]);
     v[j] = x;

@@ -31,7 +31,7 @@ void OneStepScheme::start_state() {
     load_next_ = load_;
   }
   n_ = 0;
-  work_ = dissipation_ = 0.0;
+  work_ = dissipation_ = contact_ = 0.0;
   reaction_ = law_.reaction(u_[0], v_[0]);
 }
 
@@ -73,6 +73,7 @@ Energies OneStepScheme::energies() const {
   e.obstacle = law_.energy(u_[0]);
   e.work = work_;
   e.dissipation = dissipation_;
+  e.contact = contact_;
   return e;
 }
 

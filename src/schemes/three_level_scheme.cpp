@@ -67,7 +67,13 @@ void ThreeLevelScheme::start() {
   book_first_half_step(viscous);
   // A rigid obstacle holds from the first step. The start is a Taylor step,
   // dt^2/2 a^0, so the force behind a correction is twice that of a full step.
-  reaction_ = law_.reaction(u0_[0], v0_[0]) + 2.0 * enforce_contact(prev_, cur_, next_);
+  const double impulse = 2.0 * enforce_contact(prev_, cur_, next_);
+  reaction_ = law_.reaction(u0_[0], v0_[0]) + impulse;
+  // D_contact: the rigid obstacle's work over the first half step, its force
+  // against the mean of the end's velocity at t = 0 and over (0, dt): the
+  // Taylor step's own identity, (1/2) m (w^2 - v0^2) = F (dt/2) (v0 + w) / 2.
+  contact_half_ = -0.25 * dt_ * impulse * (v0_[0] + (next_[0] - cur_[0]) / dt_);
+  contact_last_ = 0.0;
 }
 
 // The row at t_n sums level m's increments, each centred on t_m, from m = 1:
@@ -197,6 +203,8 @@ void ThreeLevelScheme::advance() {
   next_ = up;
   n_ = m;
   reaction_ = penalty + impulse_force;
+  contact_last_ = impulse_force * 0.5 * (prev_[0] - next_[0]);  // the impulse against (d^{m+1} - d^{m-1}) / 2
+  contact_half_ += contact_last_;
 
   // Budget of level m: dW = F^m . (u^{m+1} - u^{m-1}) / 2, dD = viscous force . same.
   double dw = 0.0, dd = 0.0;
@@ -270,6 +278,7 @@ Energies ThreeLevelScheme::energies() const {
   e.strain = 0.5 * (s1 + s2);
   e.work = work_half_ - 0.5 * work_last_;
   e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  e.contact = contact_half_ - 0.5 * contact_last_;
   return e;
 }
 

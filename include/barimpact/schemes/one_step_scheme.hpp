@@ -57,6 +57,7 @@ class OneStepScheme : public Scheme {
   std::vector<double> u_, v_, u_old_, v_old_, load_, load_next_, work_vector_;
   bool load_zero_ = true;
   double reaction_ = 0.0;
+  double contact_ = 0.0;  ///< D_contact: what the impulses took (Moreau-Jean)
 
  private:
   std::unique_ptr<Expression> body_force_, initial_displacement_, initial_velocity_;

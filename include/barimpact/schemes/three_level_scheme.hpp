@@ -105,6 +105,7 @@ class ThreeLevelScheme : public Scheme {
   long long n_ = 0;
   double reaction_ = 0.0;  // R^n
   double work_half_ = 0.0, dissipation_half_ = 0.0, work_last_ = 0.0, dissipation_last_ = 0.0;
+  double contact_half_ = 0.0, contact_last_ = 0.0;  // D_contact, booked as W_ext and D_visc
 };
 
 }  // namespace barimpact
