@@ -28,9 +28,13 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
     far_value_ = std::make_unique<Expression>(line_.far.value);
   u0_ = line_.initial(0);
   v0_ = line_.initial(1);
-  for (std::size_t j = 0; j < n; ++j)
-    if (line_.fixed(j) && (j == line_.near.node ? line_.near : line_.far).kind == EndKind::clamped)
-      u0_[j] = v0_[j] = 0.0;
+  // A held end starts as its condition says: at rest at 0 (clamped; the case
+  // reader checks u0 and v0 vanish there), or at v(0) (driven: the end's
+  // history, not the body's v0, moves that node from the start).
+  if (line_.near.kind == EndKind::clamped) u0_[line_.near.node] = v0_[line_.near.node] = 0.0;
+  if (line_.far.kind == EndKind::clamped) u0_[line_.far.node] = v0_[line_.far.node] = 0.0;
+  if (line_.near.kind == EndKind::velocity) v0_[line_.near.node] = near_value(0.0);
+  if (line_.far.kind == EndKind::velocity) v0_[line_.far.node] = far_value(0.0);
 }
 
 void LineScheme::load_at(double t) {
