@@ -679,6 +679,13 @@ void read_line(Reader& r, Case& c) {
     c.bodies.push_back(b);
   }
   if (c.bodies.empty()) throw InputError(fmt::format("{}: [[body]] lists no body", r.where("body", "")));
+  long long elements = 0;
+  for (const auto& b : c.bodies) {
+    if (b.kind == BodyKind::bar) elements += b.elements;
+    if (elements > max_elements)
+      r.fail("body." + b.name, "elements",
+             fmt::format("brings the line's elements to {}; at most {} in all", elements, max_elements));
+  }
   read_joints(r, c);
   c.near_end = read_law(r, "near_end", true);
   c.far_end = read_law(r, "far_end", true);

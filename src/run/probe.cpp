@@ -1,6 +1,7 @@
 #include "barimpact/run/probe.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace barimpact {
 
@@ -35,8 +36,9 @@ Probes::Probes(const Case& c, const Line& line) : line_(line) {
     const BodyRange& lower = line.bodies[body_index(c, j.lower)];
     const bool welded = j.law.law == JointLaw::welded;
     std::size_t bond = upper.first - 1;
-    if (welded) bond = upper.last > upper.first ? upper.first : lower.last - 1;
-    add(stem + ".force", Kind::bond_force, bond);
+    if (welded)
+      bond = upper.last > upper.first ? upper.first : lower.last > lower.first ? lower.last - 1 : Link::ground;
+    add(stem + ".force", Kind::bond_force, bond);  // two welded masses share a node: no force to read (NaN)
     add(stem + ".opening", welded ? Kind::link_opening : Kind::bond_opening, welded ? Link::ground : bond);
   }
   if (c.far_end.law != JointLaw::free) {
@@ -72,13 +74,14 @@ double Probes::value(const Scheme& s, const Column& col) const {
     case Kind::link_opening:
       return i == Link::ground ? 0.0 : s.link_opening(i);
     case Kind::bond_force:
-      return -tension(s, i);
+      return i == Link::ground ? std::numeric_limits<double>::quiet_NaN() : -tension(s, i);
     case Kind::bond_opening:
       return s.displacement_at(i + 1) - s.displacement_at(i);
     case Kind::far_force: {
       if (i != Link::ground) return s.link_force(i);
       const double f = s.far_force();
-      return std::isnan(f) ? -tension(s, line_.bonds.size() - 1) : f;
+      if (!std::isnan(f) || line_.bonds.empty()) return f;
+      return -tension(s, line_.bonds.size() - 1);
     }
     case Kind::far_opening:
       return i != Link::ground ? s.link_opening(i) : -s.displacement_at(line_.nodes() - 1);
