@@ -145,8 +145,9 @@ void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigi
 }
 
 // A line of three bars of M elements in all (M/3, M/3, the rest; a rigid
-// joint, a welded one, the rigid obstacle at x = 0), all moving at -1: the
-// line engine's step, to set beside the single bar's bare loop of M elements.
+// joint, a welded one, the rigid obstacle at x = 0 — elastic, k = 100, for
+// the penalty schemes), all moving at -1: the line engine's step, to set
+// beside the single bar's bare loop of M elements.
 void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   const long long M = state.range(0), third = M / 3;
   barimpact::Case c;
@@ -160,9 +161,10 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
     c.bodies.push_back(b);
   }
   barimpact::JointData j{std::string("a-b"), std::string("a"), std::string("b"), barimpact::LawData{}};
-  j.law.law = barimpact::JointLaw::rigid;
+  const bool rigid = scheme != "newmark" && scheme != "paper";
+  j.law.law = rigid ? barimpact::JointLaw::rigid : barimpact::JointLaw::elastic;
   c.joints = {j};
-  c.near_end.law = barimpact::JointLaw::rigid;
+  c.near_end.law = j.law.law;
   c.time.scheme = scheme;
   c.time.step = 0.5 / static_cast<double>(M);
   c.time.end = 1.0;
@@ -424,7 +426,7 @@ const bool registered = [] {
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }
-  for (const char* scheme : {"central-difference"}) {
+  for (const char* scheme : {"central-difference", "newmark"}) {
     const std::string name = fmt::format("BM_Line/{}", scheme);
     benchmark::RegisterBenchmark(name.c_str(), BM_LineStep, std::string(scheme))
         ->RangeMultiplier(10)

@@ -7,6 +7,7 @@
 
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/line_central_difference.hpp"
+#include "barimpact/schemes/line_newmark.hpp"
 
 namespace barimpact {
 
@@ -129,6 +130,14 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
+  if (name == "newmark") {
+    for (const auto& l : line.links)
+      if (l.law.rigid())
+        return LineMisfit{"scheme", fmt::format("= \"newmark\" cannot run the rigid law of {} (schemes that can: "
+                                                "central-difference)",
+                                                l.name)};
+    return std::nullopt;
+  }
   if (name == "central-difference") {
     const double limit = line_stable_step(line, false);
     if (c.time.step > limit * (1.0 + 1e-12))
@@ -141,6 +150,7 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
 
 std::unique_ptr<Scheme> make_line_scheme(const Case& c) {
   if (c.time.scheme == "central-difference") return std::make_unique<LineCentralDifference>(c, build_line(c));
+  if (c.time.scheme == "newmark") return std::make_unique<LineNewmark>(c, build_line(c));
   throw InputError(fmt::format("time.scheme = \"{}\" cannot run a line of bodies yet", c.time.scheme));
 }
 

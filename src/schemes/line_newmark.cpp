@@ -1,0 +1,308 @@
+#include "barimpact/schemes/line_newmark.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace barimpact {
+
+namespace {
+
+// A general tridiagonal LU (Thomas), the held rows made identity: lower
+// entries, reciprocal pivots and the eliminated upper entries.
+void factor(const Tridiagonal& a, const std::vector<char>& held, std::vector<double>& lower,
+            std::vector<double>& inv_pivot, std::vector<double>& upper) {
+  const std::size_t n = a.size();
+  lower.assign(n, 0.0);
+  inv_pivot.assign(n, 0.0);
+  upper.assign(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double l = (j > 0 && !held[j]) ? a.off[j - 1] : 0.0;
+    const double d = held[j] ? 1.0 : a.diag[j];
+    const double u = (j + 1 < n && !held[j]) ? a.off[j] : 0.0;
+    lower[j] = l;
+    const double pivot = d - (j > 0 ? l * upper[j - 1] : 0.0);
+    inv_pivot[j] = 1.0 / pivot;
+    upper[j] = u * inv_pivot[j];
+  }
+}
+
+void substitute(const std::vector<double>& lower, const std::vector<double>& inv_pivot,
+                const std::vector<double>& upper, std::vector<double>& x) {
+  const std::size_t n = x.size();
+  for (std::size_t j = 0; j < n; ++j) x[j] = (x[j] - (j > 0 ? lower[j] * x[j - 1] : 0.0)) * inv_pivot[j];
+  for (std::size_t j = n - 1; j-- > 0;) x[j] -= upper[j] * x[j + 1];
+}
+
+// p for one penalty link at t_{n+1}: c = cbar - alpha p, dc/dt = rbar - gamma p
+// (alpha = beta dt^2 W_ii, gamma = gamma dt W_ii), the law's piecewise-linear
+// equation solved in closed form on each branch.
+double penalty_at(const ContactLaw& law, double cbar, double rbar, double alpha, double gamma, double c_max) {
+  if (cbar <= 0.0) return 0.0;
+  const double k = law.stiffness;
+  switch (law.kind) {
+    case LawKind::elastic:
+      return k * cbar / (1.0 + k * alpha);
+    case LawKind::viscoelastic: {
+      const double s = k * cbar + law.viscosity * rbar;
+      if (s <= 0.0) return 0.0;
+      const double p = s / (1.0 + k * alpha + law.viscosity * gamma);
+      return (alpha > 0.0 && cbar - alpha * p <= 0.0) ? cbar / alpha : p;  // stops at the face
+    }
+    case LawKind::cushion: {
+      const double loading = k * cbar / (1.0 + k * alpha);
+      if (cbar - alpha * loading >= c_max) return loading;
+      const double e2 = law.restitution * law.restitution, kk = k / e2;
+      return std::max(0.0, kk * (cbar - (1.0 - e2) * c_max) / (1.0 + kk * alpha));
+    }
+    case LawKind::rigid:
+      break;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+LineNewmark::LineNewmark(const Case& c, Line line)
+    : LineScheme(c, std::move(line)), beta_(c.time.beta), gamma_(c.time.gamma) {
+  const std::size_t n = line_.nodes(), links = line_.links.size();
+  mass_ = line_.mass(true);
+  stiff_ = line_.stiffness();
+  visc_ = line_.viscosity();
+  const Tridiagonal a =
+      Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, mass_, gamma_ * dt_, visc_), beta_ * dt_ * dt_, stiff_);
+  std::vector<char> held(n, 0);
+  for (std::size_t j = 0; j < n; ++j)
+    if (line_.fixed(j)) {
+      held[j] = 1;
+      held_.push_back(j);
+    }
+  factor(a, held, lower_, inv_pivot_, upper_);
+  // The penalty links' responses to a unit force (none on held rows) and their Delassus matrix.
+  response_.assign(links, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < links; ++i) {
+    const Link& l = line_.links[i];
+    if (l.a != Link::ground && !held[l.a]) response_[i][l.a] = -1.0;
+    if (l.b != Link::ground && !held[l.b]) response_[i][l.b] = 1.0;
+    substitute(lower_, inv_pivot_, upper_, response_[i]);
+  }
+  delassus_.assign(links * links, 0.0);
+  for (std::size_t i = 0; i < links; ++i)
+    for (std::size_t j = 0; j < links; ++j)
+      delassus_[i * links + j] = line_.opening(i, response_[j].data()) - line_.links[i].gap;
+  for (auto* x : {&u_, &v_, &acc_, &u_old_, &v_old_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
+  p_old_.assign(links, 0.0);
+  c_old_.assign(links, 0.0);
+  c_free_.assign(links, 0.0);
+  rate_free_.assign(links, 0.0);
+}
+
+void LineNewmark::residual(const std::vector<double>& u, const std::vector<double>& v, double t,
+                           std::vector<double>& r) {
+  const std::size_t n = line_.nodes();
+  stiff_.multiply(u, r);
+  visc_.multiply(v, work_);
+  for (std::size_t j = 0; j < n; ++j) r[j] = (load_zero_ ? 0.0 : load_[j]) - r[j] - work_[j];
+  if (line_.near.kind == EndKind::force) r[line_.near.node] += near_value(t);
+  if (line_.far.kind == EndKind::force) r[line_.far.node] += far_value(t);
+}
+
+void LineNewmark::solve(std::vector<double>& x) const {
+  substitute(lower_, inv_pivot_, upper_, x);
+}
+
+void LineNewmark::hold_ends(double t) {
+  for (const End* e : {&line_.near, &line_.far}) {
+    if (e->kind == EndKind::clamped) rhs_[e->node] = 0.0;
+    if (e->kind == EndKind::velocity) {  // v^{n+1} = v(t): a^{n+1} from v^{n+1} = v^* + gamma dt a^{n+1}
+      const double target = e == &line_.near ? near_value(t) : far_value(t);
+      rhs_[e->node] = (target - v_[e->node]) / (gamma_ * dt_);
+    }
+  }
+}
+
+// The support's force along +x on a held node at the current state: what
+// its equation of motion needs beyond the line's own forces.
+double LineNewmark::support(std::size_t j, double t) const {
+  const std::size_t n = line_.nodes();
+  auto row = [&](const Tridiagonal& m, const std::vector<double>& x) {
+    double s = m.diag[j] * x[j];
+    if (j > 0) s += m.off[j - 1] * x[j - 1];
+    if (j + 1 < n) s += m.off[j] * x[j + 1];
+    return s;
+  };
+  double s = row(mass_, acc_) + row(visc_, v_) + row(stiff_, u_) - (load_zero_ ? 0.0 : load_[j]);
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    if (line_.links[i].a == j) s += force_[i];
+    if (line_.links[i].b == j) s -= force_[i];
+  }
+  (void)t;
+  return s;
+}
+
+void LineNewmark::start() {
+  const std::size_t n = line_.nodes();
+  n_ = 0;
+  u_ = u0_;
+  v_ = v0_;
+  std::fill(c_max_.begin(), c_max_.end(), 0.0);
+  // a^0 = M^{-1} (F^0 - K u^0 - C v^0 + links), held rows at their ends' accelerations.
+  load_at(0.0);
+  residual(u_, v_, 0.0, acc_);
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const ContactLaw& law = line_.links[i].law;
+    const double c = -line_.opening(i, u_.data());
+    c_max_[i] = std::max(0.0, c);
+    force_[i] = law.rigid() ? 0.0 : law.force(c, -(line_.opening(i, v_.data()) - line_.links[i].gap), c_max_[i]);
+    add_link_force(i, force_[i], acc_.data());
+  }
+  std::vector<char> held(n, 0);
+  for (std::size_t j : held_) held[j] = 1;
+  std::vector<double> lower, inv_pivot, upper;
+  factor(mass_, held, lower, inv_pivot, upper);
+  for (const End* e : {&line_.near, &line_.far}) {
+    if (e->kind == EndKind::clamped) acc_[e->node] = 0.0;
+    if (e->kind == EndKind::velocity)  // the history's slope over the first step
+      acc_[e->node] = ((e == &line_.near ? near_value(dt_) : far_value(dt_)) - v_[e->node]) / dt_;
+  }
+  substitute(lower, inv_pivot, upper, acc_);
+  load_old_ = load_;
+  for (std::size_t i = 0; i < force_.size(); ++i) {
+    p_old_[i] = force_[i];
+    c_old_[i] = -line_.opening(i, u_.data());
+  }
+  support_old_[0] = support(line_.near.node, 0.0);
+  support_old_[1] = support(line_.far.node, 0.0);
+  near_force_ = !line_.links.empty() && line_.links.front().name == "near_end" ? force_.front()
+                : line_.near.kind == EndKind::force                            ? near_value(0.0)
+                : line_.fixed(line_.near.node)                                 ? support_old_[0]
+                                                                               : 0.0;
+  far_force_ = !line_.links.empty() && line_.links.back().name == "far_end" ? force_.back()
+               : line_.far.kind == EndKind::force                           ? -far_value(0.0)
+               : line_.fixed(line_.far.node)                                ? -support_old_[1]
+                                                                            : 0.0;
+  ext_work_ = dissipation_ = 0.0;
+}
+
+void LineNewmark::solve_links(double t) {
+  (void)t;
+  const std::size_t links = line_.links.size();
+  if (!has_penalty_) return;
+  const double bdt2 = beta_ * dt_ * dt_, gdt = gamma_ * dt_;
+  // c and dc/dt with the free acceleration (force_ holds p; start from 0).
+  for (std::size_t i = 0; i < links; ++i) {
+    force_[i] = 0.0;
+    const double y = line_.opening(i, u_.data()) + bdt2 * (line_.opening(i, rhs_.data()) - line_.links[i].gap);
+    const double ydot =
+        line_.opening(i, v_.data()) - line_.links[i].gap + gdt * (line_.opening(i, rhs_.data()) - line_.links[i].gap);
+    c_free_[i] = -y;
+    rate_free_[i] = -ydot;
+  }
+  for (int sweep = 0; sweep < 200; ++sweep) {
+    double change = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < links; ++i) {
+      const ContactLaw& law = line_.links[i].law;
+      if (law.rigid()) continue;
+      double cbar = c_free_[i], rbar = rate_free_[i];
+      for (std::size_t j = 0; j < links; ++j)
+        if (j != i && force_[j] != 0.0) {
+          cbar -= bdt2 * delassus_[i * links + j] * force_[j];
+          rbar -= gdt * delassus_[i * links + j] * force_[j];
+        }
+      const double w = delassus_[i * links + i];
+      const double p = penalty_at(law, cbar, rbar, bdt2 * w, gdt * w, c_max_[i]);
+      change = std::max(change, std::abs(p - force_[i]));
+      scale = std::max(scale, std::abs(p));
+      force_[i] = p;
+    }
+    if (change <= 1e-14 * scale || links == 1) break;  // one link: the closed form is exact
+  }
+  for (std::size_t i = 0; i < links; ++i)
+    if (force_[i] != 0.0)
+      for (std::size_t j = 0; j < line_.nodes(); ++j) rhs_[j] += force_[i] * response_[i][j];
+}
+
+void LineNewmark::advance() {
+  const std::size_t n = line_.nodes();
+  const double t = static_cast<double>(n_ + 1) * dt_, dt = dt_;
+  const double bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
+  const double c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
+  u_old_ = u_;  // the budget's level n (sized once: no allocation)
+  v_old_ = v_;
+  for (std::size_t j = 0; j < n; ++j) {  // the predictors, in place
+    u_[j] += dt * v_[j] + c1 * acc_[j];
+    v_[j] += c2 * acc_[j];
+  }
+  load_at(t);
+  residual(u_, v_, t, rhs_);
+  hold_ends(t);
+  solve(rhs_);     // the free a^{n+1}
+  solve_links(t);  // + the links' responses
+  for (std::size_t j = 0; j < n; ++j) {
+    acc_[j] = rhs_[j];
+    u_[j] += bdt2 * acc_[j];
+    v_[j] += gdt * acc_[j];
+  }
+  for (std::size_t i = 0; i < line_.links.size(); ++i) c_max_[i] = std::max(c_max_[i], -line_.opening(i, u_.data()));
+  ++n_;
+  book_budget(t);
+}
+
+// The trapezoidal rule's increments over (t_n, t_{n+1}).
+void LineNewmark::book_budget(double t) {
+  const std::size_t n = line_.nodes();
+  double dw = 0.0, dd = 0.0;
+  for (std::size_t j = 0; j < n && !load_zero_; ++j) dw += (u_[j] - u_old_[j]) * 0.5 * (load_old_[j] + load_[j]);
+  const double s_near = support(line_.near.node, t), s_far = support(line_.far.node, t);
+  auto moved = [&](std::size_t j) { return u_[j] - u_old_[j]; };
+  if (line_.fixed(line_.near.node)) dw += 0.5 * (support_old_[0] + s_near) * moved(line_.near.node);
+  if (line_.fixed(line_.far.node)) dw += 0.5 * (support_old_[1] + s_far) * moved(line_.far.node);
+  if (line_.near.kind == EndKind::force) dw += 0.5 * (near_value(t - dt_) + near_value(t)) * moved(line_.near.node);
+  if (line_.far.kind == EndKind::force) dw += 0.5 * (far_value(t - dt_) + far_value(t)) * moved(line_.far.node);
+  for (std::size_t j = 0; j < n; ++j) work_[j] = 0.5 * (v_[j] + v_old_[j]);
+  dd += dt_ * line_.bond_form(BondKind::element, true, work_.data(), work_.data());
+  dd += dt_ * line_.bond_form(BondKind::spring, true, work_.data(), work_.data());
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const ContactLaw& law = line_.links[i].law;
+    const double c = -line_.opening(i, u_.data());
+    if (law.kind == LawKind::viscoelastic)  // the force beyond the spring's, trapezoidal (as the single bar's)
+      dd += 0.5 *
+            ((p_old_[i] - law.stiffness * std::max(0.0, c_old_[i])) + (force_[i] - law.stiffness * std::max(0.0, c))) *
+            (c - c_old_[i]);
+    p_old_[i] = force_[i];
+    c_old_[i] = c;
+  }
+  ext_work_ += dw;
+  dissipation_ += dd;
+  load_old_ = load_;
+  support_old_[0] = s_near;
+  support_old_[1] = s_far;
+  const bool near_link = !line_.links.empty() && line_.links.front().name == "near_end";
+  const bool far_link = !line_.links.empty() && line_.links.back().name == "far_end";
+  near_force_ = near_link                           ? force_.front()
+                : line_.near.kind == EndKind::force ? near_value(t)
+                : line_.fixed(line_.near.node)      ? s_near
+                                                    : 0.0;
+  far_force_ = far_link                           ? force_.back()
+               : line_.far.kind == EndKind::force ? -far_value(t)
+               : line_.fixed(line_.far.node)      ? -s_far
+                                                  : 0.0;
+}
+
+Energies LineNewmark::energies() const {
+  Energies e;
+  e.kinetic = 0.5 * mass_.quadratic_form(v_);
+  e.strain = 0.5 * line_.bond_form(BondKind::element, false, u_.data(), u_.data());
+  e.obstacle = 0.5 * line_.bond_form(BondKind::spring, false, u_.data(), u_.data()) + link_energy(u_.data());
+  e.work = ext_work_;
+  e.dissipation = dissipation_;
+  e.contact = link_hysteresis();
+  return e;
+}
+
+bool LineNewmark::finite() const {
+  const std::size_t last = line_.nodes() - 1;
+  return std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) && std::isfinite(v_[last]) &&
+         std::isfinite(ext_work_) && std::isfinite(dissipation_);
+}
+
+}  // namespace barimpact
