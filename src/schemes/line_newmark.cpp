@@ -19,8 +19,8 @@ void factor(const Tridiagonal& a, const std::vector<char>& held, std::vector<dou
     const double l = (j > 0 && !held[j]) ? a.off[j - 1] : 0.0;
     const double d = held[j] ? 1.0 : a.diag[j];
     const double u = (j + 1 < n && !held[j]) ? a.off[j] : 0.0;
-    lower[j] = l;
     const double pivot = d - (j > 0 ? l * upper[j - 1] : 0.0);
+    lower[j] = j > 0 ? l * inv_pivot[j - 1] : 0.0;  // the multiplier: one fma on the forward chain
     inv_pivot[j] = 1.0 / pivot;
     upper[j] = u * inv_pivot[j];
   }
@@ -29,8 +29,9 @@ void factor(const Tridiagonal& a, const std::vector<char>& held, std::vector<dou
 void substitute(const std::vector<double>& lower, const std::vector<double>& inv_pivot,
                 const std::vector<double>& upper, std::vector<double>& x) {
   const std::size_t n = x.size();
-  for (std::size_t j = 0; j < n; ++j) x[j] = (x[j] - (j > 0 ? lower[j] * x[j - 1] : 0.0)) * inv_pivot[j];
-  for (std::size_t j = n - 1; j-- > 0;) x[j] -= upper[j] * x[j + 1];
+  for (std::size_t j = 1; j < n; ++j) x[j] -= lower[j] * x[j - 1];
+  x[n - 1] *= inv_pivot[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) x[j] = x[j] * inv_pivot[j] - upper[j] * x[j + 1];
 }
 
 // p for one penalty link at t_{n+1}: c = cbar - alpha p, dc/dt = rbar - gamma p
@@ -89,11 +90,17 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   for (std::size_t i = 0; i < links; ++i)
     for (std::size_t j = 0; j < links; ++j)
       delassus_[i * links + j] = line_.opening(i, response_[j].data()) - line_.links[i].gap;
-  for (auto* x : {&u_, &v_, &acc_, &u_old_, &v_old_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
+  for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
   p_old_.assign(links, 0.0);
   c_old_.assign(links, 0.0);
   c_free_.assign(links, 0.0);
   rate_free_.assign(links, 0.0);
+  active_.reserve(links);
+  for (const auto& b : line_.bonds) {
+    stiff_bond_.push_back(b.stiffness);
+    visc_bond_.push_back(b.viscosity);
+    viscous_ = viscous_ || b.viscosity != 0.0;
+  }
 }
 
 void LineNewmark::residual(const std::vector<double>& u, const std::vector<double>& v, double t,
@@ -104,10 +111,6 @@ void LineNewmark::residual(const std::vector<double>& u, const std::vector<doubl
   for (std::size_t j = 0; j < n; ++j) r[j] = (load_zero_ ? 0.0 : load_[j]) - r[j] - work_[j];
   if (line_.near.kind == EndKind::force) r[line_.near.node] += near_value(t);
   if (line_.far.kind == EndKind::force) r[line_.far.node] += far_value(t);
-}
-
-void LineNewmark::solve(std::vector<double>& x) const {
-  substitute(lower_, inv_pivot_, upper_, x);
 }
 
 void LineNewmark::hold_ends(double t) {
@@ -216,54 +219,138 @@ void LineNewmark::solve_links(double t) {
     }
     if (change <= 1e-14 * scale || links == 1) break;  // one link: the closed form is exact
   }
-  for (std::size_t i = 0; i < links; ++i)
-    if (force_[i] != 0.0)
-      for (std::size_t j = 0; j < line_.nodes(); ++j) rhs_[j] += force_[i] * response_[i][j];
 }
 
+// One step in three passes: predictors, right-hand side and the forward
+// elimination together; the back substitution (the free a^{n+1}); then, the
+// links' forces found from it, a, u, v and the budget's sums together, the
+// levels at t_n recovered from the predictors instead of copied.
 void LineNewmark::advance() {
-  const std::size_t n = line_.nodes();
-  const double t = static_cast<double>(n_ + 1) * dt_, dt = dt_;
-  const double bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
-  const double c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
-  u_old_ = u_;  // the budget's level n (sized once: no allocation)
-  v_old_ = v_;
-  for (std::size_t j = 0; j < n; ++j) {  // the predictors, in place
-    u_[j] += dt * v_[j] + c1 * acc_[j];
-    v_[j] += c2 * acc_[j];
-  }
+  const double t = static_cast<double>(n_ + 1) * dt_;
   load_at(t);
-  residual(u_, v_, t, rhs_);
-  hold_ends(t);
-  solve(rhs_);     // the free a^{n+1}
-  solve_links(t);  // + the links' responses
-  for (std::size_t j = 0; j < n; ++j) {
-    acc_[j] = rhs_[j];
-    u_[j] += bdt2 * acc_[j];
-    v_[j] += gdt * acc_[j];
-  }
-  for (std::size_t i = 0; i < line_.links.size(); ++i) c_max_[i] = std::max(c_max_[i], -line_.opening(i, u_.data()));
+  forward(t);
+  const std::size_t n = line_.nodes();
+  // Back substitution: the free a^{n+1}.
+  double* __restrict x = rhs_.data();
+  const double* __restrict inv = inv_pivot_.data();
+  const double* __restrict up = upper_.data();
+  x[n - 1] *= inv[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) x[j] = x[j] * inv[j] - up[j] * x[j + 1];
+  solve_links(t);
+  update(t);
   ++n_;
-  book_budget(t);
+  book_links(t);
 }
 
-// The trapezoidal rule's increments over (t_n, t_{n+1}).
-void LineNewmark::book_budget(double t) {
+// u^*, v^* in place; r = F + end forces - K u^* - C v^* (held rows: their
+// prescribed a); the forward elimination y_j = (r_j - l_j y_{j-1}) / pivot_j
+// in the same pass.
+void LineNewmark::forward(double t) {
   const std::size_t n = line_.nodes();
-  double dw = 0.0, dd = 0.0;
-  for (std::size_t j = 0; j < n && !load_zero_; ++j) dw += (u_[j] - u_old_[j]) * 0.5 * (load_old_[j] + load_[j]);
+  const double dt = dt_, c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
+  double* __restrict u = u_.data();
+  double* __restrict v = v_.data();
+  const double* __restrict a = acc_.data();
+  double* __restrict y = rhs_.data();
+  const double* __restrict k = stiff_bond_.data();
+  const double* __restrict c = visc_bond_.data();
+  const double* __restrict l = lower_.data();
+  const double* __restrict f = load_.data();
+  const std::size_t near = line_.near.node, far = line_.far.node;
+  const double near_force = line_.near.kind == EndKind::force ? near_value(t) : 0.0;
+  const double far_force = line_.far.kind == EndKind::force ? far_value(t) : 0.0;
+  u[0] += dt * v[0] + c1 * a[0];
+  v[0] += c2 * a[0];
+  double tension_below = 0.0, carry = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    double r = (load_zero_ ? 0.0 : f[j]) - tension_below;
+    if (j + 1 < n) {
+      u[j + 1] += dt * v[j + 1] + c1 * a[j + 1];
+      v[j + 1] += c2 * a[j + 1];
+      tension_below = k[j] * (u[j + 1] - u[j]) + c[j] * (v[j + 1] - v[j]);
+      r += tension_below;
+    }
+    if (j == near || j == far) r = end_row(j, r + (j == near ? near_force : 0.0) + (j == far ? far_force : 0.0), t);
+    carry = r - l[j] * carry;
+    y[j] = carry;
+  }
+}
+
+// An end node's row: its right-hand side, or a held end's prescribed
+// acceleration (clamped: 0; driven: v^{n+1} = v(t) = v^* + gamma dt a^{n+1}).
+double LineNewmark::end_row(std::size_t j, double r, double t) const {
+  for (const End* e : {&line_.near, &line_.far}) {
+    if (e->node != j) continue;
+    if (e->kind == EndKind::clamped) return 0.0;
+    if (e->kind == EndKind::velocity)
+      return ((e == &line_.near ? near_value(t) : far_value(t)) - v_[j]) / (gamma_ * dt_);
+  }
+  return r;
+}
+
+// a^{n+1} = a_free + sum p_i w_i; u, v from the predictors; the step's
+// external work (load) and viscous dissipation from the levels at t_n,
+// recovered: v^n = v^* - (1 - gamma) dt a^n, u^{n+1} - u^n = dt v^n + (1/2 - beta) dt^2 a^n + beta dt^2 a^{n+1}.
+void LineNewmark::update(double t) {
+  (void)t;
+  const std::size_t n = line_.nodes(), links = line_.links.size();
+  const double dt = dt_, bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
+  const double c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
+  active_.clear();
+  for (std::size_t i = 0; i < links; ++i)
+    if (force_[i] != 0.0) active_.push_back(i);  // reserved for every link: no allocation
+  double* __restrict u = u_.data();
+  double* __restrict v = v_.data();
+  double* __restrict a = acc_.data();
+  const double* __restrict x = rhs_.data();
+  const double* __restrict c = visc_bond_.data();
+  // At most two links push on most steps: their responses by raw pointers.
+  const double* w0 = active_.size() > 0 ? response_[active_[0]].data() : nullptr;
+  const double* w1 = active_.size() > 1 ? response_[active_[1]].data() : nullptr;
+  const double p0 = w0 ? force_[active_[0]] : 0.0, p1 = w1 ? force_[active_[1]] : 0.0;
+  auto accel = [&](std::size_t j) {
+    double anew = x[j];
+    if (w0) anew += p0 * w0[j];
+    if (w1) anew += p1 * w1[j];
+    for (std::size_t m = 2; m < active_.size(); ++m) anew += force_[active_[m]] * response_[active_[m]][j];
+    return anew;
+  };
+  for (int e = 0; e < 2; ++e) {  // the ends' u^{n+1} - u^n, for their forces' work
+    const std::size_t j = e == 0 ? line_.near.node : line_.far.node;
+    du_end_[e] = dt * (v[j] - c2 * a[j]) + c1 * a[j] + bdt2 * accel(j);
+  }
+  const bool loaded = !load_zero_;
+  double dw = 0.0, dd = 0.0, vbar_below = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double anew = accel(j);
+    const double vold = v[j] - c2 * a[j];
+    const double du = dt * vold + c1 * a[j] + bdt2 * anew;
+    u[j] += bdt2 * anew;
+    v[j] += gdt * anew;
+    a[j] = anew;
+    if (loaded) dw += du * 0.5 * (load_old_[j] + load_[j]);
+    if (viscous_) {
+      const double vbar = 0.5 * (v[j] + vold);
+      if (j > 0) dd += dt * c[j - 1] * (vbar - vbar_below) * (vbar - vbar_below);
+      vbar_below = vbar;
+    }
+  }
+  step_work_ = dw;
+  step_dissipation_ = dd;
+}
+
+// The links' c_max, the ends' forces and supports, and the budget's end and link terms.
+void LineNewmark::book_links(double t) {
+  double dw = step_work_, dd = step_dissipation_;
   const double s_near = support(line_.near.node, t), s_far = support(line_.far.node, t);
-  auto moved = [&](std::size_t j) { return u_[j] - u_old_[j]; };
-  if (line_.fixed(line_.near.node)) dw += 0.5 * (support_old_[0] + s_near) * moved(line_.near.node);
-  if (line_.fixed(line_.far.node)) dw += 0.5 * (support_old_[1] + s_far) * moved(line_.far.node);
-  if (line_.near.kind == EndKind::force) dw += 0.5 * (near_value(t - dt_) + near_value(t)) * moved(line_.near.node);
-  if (line_.far.kind == EndKind::force) dw += 0.5 * (far_value(t - dt_) + far_value(t)) * moved(line_.far.node);
-  for (std::size_t j = 0; j < n; ++j) work_[j] = 0.5 * (v_[j] + v_old_[j]);
-  dd += dt_ * line_.bond_form(BondKind::element, true, work_.data(), work_.data());
-  dd += dt_ * line_.bond_form(BondKind::spring, true, work_.data(), work_.data());
+  if (line_.fixed(line_.near.node)) dw += 0.5 * (support_old_[0] + s_near) * du_end_[0];
+  if (line_.fixed(line_.far.node)) dw += 0.5 * (support_old_[1] + s_far) * du_end_[1];
+  if (line_.near.kind == EndKind::force) dw += 0.5 * (near_value(t - dt_) + near_value(t)) * du_end_[0];
+  if (line_.far.kind == EndKind::force) dw += 0.5 * (far_value(t - dt_) + far_value(t)) * du_end_[1];
   for (std::size_t i = 0; i < line_.links.size(); ++i) {
     const ContactLaw& law = line_.links[i].law;
     const double c = -line_.opening(i, u_.data());
+    c_max_[i] = std::max(c_max_[i], c);
     if (law.kind == LawKind::viscoelastic)  // the force beyond the spring's, trapezoidal (as the single bar's)
       dd += 0.5 *
             ((p_old_[i] - law.stiffness * std::max(0.0, c_old_[i])) + (force_[i] - law.stiffness * std::max(0.0, c))) *
@@ -273,7 +360,7 @@ void LineNewmark::book_budget(double t) {
   }
   ext_work_ += dw;
   dissipation_ += dd;
-  load_old_ = load_;
+  if (!load_zero_ && !load_steady_) load_old_ = load_;
   support_old_[0] = s_near;
   support_old_[1] = s_far;
   const bool near_link = !line_.links.empty() && line_.links.front().name == "near_end";

@@ -39,13 +39,14 @@ class LineNewmark final : public LineScheme {
  private:
   /// r = F(t) + end forces - C v - K u at every free row; held rows get `held`.
   void residual(const std::vector<double>& u, const std::vector<double>& v, double t, std::vector<double>& r);
-  /// x <- A^{-1} x (held rows: identity).
-  void solve(std::vector<double>& x) const;
   /// The links' forces at t_{n+1} given the free acceleration (responses added to acc_).
   void solve_links(double t);
   /// The held ends' prescribed accelerations at t_{n+1} into rhs_.
   void hold_ends(double t);
-  void book_budget(double t);
+  void forward(double t);
+  [[nodiscard]] double end_row(std::size_t j, double r, double t) const;
+  void update(double t);
+  void book_links(double t);
   [[nodiscard]] double support(std::size_t node, double t) const;
 
   double beta_, gamma_;
@@ -54,8 +55,13 @@ class LineNewmark final : public LineScheme {
   std::vector<std::size_t> held_;                  // nodes held by their ends
   std::vector<std::vector<double>> response_;      // w_i = A^{-1} h_i, per penalty link
   std::vector<double> delassus_;                   // W_ij, links x links
-  std::vector<double> u_, v_, acc_, u_old_, v_old_, rhs_, work_;
+  std::vector<double> u_, v_, acc_, rhs_, work_;
   std::vector<double> load_old_, p_old_, c_old_, c_free_, rate_free_;
+  std::vector<double> stiff_bond_, visc_bond_;  // k_j, c_j per bond
+  std::vector<std::size_t> active_;             // links pushing this step
+  double du_end_[2] = {0, 0};                   // the ends' u^{n+1} - u^n
+  double step_work_ = 0.0, step_dissipation_ = 0.0;
+  bool viscous_ = false;
   double support_old_[2] = {0, 0};
   double ext_work_ = 0.0, dissipation_ = 0.0;
 };
