@@ -135,9 +135,7 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   }
   if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
     return rigid_line_misfit(c, line);
-  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (central-difference, moreau-jean, "
-                                          "paoli-schatzman and mass-redistribution can)",
-                                          name)};
+  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (central-difference can)", name)};
 }
 
 std::unique_ptr<Scheme> make_line_scheme(const Case& c) {
