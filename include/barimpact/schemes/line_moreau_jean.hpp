@@ -73,7 +73,6 @@ class LineMoreauJean final : public LineScheme {
   std::vector<unsigned char> active_;
   bool any_active_ = false, needs_old_ = false, viscous_ = false;
   double near_impulse_ = 0.0, far_impulse_ = 0.0;  // force ends: dt (theta f(t_{n+1}) + (1 - theta) f(t_n))
-  double near_mean_ = 0.0, far_mean_ = 0.0;        // force ends: (f(t_n) + f(t_{n+1})) / 2
   double near_u_old_ = 0.0, far_u_old_ = 0.0;
   double work_ = 0.0, dissipation_ = 0.0, contact_ = 0.0;
 };
