@@ -8,6 +8,7 @@
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/line_central_difference.hpp"
 #include "barimpact/schemes/line_newmark.hpp"
+#include "barimpact/schemes/line_rigid.hpp"
 
 namespace barimpact {
 
@@ -145,12 +146,19 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
                                             c.time.step, limit)};
     return std::nullopt;
   }
-  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (central-difference can)", name)};
+  if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
+    return rigid_line_misfit(c, line);
+  if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
+    return rigid_line_misfit(c, line);
+  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (central-difference, newmark, "
+                                          "moreau-jean, paoli-schatzman and mass-redistribution can)",
+                                          name)};
 }
 
 std::unique_ptr<Scheme> make_line_scheme(const Case& c) {
   if (c.time.scheme == "central-difference") return std::make_unique<LineCentralDifference>(c, build_line(c));
   if (c.time.scheme == "newmark") return std::make_unique<LineNewmark>(c, build_line(c));
+  if (auto s = make_rigid_line_scheme(c)) return s;
   throw InputError(fmt::format("time.scheme = \"{}\" cannot run a line of bodies yet", c.time.scheme));
 }
 

@@ -2,10 +2,13 @@
 // step 1. Counted by replacing the global operator new in this test program.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdlib>
 #include <new>
+#include <string>
+#include <utility>
 
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
@@ -71,6 +74,72 @@ fields_at = [1.0, 2.5]
   EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
   EXPECT_EQ(fields.taken(), 2u);
   EXPECT_GE(contact.intervals().size(), 1u);
+}
+
+// The rigid-contact schemes on a line of several bodies: rigid joints and a
+// rigid near end that all close, a spring to a mass, gravity and a body force
+// in t (the load recomputed every step), a far end driven at v(t); the same
+// observers. Every step that settles contacts runs too.
+TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
+  for (const char* scheme : {"moreau-jean", "paoli-schatzman", "mass-redistribution"}) {
+    Case c;
+    c.single_bar = false;
+    const bool redistribution = std::string(scheme) == "mass-redistribution";
+    for (auto [name, velocity] : {std::pair{"a", "-1"}, std::pair{"b", "-2"}, std::pair{"m", "-1"}}) {
+      BodyData b;
+      b.name = name;
+      b.elements = 30;
+      b.velocity = velocity;
+      if (std::string(name) == "m") {
+        b.kind = BodyKind::mass;
+        b.mass = 0.5;
+      }
+      c.bodies.push_back(b);
+    }
+    JointData ab, bm;
+    ab.name = "a-b";
+    ab.lower = "a";
+    ab.upper = "b";
+    ab.law.law = JointLaw::rigid;
+    ab.law.gap = 0.01;
+    bm.name = "b-m";
+    bm.lower = "b";
+    bm.upper = "m";
+    bm.law.law = redistribution ? JointLaw::spring : JointLaw::rigid;
+    c.joints = {ab, bm};
+    c.near_end.law = JointLaw::rigid;
+    c.far_end.law = JointLaw::velocity;
+    c.far_end.value = "-0.1 * t";
+    c.load.gravity = 1.0;
+    c.load.body_force = "-0.5 * t";
+    c.time.scheme = scheme;
+    c.time.step = redistribution || std::string(scheme) == "moreau-jean" ? 0.02 : 0.01;
+    c.time.end = 3.0;
+    c.output.fields_at = {1.0, 2.5};
+    auto s = make_scheme(c);
+    const Line line = build_line(c);
+    const Probes probes(c, line);
+    HistoryRecorder history(c.output.every, &probes);
+    FieldRecorder fields(c, line, c.output.fields_at);
+    ContactMonitor contact(c.obstacle);
+    LinkMonitor links(line);
+    const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
+    const long long steps = c.step_count();
+    for (auto* o : observers) o->begin(*s, steps);
+    s->start();
+    allocations = 0;
+    counting = true;
+    double largest = 0.0;
+    for (long long n = 0; n <= steps; ++n) {
+      if (n > 0) s->advance();
+      for (auto* o : observers) o->observe(*s);
+      largest = std::max(largest, s->link_force(1));
+    }
+    counting = false;
+    EXPECT_EQ(allocations.load(), 0) << scheme;
+    EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
+    EXPECT_GT(largest, 0.0) << scheme;  // the joint a-b pushed
+  }
 }
 
 }  // namespace
