@@ -1,5 +1,6 @@
-// The case: every datum of one problem (bar, load, initial state, obstacle,
-// time stepping, output), read from a TOML case file and validated.
+// The case: every datum of one problem (the line of bodies, its joints, end
+// laws and gauges, or today's single bar and obstacle; load, time stepping,
+// output), read from a TOML case file and validated.
 //
 // This header owns the case-file contract: section and key names, their
 // defaults, and the rules each value obeys. It does not own the numerics:
