@@ -36,17 +36,17 @@
 #include <thread>
 
 #include "barimpact/case/case.hpp"
-#include "barimpact/study/convergence.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/schemes/scheme.hpp"
+#include "barimpact/study/convergence.hpp"
 #include "barimpact/study/sweep.hpp"
 
 #ifdef BARIMPACT_HAVE_MPI
 #include <mpi.h>
 #endif
-#include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
 
 namespace {
 
@@ -440,7 +440,8 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
     throw barimpact::InputError(
         fmt::format("plot: {} holds no history.csv (give a directory written by barimpact run)", run_dir));
   std::vector<std::string> names;
-  for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts"})
+  for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces",
+                             "gauges", "masses"})  // plot.py writes these; a line adds the last three
     for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
   barimpact::prepare_output_directory(target, "plot", names, force);
   // DIR/figures belongs to the run directory it is in, drawn or not.

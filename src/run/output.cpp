@@ -292,7 +292,10 @@ std::string summary_json(const Case& c, const Summary& s) {
 std::string summary_text(const Case& c, const Summary& s) {
   std::string out = fmt::format("{}: {} steps of dt = {} on {} elements, t = 0 .. {}{}\n", s.method, s.steps_done,
                                 c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
-  if (s.contacts.empty()) out += "  no contact\n";
+  // The near end's obstacle, when it has one (a line's ends may be free, held or loaded).
+  const bool obstacle = std::find(s.link_names.begin(), s.link_names.end(), "near_end") != s.link_names.end() ||
+                        (c.single_bar && c.obstacle.kind != ObstacleKind::none);
+  if (s.contacts.empty() && (obstacle || s.link_names.empty())) out += "  no contact\n";
   constexpr std::size_t shown = 8;
   for (std::size_t i = 0; i < std::min(shown, s.contacts.size()); ++i) {
     const auto& ci = s.contacts[i];
@@ -306,7 +309,8 @@ std::string summary_text(const Case& c, const Summary& s) {
   }
   if (s.contacts.size() > shown)
     out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);
-  out += fmt::format("  max penetration {:.4g}, max reaction {:.4g}\n", s.max_penetration, s.max_reaction);
+  if (obstacle || s.link_names.empty())
+    out += fmt::format("  max penetration {:.4g}, max reaction {:.4g}\n", s.max_penetration, s.max_reaction);
   for (std::size_t i = 0; i < s.link_names.size(); ++i) {
     if (s.link_names[i] == "near_end") continue;  // the contacts above
     double largest = 0.0;

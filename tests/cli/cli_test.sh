@@ -209,6 +209,11 @@ done
 "$bin" run "$work/line-saint-venant/case.toml" --out "$work/line-again" > /dev/null && ok || bad "resolved line case"
 cmp -s "$work/line-saint-venant/history.csv" "$work/line-again/history.csv" && ok || bad "resolved line case differs"
 "$bin" exact "$lines/saint-venant.toml" --out "$work/line-exact" > /dev/null && ok || bad "line exact"
+# A line's figures (joint forces, gauges, masses) are barimpact's: the run can be replaced after plotting.
+if "$bin" plot "$work/line-pile-hammer" > /dev/null 2>&1; then
+  [ -f "$work/line-pile-hammer/figures/masses.png" ] && ok || bad "line figures"
+  "$bin" run "$lines/pile-hammer.toml" --out "$work/line-pile-hammer" > /dev/null 2> "$work/err" && ok || bad "rerun after plot: $(cat "$work/err")"
+fi
 expect_refused "joint.short-long.gap must be >= 0" run "$lines/saint-venant.toml" --out "$work/refused" --set joint.short-long.gap=-1
 expect_refused "no body named" run "$lines/saint-venant.toml" --out "$work/refused" --set body.nope.length=1
 expect_refused "cannot run a line" run "$lines/saint-venant.toml" --out "$work/refused" --set time.scheme=paper
