@@ -159,6 +159,31 @@ def mark_figures(run_dir):
     staging.replace(marker)
 
 
+def mark_written(directory, names):
+    """List `names` in `directory`'s marker (.barimpact), as the command does,
+    when the directory is barimpact's: already marked, or holding nothing
+    but these files. A directory of someone else's is left unmarked."""
+    directory = Path(directory)
+    marker = directory / ".barimpact"
+    try:
+        data = json.loads(marker.read_text())
+        if data.get("written_by") != "barimpact":
+            return
+    except OSError:
+        present = {p.name for p in directory.iterdir()}
+        if not present <= set(names):
+            return  # someone else's files are here: not ours to claim
+        data = {"written_by": "barimpact", "command": "plot",
+                "note": "barimpact replaces or resumes this directory; it never touches what is not listed in entries",
+                "entries": []}
+    except ValueError:
+        return
+    data["entries"] = sorted(set(data.get("entries", [])) | set(names))
+    staging = marker.with_name(f".barimpact.{os.getpid()}")
+    staging.write_text(json.dumps(data, indent=2) + "\n")
+    staging.replace(marker)
+
+
 def plot(source, out=None, formats=("png", "svg")):
     """Write the figures of `source` (a Result, a RunData or a run directory)
     into `out` (default: DIR/figures for a directory, else ./figures).
@@ -258,4 +283,5 @@ def plot(source, out=None, formats=("png", "svg")):
         top.legend(loc="best")
     _save(fig, out, "impacts", formats, written)
     _line_figures(data, out, formats, written)
+    mark_written(out, [Path(p).name for p in written])
     return written
