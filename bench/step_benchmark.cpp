@@ -491,7 +491,7 @@ const bool registered = [] {
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }
-  for (const char* scheme : {"central-difference", "newmark"}) {
+  for (const char* scheme : {"central-difference", "newmark", "paper"}) {
     const std::string name = fmt::format("BM_Line/{}", scheme);
     benchmark::RegisterBenchmark(name.c_str(), BM_LineStep, std::string(scheme))
         ->RangeMultiplier(10)

@@ -34,33 +34,6 @@ void substitute(const std::vector<double>& lower, const std::vector<double>& inv
   for (std::size_t j = n - 1; j-- > 0;) x[j] = x[j] * inv_pivot[j] - upper[j] * x[j + 1];
 }
 
-// p for one penalty link at t_{n+1}: c = cbar - alpha p, dc/dt = rbar - gamma p
-// (alpha = beta dt^2 W_ii, gamma = gamma dt W_ii), the law's piecewise-linear
-// equation solved in closed form on each branch.
-double penalty_at(const ContactLaw& law, double cbar, double rbar, double alpha, double gamma, double c_max) {
-  if (cbar <= 0.0) return 0.0;
-  const double k = law.stiffness;
-  switch (law.kind) {
-    case LawKind::elastic:
-      return k * cbar / (1.0 + k * alpha);
-    case LawKind::viscoelastic: {
-      const double s = k * cbar + law.viscosity * rbar;
-      if (s <= 0.0) return 0.0;
-      const double p = s / (1.0 + k * alpha + law.viscosity * gamma);
-      return (alpha > 0.0 && cbar - alpha * p <= 0.0) ? cbar / alpha : p;  // stops at the face
-    }
-    case LawKind::cushion: {
-      const double loading = k * cbar / (1.0 + k * alpha);
-      if (cbar - alpha * loading >= c_max) return loading;
-      const double e2 = law.restitution * law.restitution, kk = k / e2;
-      return std::max(0.0, kk * (cbar - (1.0 - e2) * c_max) / (1.0 + kk * alpha));
-    }
-    case LawKind::rigid:
-      break;
-  }
-  return 0.0;
-}
-
 }  // namespace
 
 LineNewmark::LineNewmark(const Case& c, Line line)
@@ -86,10 +59,14 @@ LineNewmark::LineNewmark(const Case& c, Line line)
     if (l.b != Link::ground && !held[l.b]) response_[i][l.b] = 1.0;
     substitute(lower_, inv_pivot_, upper_, response_[i]);
   }
-  delassus_.assign(links * links, 0.0);
-  for (std::size_t i = 0; i < links; ++i)
+  std::vector<double> delassus(links * links, 0.0);
+  std::vector<ContactLaw> laws;
+  for (std::size_t i = 0; i < links; ++i) {
+    laws.push_back(line_.links[i].law);
     for (std::size_t j = 0; j < links; ++j)
-      delassus_[i * links + j] = line_.opening(i, response_[j].data()) - line_.links[i].gap;
+      delassus[i * links + j] = line_.opening(i, response_[j].data()) - line_.links[i].gap;
+  }
+  penalty_ = PenaltyLinks(std::move(laws), std::move(delassus), beta_ * dt_ * dt_, gamma_ * dt_);
   for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
   p_old_.assign(links, 0.0);
   c_old_.assign(links, 0.0);
@@ -186,39 +163,18 @@ void LineNewmark::start() {
   ext_work_ = dissipation_ = 0.0;
 }
 
-void LineNewmark::solve_links(double t) {
-  (void)t;
-  const std::size_t links = line_.links.size();
+// The links' compressions and rates with the free acceleration (every
+// force 0), then their forces at t_{n+1} by the active-set iteration.
+void LineNewmark::solve_links() {
   if (!has_penalty_) return;
+  const std::size_t links = line_.links.size();
   const double bdt2 = beta_ * dt_ * dt_, gdt = gamma_ * dt_;
-  // c and dc/dt with the free acceleration (force_ holds p; start from 0).
   for (std::size_t i = 0; i < links; ++i) {
-    force_[i] = 0.0;
-    const double y = line_.opening(i, u_.data()) + bdt2 * (line_.opening(i, rhs_.data()) - line_.links[i].gap);
-    const double ydot =
-        line_.opening(i, v_.data()) - line_.links[i].gap + gdt * (line_.opening(i, rhs_.data()) - line_.links[i].gap);
-    c_free_[i] = -y;
-    rate_free_[i] = -ydot;
+    const double free = line_.opening(i, rhs_.data()) - line_.links[i].gap;  // h_i . a_free
+    c_free_[i] = -(line_.opening(i, u_.data()) + bdt2 * free);
+    rate_free_[i] = -(line_.opening(i, v_.data()) - line_.links[i].gap + gdt * free);
   }
-  for (int sweep = 0; sweep < 200; ++sweep) {
-    double change = 0.0, scale = 0.0;
-    for (std::size_t i = 0; i < links; ++i) {
-      const ContactLaw& law = line_.links[i].law;
-      if (law.rigid()) continue;
-      double cbar = c_free_[i], rbar = rate_free_[i];
-      for (std::size_t j = 0; j < links; ++j)
-        if (j != i && force_[j] != 0.0) {
-          cbar -= bdt2 * delassus_[i * links + j] * force_[j];
-          rbar -= gdt * delassus_[i * links + j] * force_[j];
-        }
-      const double w = delassus_[i * links + i];
-      const double p = penalty_at(law, cbar, rbar, bdt2 * w, gdt * w, c_max_[i]);
-      change = std::max(change, std::abs(p - force_[i]));
-      scale = std::max(scale, std::abs(p));
-      force_[i] = p;
-    }
-    if (change <= 1e-14 * scale || links == 1) break;  // one link: the closed form is exact
-  }
+  penalty_.solve(c_free_.data(), rate_free_.data(), c_max_.data(), force_.data());
 }
 
 // One step in three passes: predictors, right-hand side and the forward
@@ -236,7 +192,7 @@ void LineNewmark::advance() {
   const double* __restrict up = upper_.data();
   x[n - 1] *= inv[n - 1];
   for (std::size_t j = n - 1; j-- > 0;) x[j] = x[j] * inv[j] - up[j] * x[j + 1];
-  solve_links(t);
+  solve_links();
   update(t);
   ++n_;
   book_links(t);

@@ -151,7 +151,7 @@ double RigidLinks::on_node(std::size_t j, const double* p) const {
 namespace {
 
 // The schemes that run what the rigid-contact schemes refuse.
-constexpr const char* penalty_schemes = "newmark, central-difference";
+constexpr const char* penalty_schemes = "paper, newmark, central-difference";
 constexpr const char* mass_face_schemes = "moreau-jean, paoli-schatzman, central-difference";
 
 std::optional<LineMisfit> refuse(std::string rule) {

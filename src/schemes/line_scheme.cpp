@@ -8,6 +8,7 @@
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/line_central_difference.hpp"
 #include "barimpact/schemes/line_newmark.hpp"
+#include "barimpact/schemes/line_paper.hpp"
 #include "barimpact/schemes/line_rigid.hpp"
 
 namespace barimpact {
@@ -131,12 +132,13 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
-  if (name == "newmark") {
+  if (name == "paper" || name == "newmark") {
     for (const auto& l : line.links)
       if (l.law.rigid())
-        return LineMisfit{"scheme", fmt::format("= \"newmark\" cannot run the rigid law of {} (schemes that can: "
-                                                "central-difference)",
-                                                l.name)};
+        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the rigid link \"{}\" (penalty laws only; "
+                                                "schemes that can: central-difference, moreau-jean, paoli-schatzman, "
+                                                "mass-redistribution)",
+                                                name, l.name)};
     return std::nullopt;
   }
   if (name == "central-difference") {
@@ -148,18 +150,23 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   }
   if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
     return rigid_line_misfit(c, line);
-  if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
-    return rigid_line_misfit(c, line);
-  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (central-difference, newmark, "
-                                          "moreau-jean, paoli-schatzman and mass-redistribution can)",
+  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (paper, newmark, "
+                                          "central-difference, moreau-jean, paoli-schatzman and mass-redistribution "
+                                          "can)",
                                           name)};
 }
 
 std::unique_ptr<Scheme> make_line_scheme(const Case& c) {
-  if (c.time.scheme == "central-difference") return std::make_unique<LineCentralDifference>(c, build_line(c));
-  if (c.time.scheme == "newmark") return std::make_unique<LineNewmark>(c, build_line(c));
+  const std::string& name = c.time.scheme;
+  if (name == "central-difference") return std::make_unique<LineCentralDifference>(c, build_line(c));
+  if (name == "paper" || name == "newmark") {
+    Line line = build_line(c);
+    if (const auto m = line_scheme_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
+    if (name == "paper") return std::make_unique<LinePaper>(c, std::move(line));
+    return std::make_unique<LineNewmark>(c, std::move(line));
+  }
   if (auto s = make_rigid_line_scheme(c)) return s;
-  throw InputError(fmt::format("time.scheme = \"{}\" cannot run a line of bodies yet", c.time.scheme));
+  throw InputError(fmt::format("time.scheme = \"{}\" cannot run a line of bodies yet", name));
 }
 
 }  // namespace barimpact

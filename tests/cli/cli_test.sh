@@ -216,7 +216,13 @@ if "$bin" plot "$work/line-pile-hammer" > /dev/null 2>&1; then
 fi
 expect_refused "joint.short-long.gap must be >= 0" run "$lines/saint-venant.toml" --out "$work/refused" --set joint.short-long.gap=-1
 expect_refused "no body named" run "$lines/saint-venant.toml" --out "$work/refused" --set body.nope.length=1
-expect_refused "cannot run a line" run "$lines/saint-venant.toml" --out "$work/refused" --set time.scheme=paper
+for scheme in paper newmark; do
+  expect_refused "time.scheme = \"$scheme\" cannot run the rigid link \"joint.short-long\" (penalty laws only; schemes that can: central-difference, moreau-jean, paoli-schatzman, mass-redistribution)" run "$lines/saint-venant.toml" --out "$work/refused" --set time.scheme=$scheme
+done
+# The implicit schemes run a cushion on a mass, gravity and an elastic near end.
+for scheme in paper newmark; do
+  "$bin" run "$lines/pile-hammer.toml" --out "$work/line-pile-$scheme" --set time.scheme=$scheme > /dev/null 2> "$work/err" && ok || bad "pile-hammer $scheme: $(cat "$work/err")"
+done
 expect_refused "joint.capblock.viscosity is not used by law" run "$lines/pile-hammer.toml" --out "$work/refused" --set joint.capblock.viscosity=1
 expect_refused "restitution must be in (0, 1]" run "$lines/pile-hammer.toml" --out "$work/refused" --set joint.capblock.restitution=0
 expect_refused "gauge.head.at must lie in the body" run "$lines/pile-hammer.toml" --out "$work/refused" --set gauge.head.at=11

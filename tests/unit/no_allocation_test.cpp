@@ -142,5 +142,82 @@ TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
   }
 }
 
+// The implicit penalty schemes on a line: an elastic near end, a
+// viscoelastic joint with a gap, a cushion to a mass, a spring to a second
+// mass, gravity and a body force in t, a far end driven at v(t); the paper
+// scheme with its shift lambda. The near end and both unilateral joints push.
+TEST(TimeLoop, ImplicitPenaltyLineSchemesNeverAllocate) {
+  for (const char* scheme : {"paper", "newmark"}) {
+    Case c;
+    c.single_bar = false;
+    for (auto [name, velocity] :
+         {std::pair{"a", "-1"}, std::pair{"b", "-2"}, std::pair{"m", "-3"}, std::pair{"n", "-3"}}) {
+      BodyData b;
+      b.name = name;
+      b.elements = 30;
+      b.velocity = velocity;
+      if (std::string(name) == "m" || std::string(name) == "n") {
+        b.kind = BodyKind::mass;
+        b.mass = 0.5;
+      }
+      c.bodies.push_back(b);
+    }
+    JointData ab, bm, mn;
+    ab.name = "a-b";
+    ab.lower = "a";
+    ab.upper = "b";
+    ab.law.law = JointLaw::viscoelastic;
+    ab.law.stiffness = 300.0;
+    ab.law.viscosity = 3.0;
+    ab.law.gap = 0.01;
+    bm.name = "b-m";
+    bm.lower = "b";
+    bm.upper = "m";
+    bm.law.law = JointLaw::cushion;
+    bm.law.stiffness = 200.0;
+    bm.law.restitution = 0.5;
+    mn.name = "m-n";
+    mn.lower = "m";
+    mn.upper = "n";
+    mn.law.law = JointLaw::spring;
+    mn.law.stiffness = 50.0;
+    c.joints = {ab, bm, mn};
+    c.near_end.law = JointLaw::elastic;
+    c.near_end.stiffness = 500.0;
+    c.far_end.law = JointLaw::velocity;
+    c.far_end.value = "-0.1 * t";
+    c.load.gravity = 1.0;
+    c.load.body_force = "-0.5 * t";
+    c.time.scheme = scheme;
+    c.time.lambda = std::string(scheme) == "paper" ? 0.25 : 0.0;
+    c.time.step = 0.005;
+    c.time.end = 3.0;
+    c.output.fields_at = {1.0, 2.5};
+    auto s = make_scheme(c);
+    const Line line = build_line(c);
+    const Probes probes(c, line);
+    HistoryRecorder history(c.output.every, &probes);
+    FieldRecorder fields(c, line, c.output.fields_at);
+    ContactMonitor contact(c.obstacle);
+    LinkMonitor links(line);
+    const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
+    const long long steps = c.step_count();
+    for (auto* o : observers) o->begin(*s, steps);
+    s->start();
+    allocations = 0;
+    counting = true;
+    double largest[3] = {0, 0, 0};
+    for (long long n = 0; n <= steps; ++n) {
+      if (n > 0) s->advance();
+      for (auto* o : observers) o->observe(*s);
+      for (std::size_t i = 0; i < 3; ++i) largest[i] = std::max(largest[i], s->link_force(i));
+    }
+    counting = false;
+    EXPECT_EQ(allocations.load(), 0) << scheme;
+    EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
+    for (double f : largest) EXPECT_GT(f, 0.0) << scheme;
+  }
+}
+
 }  // namespace
 }  // namespace barimpact

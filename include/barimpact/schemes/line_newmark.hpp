@@ -9,9 +9,10 @@
 // A = M + gamma dt C + beta dt^2 K is factored once, with the rows of held
 // nodes replaced by their prescribed accelerations; the links' responses
 // w_i = A^{-1} h_i and the small Delassus matrix W_ij = h_i . w_j are
-// computed once, so that a step is one solve, a scalar solve per active link
-// (closed form for the piecewise-linear laws; projected Gauss-Seidel when
-// links couple, to 1e-14 of the force) and one update per active link.
+// computed once, so that a step is one solve, the links' piecewise-linear
+// laws at t_{n+1} solved exactly together (penalty_links.hpp: an active-set
+// iteration over the laws' branches, one small dense solve per pass, until
+// a pass moves no link) and one update per active link.
 // Budget of the trapezoidal rule: E_kin = v^T M v / 2, E_strain = u^T K u / 2
 // (bar elements; springs in E_obstacle with the links' stored energy),
 // dW = (u^{n+1} - u^n) . (F^n + F^{n+1}) / 2 with the end forces and the
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/penalty_links.hpp"
 
 namespace barimpact {
 
@@ -39,8 +41,8 @@ class LineNewmark final : public LineScheme {
  private:
   /// r = F(t) + end forces - C v - K u at every free row; held rows get `held`.
   void residual(const std::vector<double>& u, const std::vector<double>& v, double t, std::vector<double>& r);
-  /// The links' forces at t_{n+1} given the free acceleration (responses added to acc_).
-  void solve_links(double t);
+  /// The links' forces at t_{n+1} (force_) given the free acceleration in rhs_.
+  void solve_links();
   /// The held ends' prescribed accelerations at t_{n+1} into rhs_.
   void hold_ends(double t);
   void forward(double t);
@@ -54,7 +56,7 @@ class LineNewmark final : public LineScheme {
   std::vector<double> lower_, inv_pivot_, upper_;  // LU of A, the held rows made identity
   std::vector<std::size_t> held_;                  // nodes held by their ends
   std::vector<std::vector<double>> response_;      // w_i = A^{-1} h_i, per penalty link
-  std::vector<double> delassus_;                   // W_ij, links x links
+  PenaltyLinks penalty_;                           // the links' laws and Delassus matrix W_ij = h_i . w_j
   std::vector<double> u_, v_, acc_, rhs_, work_;
   std::vector<double> load_old_, p_old_, c_old_, c_free_, rate_free_;
   std::vector<double> stiff_bond_, visc_bond_;  // k_j, c_j per bond

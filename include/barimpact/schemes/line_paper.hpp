@@ -1,0 +1,143 @@
+// `paper` on a line of bodies: the alpha-scheme of Do, Raupp & Feijoo
+// (paper_scheme.hpp) with per-bond coefficients, its treatment of the
+// elastic obstacle given to every penalty link. With z = exp(-lambda t) u,
+// M the consistent mass (point masses on the diagonal), K and C the bonds'
+// stiffness and viscosity (bar elements and spring joints), and for each link
+// i its direction h_i = e_b - e_a and opening y_i = h_i . u + g_i:
+//
+//   M (z^{n+1} - 2 z^n + z^{n-1}) / dt^2 + S z^{n,alpha} + D (z^{n+1} - z^{n-1}) / (2 dt)
+//       = F^{n,alpha} + sum_i s_i^n h_i,
+//   S = lambda^2 M + K + lambda C + sum_i (k_i/2) h_i h_i^T,   D = 2 lambda M + C,
+//
+// F the body force, gravity and the force ends' values. Each penalty force
+// is split as the paper splits k U^-: p = k c^+ = (k/2)|y| - (k/2) y (c = -y),
+// the linear half implicit (in S: links join neighbouring nodes or a node and
+// the ground, so S stays tridiagonal) and the |.| half explicit:
+// s_i = (k/2)(|h_i . z^n + g_i e^{-lambda t_n}| - g_i (e^{-lambda t})^{n,alpha}).
+// So A = M/dt^2 + alpha S + D/(2 dt), symmetric positive definite, is
+// factored once. Laws with a status decide it explicitly from level n and
+// change A by sigma_i h_i h_i^T while it holds:
+//
+//   viscoelastic, c^n > 0 and k c^n + l dc/dt^n > 0 (the rate by a backward
+//     difference): its dashpot l (dz/dt + lambda z) joins the implicit side,
+//     centred like D and alpha-averaged like S: sigma = l (alpha lambda + 1/(2 dt));
+//   viscoelastic, c^n > 0 and k c^n + l dc/dt^n <= 0 (the law clips, p = 0):
+//     the spring's split is cancelled too, sigma = -alpha k/2;
+//   cushion, the branch from c^n and c_max: loading along k while c^n >= c_max
+//     (or never compressed), the factored split as it is; unloading and
+//     reloading along k/e^2 while c_off < c^n < c_max, c_off = (1 - e^2) c_max
+//     where the law reaches 0: (k/2e^2)|y + g + c_off| - (k/2e^2)(y + g + c_off),
+//     its implicit half sigma = alpha (k/e^2 - k)/2 beyond the factored k/2;
+//     clipped at 0 (c^n <= c_off): the factored k/2 with its kink at c_off,
+//     whose force is ~0 there as the elastic law's apart (A unchanged).
+//
+// The single bar's Sherman-Morrison becomes Woodbury's: with the responses
+// w_i = A^{-1} h_i and W_ij = h_i . w_j of the links that can change A,
+// computed once, z^{n+1} = y - sum mu_i w_i, (I + Sigma W_JJ) mu = Sigma H_J^T y over
+// the links J changed this step (y = A^{-1} r); a step with none is one solve.
+//
+// Held ends (line_rigid.hpp): a clamped node's z is 0, a node driven at v(t)
+// moves by dt v(t_{n+1/2}); their rows become the identity and the support's
+// force is the original row's residual. The solve sweeps towards x = 0 with
+// the single bar's constant stencils inside each uniform stretch of a bar
+// and the general rows at body ends, joints, masses and held ends.
+//
+// Start: z^1 by Taylor with the initial acceleration (second order), as the
+// single bar's. Reported at t_n: u^n = exp(lambda t_n) z^n, v^n = (u^{n+1} -
+// u^{n-1}) / (2 dt), each link's law at (c^n, dc/dt^n). Budget (docs/methods.md):
+// E_kin, E_strain (bar elements) and the springs' share of E_obstacle are the
+// means of the scheme's half-step energies at n -/+ 1/2; each force of
+// level m tested with (u^{m+1} - u^{m-1}) / 2 gives W_ext (loads, end forces,
+// supports) and D_visc (C, the viscoelastic links' dashpots, and while a
+// link clips the spring's energy released); E_obstacle holds each law's
+// energy at u^n and D_contact the cushions' hysteresis. Without links and
+// lambda = 0 it closes to round-off; the explicit halves close at O(dt^2).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "barimpact/schemes/line_rigid.hpp"
+#include "barimpact/schemes/line_scheme.hpp"
+
+namespace barimpact {
+
+class LinePaper final : public LineScheme {
+ public:
+  LinePaper(const Case& c, Line line);
+
+  void start() override;
+  void advance() override;
+  [[nodiscard]] double displacement_at(std::size_t j) const override { return scale(n_) * cur_[j]; }
+  [[nodiscard]] double velocity_at(std::size_t j) const override;
+  [[nodiscard]] Energies energies() const override;
+  [[nodiscard]] bool finite() const override;
+
+ private:
+  enum class LoadMode { zero, steady, unsteady };
+  /// How a link enters level m's step: the factored split spring alone, the
+  /// viscoelastic dashpot beside it, the law clipped, a cushion unloading.
+  enum class Status : unsigned char { base, pushing, clipped, unloading };
+
+  [[nodiscard]] double scale(long long m) const;
+  /// F^{m,alpha}'s weights (z-units) on F(t_{m+1}), F(t_m), F(t_{m-1}).
+  [[nodiscard]] std::array<double, 3> load_weights(long long m) const;
+  /// Each link's status, explicit forces and sigma at level m; the force ends'
+  /// values; the held rows' known z^{m+1}.
+  void prepare(long long m);
+  template <LoadMode mode>
+  void sweeps(long long m);
+  /// A row outside the stretches: B1 z^m + B0 z^{m-1} + F + extra, the held rows.
+  [[nodiscard]] double special_row(std::size_t j, double load);
+  /// Woodbury's correction for the links whose sigma is not 0.
+  void correct(double* zn);
+  void supports(const double* zn);
+  void book_level(long long m);
+  /// The links' reported forces and the ends' at the current level n.
+  void report();
+  /// The half-step energies between levels a and b (z scaled by sa, sb):
+  /// kinetic, strain (bar elements), springs.
+  void half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const;
+
+  double alpha_, lambda_;
+  LoadMode load_mode_ = LoadMode::zero;
+  Tridiagonal mass_, stiff_, visc_;  // M, K, C of the line
+  Tridiagonal b1_, b0_;              // B1 = 2M/dt^2 - (1 - 2 alpha) S, B0 = -M/dt^2 - alpha S + D/(2 dt)
+  FactoredTridiagonal factor_;       // A, held rows the identity
+  std::vector<HeldRow> held_;
+  std::vector<Stretch> stretches_;
+  std::vector<double> viscosity_;  // c_j per bond
+  bool viscous_ = false;
+  std::vector<double> extra_;  // the links' s_i h_i and the force ends' values, z-units
+  std::vector<std::size_t> extra_nodes_;
+
+  // Links whose status can change A (viscoelastic, cushions with e < 1):
+  // their index, response w = A^{-1} h (0 on held rows), W among them.
+  std::vector<std::size_t> modifiable_;
+  std::vector<std::vector<double>> response_;
+  std::vector<double> delassus_;
+  std::vector<double> sigma_;  // per modifiable link, this step
+  std::vector<double> capacitance_, mu_;
+  std::vector<std::size_t> changed_;  // the modifiable links with sigma != 0 this step
+  std::vector<Status> status_;        // per link, at the last level
+  std::vector<double> link_c_;        // per link: c^m
+
+  std::array<std::vector<double>, 3> levels_;
+  double* prev_ = nullptr;                    // z^{n-1}
+  double* cur_ = nullptr;                     // z^n
+  double* next_ = nullptr;                    // z^{n+1}
+  std::array<std::vector<double>, 3> loads_;  // F(t_m) at [m % 3] (unscaled; [0] only when steady)
+  std::array<double, 3> near_f_{}, far_f_{};  // the force ends' values at t_m, [m % 3]
+
+  // The half-step energies at n + 1/2, kept for the row at n + 1.
+  struct HalfStep {
+    long long n = -1;
+    double e[3] = {0, 0, 0};
+  };
+  mutable HalfStep cached_;
+  double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
+  double work_last_ = 0.0, dissipation_last_ = 0.0;  // level n's increments
+};
+
+}  // namespace barimpact

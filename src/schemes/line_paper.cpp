@@ -1,0 +1,484 @@
+#include "barimpact/schemes/line_paper.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "barimpact/schemes/penalty_links.hpp"
+
+namespace barimpact {
+
+namespace {
+// h_i . x: the change of link i's opening that x gives (its direction's entries).
+double along(const Line& line, std::size_t i, const double* x) {
+  return line.opening(i, x) - line.links[i].gap;
+}
+// (h_i)_j: +1 on the link's node b, -1 on a.
+double entry(const Link& l, std::size_t j) {
+  return j == l.b ? 1.0 : j == l.a ? -1.0 : 0.0;
+}
+}  // namespace
+
+LinePaper::LinePaper(const Case& c, Line line)
+    : LineScheme(c, std::move(line)), alpha_(c.time.alpha), lambda_(c.time.lambda) {
+  const std::size_t n = line_.nodes(), links = line_.links.size();
+  mass_ = line_.mass(true);
+  stiff_ = line_.stiffness();
+  visc_ = line_.viscosity();
+
+  // S = lambda^2 M + K + lambda C + sum_i (k_i/2) h_i h_i^T, D = 2 lambda M + C.
+  Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiff_);
+  S = Tridiagonal::combine(1.0, S, lambda_, visc_);
+  for (const auto& l : line_.links) {
+    const double half = 0.5 * l.law.stiffness;
+    if (l.a != Link::ground) S.diag[l.a] += half;
+    if (l.b != Link::ground) S.diag[l.b] += half;
+    if (l.a != Link::ground && l.b != Link::ground) S.off[std::min(l.a, l.b)] -= half;
+  }
+  const Tridiagonal D = Tridiagonal::combine(2.0 * lambda_, mass_, 1.0, visc_);
+  const double inv_dt2 = 1.0 / (dt_ * dt_), half_inv_dt = 0.5 / dt_;
+  Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(inv_dt2, mass_, alpha_, S), half_inv_dt, D);
+  b1_ = Tridiagonal::combine(2.0 * inv_dt2, mass_, -(1.0 - 2.0 * alpha_), S);
+  b0_ = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
+  held_ = hold_rows(line_, A);
+  factor_ = FactoredTridiagonal(A, false);
+
+  // Link faces and force ends take forces besides the bonds': general rows.
+  std::vector<unsigned char> special(n, 0);
+  for (const auto& l : line_.links)
+    for (std::size_t j : {l.a, l.b})
+      if (j != Link::ground) special[j] = 1;
+  for (const End* e : {&line_.near, &line_.far})
+    if (e->kind == EndKind::force) special[e->node] = 1;
+  for (std::size_t j = 0; j < n; ++j)
+    if (special[j]) extra_nodes_.push_back(j);
+  stretches_ = uniform_stretches(line_, special, held_);
+  extra_.assign(n, 0.0);
+
+  // The responses of the links whose status changes A, and W among them.
+  for (std::size_t i = 0; i < links; ++i) {
+    const ContactLaw& law = line_.links[i].law;
+    if (law.kind != LawKind::viscoelastic && !(law.kind == LawKind::cushion && law.restitution < 1.0)) continue;
+    std::vector<double> w(n, 0.0);
+    for (std::size_t j : {line_.links[i].a, line_.links[i].b})
+      if (j != Link::ground && !line_.fixed(j)) w[j] = entry(line_.links[i], j);
+    factor_.solve(w);
+    modifiable_.push_back(i);
+    response_.push_back(std::move(w));
+  }
+  const std::size_t m = modifiable_.size();
+  delassus_.assign(m * m, 0.0);
+  for (std::size_t r = 0; r < m; ++r)
+    for (std::size_t s = 0; s < m; ++s) delassus_[r * m + s] = along(line_, modifiable_[r], response_[s].data());
+  capacitance_.assign(m * m, 0.0);
+  mu_.assign(m, 0.0);
+  changed_.reserve(m);
+  sigma_.assign(links, 0.0);
+  status_.assign(links, Status::base);
+  link_c_.assign(links, 0.0);
+
+  for (const auto& b : line_.bonds) {
+    viscosity_.push_back(b.viscosity);
+    viscous_ = viscous_ || b.viscosity != 0.0;
+  }
+  for (auto& l : levels_) l.assign(n, 0.0);
+  load_mode_ = load_zero_ ? LoadMode::zero : load_steady_ ? LoadMode::steady : LoadMode::unsteady;
+  if (load_mode_ != LoadMode::zero)
+    for (auto& f : loads_) f.assign(n, 0.0);
+}
+
+double LinePaper::scale(long long m) const {
+  return lambda_ == 0.0 ? 1.0 : std::exp(lambda_ * static_cast<double>(m) * dt_);
+}
+
+std::array<double, 3> LinePaper::load_weights(long long m) const {
+  return {alpha_ / scale(m + 1), (1.0 - 2.0 * alpha_) / scale(m), alpha_ / scale(m - 1)};
+}
+
+void LinePaper::start() {
+  const std::size_t n = line_.nodes();
+  prev_ = levels_[2].data();
+  cur_ = levels_[0].data();
+  next_ = levels_[1].data();
+  n_ = 0;
+  cached_ = {};
+  if (load_mode_ != LoadMode::zero) line_.load(*body_force_, 0.0, loads_[0]);
+  if (load_mode_ == LoadMode::unsteady) line_.load(*body_force_, dt_, loads_[1]);
+  near_f_ = {near_value(0.0), near_value(dt_), 0.0};
+  far_f_ = {far_value(0.0), far_value(dt_), 0.0};
+
+  // The links at t = 0, and a0 = M^{-1} (F(0) - K u0 - C v0 + links + end
+  // forces), held rows at their ends' accelerations: 0, or a driven node's
+  // 2 (v(dt/2) - v(0)) / dt, which makes the Taylor step its dt v(dt/2).
+  std::vector<double> r(n, 0.0), cv(n, 0.0);
+  stiff_.multiply(u0_, r);
+  visc_.multiply(v0_, cv);
+  for (std::size_t j = 0; j < n; ++j) r[j] = (load_zero_ ? 0.0 : loads_[0][j]) - r[j] - cv[j];
+  if (line_.near.kind == EndKind::force) r[line_.near.node] += near_f_[0];
+  if (line_.far.kind == EndKind::force) r[line_.far.node] += far_f_[0];
+  double viscous = 0.0;
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const ContactLaw& law = line_.links[i].law;
+    const double c = -line_.opening(i, u0_.data()), rate = -along(line_, i, v0_.data());
+    link_c_[i] = c;
+    c_max_[i] = std::max(0.0, c);
+    force_[i] = law.force(c, rate, c_max_[i]);
+    add_link_force(i, force_[i], r.data());
+    if (law.kind == LawKind::viscoelastic) viscous += (force_[i] - law.stiffness * std::max(0.0, c)) * rate;
+  }
+  Tridiagonal m = mass_;
+  std::vector<HeldRow> rows = hold_rows(line_, m);
+  for (auto& h : rows) {
+    const double v_half = h.near ? near_value(0.5 * dt_) : far_value(0.5 * dt_);
+    h.value = h.driven ? 2.0 * (v_half - v0_[h.node]) / dt_ : 0.0;
+    h.rhs = r[h.node];
+    r[h.node] = h.value;
+    if (h.neighbour != HeldRow::none) r[h.neighbour] -= h.coupling * h.value;
+  }
+  FactoredTridiagonal(m, false).solve(r);
+  const std::vector<double>& a0 = r;
+  for (std::size_t k = 0; k < rows.size(); ++k) held_[k].support = rows[k].residual(a0.data());
+
+  // z^0 = u0 and, by Taylor, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with
+  // z' = v0 - lambda u0, z'' = a0 - 2 lambda v0 + lambda^2 u0.
+  const double half_dt2 = 0.5 * dt_ * dt_, l = lambda_;
+  for (std::size_t j = 0; j < n; ++j) {
+    cur_[j] = prev_[j] = u0_[j];
+    next_[j] = u0_[j] + dt_ * (v0_[j] - l * u0_[j]) + half_dt2 * (a0[j] - 2.0 * l * v0_[j] + l * l * u0_[j]);
+  }
+  for (const auto& h : rows)  // a held node moves as every step will move it, exactly
+    next_[h.node] =
+        h.driven ? (u0_[h.node] + dt_ * (h.near ? near_value(0.5 * dt_) : far_value(0.5 * dt_))) / scale(1) : 0.0;
+
+  // The first half step's share of the budget: dt/2 times the rates at t = 0.
+  double power = 0.0;
+  for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : loads_[0][j]) * v0_[j];
+  if (line_.near.kind == EndKind::force) power += near_f_[0] * v0_[line_.near.node];
+  if (line_.far.kind == EndKind::force) power += far_f_[0] * v0_[line_.far.node];
+  for (const auto& h : held_) power += h.support * v0_[h.node];
+  for (std::size_t j = 0; j + 1 < n; ++j) viscous += viscosity_[j] * (v0_[j + 1] - v0_[j]) * (v0_[j + 1] - v0_[j]);
+  work_half_ = 0.5 * dt_ * power;
+  dissipation_half_ = 0.5 * dt_ * viscous;
+  work_last_ = dissipation_last_ = 0.0;
+  const EndReport e = end_report(line_, force_, near_f_[0], far_f_[0], held_, 1.0);
+  near_force_ = e.near;
+  far_force_ = e.far;
+}
+
+void LinePaper::advance() {
+  const long long m = n_ + 1;
+  prepare(m);
+  switch (load_mode_) {
+    case LoadMode::zero:
+      sweeps<LoadMode::zero>(m);
+      break;
+    case LoadMode::steady:
+      sweeps<LoadMode::steady>(m);
+      break;
+    case LoadMode::unsteady:
+      sweeps<LoadMode::unsteady>(m);
+      break;
+  }
+  correct(prev_);
+  supports(prev_);
+  double* oldest = prev_;
+  prev_ = cur_;
+  cur_ = next_;
+  next_ = oldest;
+  n_ = m;
+  book_level(m);
+  report();
+}
+
+// Level m's explicit terms. For each link, y = h . z (its opening but the
+// gap, in z), c^m its compression in u; the split spring's |.| half and its
+// gap's share, or what its status puts in place of them, as s_i on h_i; the
+// status's change of A as sigma_i. Then the force ends' F^{m,alpha} and the
+// held rows' known z^{m+1}.
+void LinePaper::prepare(long long m) {
+  const double* zc = next_;  // z^m
+  const double* zo = cur_;   // z^{m-1}
+  const double em1 = 1.0 / scale(m - 1), e0 = 1.0 / scale(m), ep1 = 1.0 / scale(m + 1);
+  const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
+  for (std::size_t j : extra_nodes_) extra_[j] = 0.0;
+  changed_.clear();
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const ContactLaw& law = line_.links[i].law;
+    const double g = line_.links[i].gap, k = law.stiffness;
+    const double ym = along(line_, i, zc), yo = along(line_, i, zo);
+    const double c = -(ym / e0 + g);
+    link_c_[i] = c;
+    c_max_[i] = std::max(c_max_[i], c);
+    const double implicit_rest = (1.0 - 2.0 * alpha_) * ym + alpha_ * yo;  // y^{m,alpha} but its z^{m+1} part
+    double s = 0.5 * k * (std::abs(ym + g * e0) - g * ebar), sigma = 0.0;
+    Status status = Status::base;
+    if (law.kind == LawKind::viscoelastic && c > 0.0) {
+      const double l = law.viscosity, rate = (c + (yo / em1 + g)) / dt_;  // (c^m - c^{m-1}) / dt
+      if (k * c + l * rate > 0.0) {
+        status = Status::pushing;
+        s += l * (yo * 0.5 / dt_ - lambda_ * implicit_rest);
+        sigma = l * (alpha_ * lambda_ + 0.5 / dt_);
+      } else {
+        status = Status::clipped;
+        s = 0.5 * k * implicit_rest;
+        sigma = -0.5 * alpha_ * k;
+      }
+    } else if (law.kind == LawKind::cushion && c_max_[i] > 0.0 && c < c_max_[i]) {
+      // Off the loading line: the kink moves to c_off = (1 - e^2) c_max, where
+      // the law unloads to 0, as a gap g + c_off. Above it the slope is k/e^2;
+      // at or below it (clipped) the factored k/2 is kept, its force ~0 as the
+      // elastic law's apart, and A is left alone.
+      const double e2 = law.restitution * law.restitution, c_off = (1.0 - e2) * c_max_[i], G = g + c_off;
+      if (c > c_off) {
+        const double kk = k / e2, delta = 0.5 * (kk - k);
+        status = Status::unloading;
+        s = 0.5 * kk * (std::abs(ym + G * e0) - G * ebar) - delta * implicit_rest;
+        sigma = alpha_ * delta;
+      } else {
+        s = 0.5 * k * (std::abs(ym + G * e0) - G * ebar);
+      }
+    }
+    status_[i] = status;
+    sigma_[i] = sigma;
+    if (s != 0.0) add_link_force(i, s, extra_.data());
+  }
+  for (std::size_t r = 0; r < modifiable_.size(); ++r)
+    if (sigma_[modifiable_[r]] != 0.0) changed_.push_back(r);
+
+  const double t = static_cast<double>(m + 1) * dt_;
+  const std::array<double, 3> w = load_weights(m);
+  const auto slot = [](long long k) { return static_cast<std::size_t>(k % 3); };
+  if (line_.near.kind == EndKind::force) {
+    near_f_[slot(m + 1)] = near_value(t);
+    extra_[line_.near.node] += w[0] * near_f_[slot(m + 1)] + w[1] * near_f_[slot(m)] + w[2] * near_f_[slot(m - 1)];
+  }
+  if (line_.far.kind == EndKind::force) {
+    far_f_[slot(m + 1)] = far_value(t);
+    extra_[line_.far.node] += w[0] * far_f_[slot(m + 1)] + w[1] * far_f_[slot(m)] + w[2] * far_f_[slot(m - 1)];
+  }
+  for (auto& h : held_) {
+    const double v_half = h.near ? near_value(t - 0.5 * dt_) : far_value(t - 0.5 * dt_);
+    h.value = h.driven ? (zc[h.node] / e0 + dt_ * v_half) * ep1 : 0.0;
+  }
+}
+
+double LinePaper::special_row(std::size_t j, double load) {
+  const double* zc = next_;
+  const double* zo = cur_;
+  double r = b1_.diag[j] * zc[j] + b0_.diag[j] * zo[j] + load + extra_[j];
+  if (j > 0) r += b1_.off[j - 1] * zc[j - 1] + b0_.off[j - 1] * zo[j - 1];
+  if (j + 1 < line_.nodes()) r += b1_.off[j] * zc[j + 1] + b0_.off[j] * zo[j + 1];
+  for (auto& h : held_)
+    if (j == h.node) {
+      h.rhs = r;
+      return h.value;
+    }
+  for (const auto& h : held_)
+    if (j == h.neighbour) r -= h.coupling * h.value;  // A_kj z_j^{m+1} known
+  return r;
+}
+
+// z^{m+1} into prev_: the right-hand side B1 z^m + B0 z^{m-1} + F^{m,alpha} +
+// extra formed inside the sweep towards x = 0 (the single bar's constant
+// stencils in each stretch), the solution inside the sweep back.
+template <LinePaper::LoadMode mode>
+void LinePaper::sweeps(long long m) {
+  const double* __restrict zc = next_;
+  const double* __restrict zo = cur_;
+  double* __restrict zn = prev_;
+  const std::array<double, 3> w = load_weights(m);
+  const double* fp = nullptr;
+  const double* f0 = nullptr;
+  const double* fm = nullptr;
+  if constexpr (mode == LoadMode::steady) {
+    f0 = loads_[0].data();
+  } else if constexpr (mode == LoadMode::unsteady) {
+    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
+    line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    fp = newest.data();
+    f0 = loads_[static_cast<std::size_t>(m % 3)].data();
+    fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
+  }
+  const double wbar = w[0] + w[1] + w[2];
+  auto load = [=](std::size_t j) {
+    if constexpr (mode == LoadMode::zero) {
+      (void)j;
+      return 0.0;
+    } else if constexpr (mode == LoadMode::steady) {
+      return wbar * f0[j];
+    } else {
+      return w[0] * fp[j] + w[1] * f0[j] + w[2] * fm[j];
+    }
+  };
+  auto stencil = [&](const Stretch& s) {
+    const double b1d = b1_.diag[s.first], b1o = b1_.off[s.first], b0d = b0_.diag[s.first], b0o = b0_.off[s.first];
+    return [=](std::size_t j) {
+      const double r = b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]);
+      if constexpr (mode == LoadMode::zero) return r;  // not even the + 0.0 IEEE would keep
+      return r + load(j);
+    };
+  };
+  sweep_towards_near(
+      factor_, stretches_, stencil, [&](std::size_t j) { return special_row(j, load(j)); }, zn);
+  sweep_away(factor_, zn, [&](std::size_t j, double x) { zn[j] = x; });
+  for (const auto& h : held_) zn[h.node] = h.value;  // exactly, not through the sweep
+}
+
+// (A + sum_J sigma_i h_i h_i^T)^{-1} r = y - sum_J mu_i w_i with
+// (I + Sigma W_JJ) mu = Sigma H_J^T y, y = A^{-1} r in zn.
+void LinePaper::correct(double* zn) {
+  const std::size_t nj = changed_.size(), nm = modifiable_.size();
+  if (nj == 0) return;
+  for (std::size_t a = 0; a < nj; ++a) {
+    const std::size_t i = modifiable_[changed_[a]];
+    const double sigma = sigma_[i];
+    for (std::size_t b = 0; b < nj; ++b)
+      capacitance_[a * nj + b] = (a == b ? 1.0 : 0.0) + sigma * delassus_[changed_[a] * nm + changed_[b]];
+    mu_[a] = sigma * along(line_, i, zn);
+  }
+  (void)solve_dense(nj, capacitance_.data(), mu_.data());  // I + Sigma W: A + Sigma changes stays positive definite
+  const std::size_t n = line_.nodes();
+  for (std::size_t a = 0; a < nj; ++a) {
+    const double c = mu_[a];
+    const double* __restrict w = response_[changed_[a]].data();
+    for (std::size_t j = 0; j < n; ++j) zn[j] -= c * w[j];
+  }
+}
+
+// Each held row's residual in its original equation, the links' implicit
+// change sigma_i h_i (h_i . z^{m+1}) on it included: the support's force (z-units).
+void LinePaper::supports(const double* zn) {
+  for (auto& h : held_) {
+    h.support = h.residual(zn);
+    for (std::size_t r : changed_) {
+      const std::size_t i = modifiable_[r];
+      h.support += sigma_[i] * entry(line_.links[i], h.node) * along(line_, i, zn);
+    }
+  }
+}
+
+// Level m's increments (the levels m - 1, m, m + 1 are prev_, cur_, next_):
+// each force of the step tested with (u^{m+1} - u^{m-1}) / 2.
+void LinePaper::book_level(long long m) {
+  const std::size_t n = line_.nodes();
+  const double sm = scale(m - 1), s0 = scale(m), sp = scale(m + 1);
+  auto moved = [&](std::size_t j) { return 0.5 * (sp * next_[j] - sm * prev_[j]); };
+  const std::array<double, 3> w = load_weights(m);
+  double dw = 0.0;
+  if (load_mode_ == LoadMode::steady) {
+    const double c = s0 * (w[0] + w[1] + w[2]);
+    for (std::size_t j = 0; j < n; ++j) dw += c * loads_[0][j] * moved(j);
+  } else if (load_mode_ == LoadMode::unsteady) {
+    const auto& fp = loads_[static_cast<std::size_t>((m + 1) % 3)];
+    const auto& f0 = loads_[static_cast<std::size_t>(m % 3)];
+    const auto& fm = loads_[static_cast<std::size_t>((m - 1) % 3)];
+    for (std::size_t j = 0; j < n; ++j) dw += s0 * (w[0] * fp[j] + w[1] * f0[j] + w[2] * fm[j]) * moved(j);
+  }
+  const auto at = [](const std::array<double, 3>& f, long long k) { return f[static_cast<std::size_t>(k % 3)]; };
+  if (line_.near.kind == EndKind::force)
+    dw += s0 * (w[0] * at(near_f_, m + 1) + w[1] * at(near_f_, m) + w[2] * at(near_f_, m - 1)) * moved(line_.near.node);
+  if (line_.far.kind == EndKind::force)
+    dw += s0 * (w[0] * at(far_f_, m + 1) + w[1] * at(far_f_, m) + w[2] * at(far_f_, m - 1)) * moved(line_.far.node);
+  for (const auto& h : held_) dw += s0 * h.support * moved(h.node);
+
+  double dd = 0.0;
+  if (viscous_) {  // dt |(u^{m+1} - u^{m-1}) / (2 dt)|_C^2
+    const double inv_dt = 1.0 / dt_;
+    for (std::size_t j = 0; j + 1 < n; ++j) {
+      const double d = (moved(j + 1) - moved(j)) * inv_dt;  // the bond's stretching rate
+      dd += dt_ * viscosity_[j] * d * d;
+    }
+  }
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    if (status_[i] != Status::pushing && status_[i] != Status::clipped) continue;
+    const Link& l = line_.links[i];
+    const double dy = 0.5 * (sp * along(line_, i, next_) - sm * along(line_, i, prev_));  // (y^{m+1} - y^{m-1}) / 2
+    if (status_[i] == Status::pushing) {
+      const double rate = dy / dt_;
+      dd += dt_ * l.law.viscosity * rate * rate;
+    } else {
+      // The spring lets go unloaded: k c^m (c^{m-1} - c^{m+1}) / 2, which telescopes to what k c^2 / 2 loses.
+      dd += l.law.stiffness * link_c_[i] * dy;
+    }
+  }
+  work_last_ = dw;
+  dissipation_last_ = dd;
+  work_half_ += dw;
+  dissipation_half_ += dd;
+}
+
+void LinePaper::report() {
+  const double sm = scale(n_ - 1), sp = scale(n_ + 1);
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const double rate = -(sp * along(line_, i, next_) - sm * along(line_, i, prev_)) / (2.0 * dt_);
+    force_[i] = line_.links[i].law.force(link_c_[i], rate, c_max_[i]);
+  }
+  const auto k = static_cast<std::size_t>(n_ % 3);
+  const EndReport e = end_report(line_, force_, near_f_[k], far_f_[k], held_, scale(n_));
+  near_force_ = e.near;
+  far_force_ = e.far;
+}
+
+double LinePaper::velocity_at(std::size_t j) const {
+  if (n_ == 0) return v0_[j];
+  return (scale(n_ + 1) * next_[j] - scale(n_ - 1) * prev_[j]) / (2.0 * dt_);
+}
+
+// (1/2)|w|_M^2, and (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 over the bar
+// elements and over the springs, w = (u^b - u^a)/dt, m = (u^b + u^a)/2: the
+// identity (7.1) makes their sum telescope (lambda = 0).
+void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
+  const std::size_t n = line_.nodes();
+  const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;
+  double kinetic = 0.0, strain = 0.0, springs = 0.0;
+  auto w = [&](std::size_t j) { return (sb * zb[j] - sa * za[j]) * inv_dt; };
+  auto mid = [&](std::size_t j) { return 0.5 * (sb * zb[j] + sa * za[j]); };
+  for (std::size_t j = 0; j < n; ++j) {
+    const double wj = w(j);
+    kinetic += line_.point_mass[j] * wj * wj;
+    if (j + 1 == n) break;
+    const Bond& b = line_.bonds[j];
+    const double wr = w(j + 1);
+    kinetic += b.mass / 3.0 * (wj * wj + wj * wr + wr * wr);
+    if (b.kind == BondKind::open) continue;
+    const double dm = mid(j + 1) - mid(j), dw = wr - wj;
+    (b.kind == BondKind::element ? strain : springs) += b.stiffness * (dm * dm + extra * dw * dw);
+  }
+  e[0] = 0.5 * kinetic;
+  e[1] = 0.5 * strain;
+  e[2] = 0.5 * springs;
+}
+
+Energies LinePaper::energies() const {
+  Energies e;
+  for (std::size_t i = 0; i < line_.links.size(); ++i) e.obstacle += line_.links[i].law.energy(link_c_[i], c_max_[i]);
+  e.contact = link_hysteresis();
+  if (n_ == 0) {
+    e.kinetic = 0.5 * mass_.quadratic_form(v0_);
+    e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
+    e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
+    return e;
+  }
+  double before[3], after[3];
+  if (cached_.n == n_ - 1) {  // the previous row's n + 1/2 is this row's n - 1/2
+    std::copy(cached_.e, cached_.e + 3, before);
+  } else {
+    half_step(prev_, scale(n_ - 1), cur_, scale(n_), before);
+  }
+  half_step(cur_, scale(n_), next_, scale(n_ + 1), after);
+  cached_.n = n_;
+  std::copy(after, after + 3, cached_.e);
+  e.kinetic = 0.5 * (before[0] + after[0]);
+  e.strain = 0.5 * (before[1] + after[1]);
+  e.obstacle += 0.5 * (before[2] + after[2]);
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  return e;
+}
+
+bool LinePaper::finite() const {
+  const std::size_t last = line_.nodes() - 1;
+  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
+         std::isfinite(work_half_) && std::isfinite(dissipation_half_) && std::isfinite(scale(n_ + 1));
+}
+
+}  // namespace barimpact
