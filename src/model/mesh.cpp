@@ -62,6 +62,28 @@ std::vector<double> FactoredTridiagonal::response_to_end_force() const {
   return w;
 }
 
+TwistedTridiagonal::TwistedTridiagonal(const Tridiagonal& a) {
+  const std::size_t n = a.size(), last = n - 1, k = last / 2;
+  const std::vector<double>&d = a.diag, &o = a.off;
+  inv_.assign(n, 0.0);
+  inward_.assign(n, 0.0);
+  outward_.assign(n, 0.0);
+  for (std::size_t j = 0; j < k; ++j) {  // p_j = d_j - o_{j-1}^2 / p_{j-1}
+    inv_[j] = 1.0 / (d[j] - (j > 0 ? o[j - 1] * o[j - 1] * inv_[j - 1] : 0.0));
+    inward_[j] = j > 0 ? o[j - 1] * inv_[j] : 0.0;
+    outward_[j] = o[j] * inv_[j];
+  }
+  for (std::size_t j = last; j > k; --j) {  // p_j = d_j - o_j^2 / p_{j+1}
+    inv_[j] = 1.0 / (d[j] - (j < last ? o[j] * o[j] * inv_[j + 1] : 0.0));
+    inward_[j] = j < last ? o[j] * inv_[j] : 0.0;
+    outward_[j] = o[j - 1] * inv_[j];
+  }
+  lower_ = k > 0 ? o[k - 1] : 0.0;
+  upper_ = k < last ? o[k] : 0.0;
+  inv_[k] =
+      1.0 / (d[k] - (k > 0 ? lower_ * lower_ * inv_[k - 1] : 0.0) - (k < last ? upper_ * upper_ * inv_[k + 1] : 0.0));
+}
+
 Mesh::Mesh(double length, int elements)
     : length_(length), elements_(elements), h_(length / static_cast<double>(elements)) {}
 

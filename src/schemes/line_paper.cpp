@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "barimpact/schemes/penalty_links.hpp"
 
@@ -40,7 +41,7 @@ LinePaper::LinePaper(const Case& c, Line line)
   b1_ = Tridiagonal::combine(2.0 * inv_dt2, mass_, -(1.0 - 2.0 * alpha_), S);
   b0_ = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
   held_ = hold_rows(line_, A);
-  factor_ = FactoredTridiagonal(A, false);
+  factor_ = TwistedTridiagonal(A);
 
   // Link faces and force ends take forces besides the bonds': general rows.
   std::vector<unsigned char> special(n, 0);
@@ -51,7 +52,25 @@ LinePaper::LinePaper(const Case& c, Line line)
     if (e->kind == EndKind::force) special[e->node] = 1;
   for (std::size_t j = 0; j < n; ++j)
     if (special[j]) extra_nodes_.push_back(j);
-  stretches_ = uniform_stretches(line_, special, held_);
+  // Inside each uniform stretch of a bar a row is the single bar's stencil,
+  // its four coefficients one stretch's constants.
+  stencil_of_.assign(n, general);
+  for (const Stretch& st : uniform_stretches(line_, special, held_)) {
+    const std::size_t j = st.first;
+    for (std::size_t i = st.first; i < st.last; ++i) stencil_of_[i] = static_cast<std::uint32_t>(stencils_.size());
+    stencils_.push_back({b1_.diag[j], b1_.off[j], b0_.diag[j], b0_.off[j]});
+  }
+  // The sweeps inwards take rows in pairs, j from the top and one from the
+  // bottom: runs of pairs whose two stencils stay the same are one block.
+  const std::size_t last = n - 1, k = last / 2;
+  for (std::size_t j = 0, jb = last - (last - 2 * k); j < k; ++j, --jb) {
+    const std::uint32_t top = stencil_of_[j], bottom = stencil_of_[jb];
+    if (top != general && bottom != general && !blocks_.empty() && blocks_.back().top == top &&
+        blocks_.back().bottom == bottom)
+      ++blocks_.back().count;
+    else
+      blocks_.push_back({1, top, bottom});
+  }
   extra_.assign(n, 0.0);
 
   // The responses of the links whose status changes A, and W among them.
@@ -61,7 +80,7 @@ LinePaper::LinePaper(const Case& c, Line line)
     std::vector<double> w(n, 0.0);
     for (std::size_t j : {line_.links[i].a, line_.links[i].b})
       if (j != Link::ground && !line_.fixed(j)) w[j] = entry(line_.links[i], j);
-    factor_.solve(w);
+    factor_.solve(w.data());
     modifiable_.push_back(i);
     response_.push_back(std::move(w));
   }
@@ -278,13 +297,12 @@ double LinePaper::special_row(std::size_t j, double load) {
 }
 
 // z^{m+1} into prev_: the right-hand side B1 z^m + B0 z^{m-1} + F^{m,alpha} +
-// extra formed inside the sweep towards x = 0 (the single bar's constant
-// stencils in each stretch), the solution inside the sweep back.
+// extra formed row by row as the two-ended solve's sweeps inwards reach it
+// (the single bar's constant stencils in each stretch), then the sweep out.
 template <LinePaper::LoadMode mode>
 void LinePaper::sweeps(long long m) {
   const double* __restrict zc = next_;
   const double* __restrict zo = cur_;
-  double* __restrict zn = prev_;
   const std::array<double, 3> w = load_weights(m);
   const double* fp = nullptr;
   const double* f0 = nullptr;
@@ -309,18 +327,37 @@ void LinePaper::sweeps(long long m) {
       return w[0] * fp[j] + w[1] * f0[j] + w[2] * fm[j];
     }
   };
-  auto stencil = [&](const Stretch& s) {
-    const double b1d = b1_.diag[s.first], b1o = b1_.off[s.first], b0d = b0_.diag[s.first], b0o = b0_.off[s.first];
-    return [=](std::size_t j) {
-      const double r = b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]);
-      if constexpr (mode == LoadMode::zero) return r;  // not even the + 0.0 IEEE would keep
-      return r + load(j);
-    };
+  auto stencil_row = [&](const Stencil& t, std::size_t j) {
+    const double r = t.b1d * zc[j] + t.b1o * (zc[j - 1] + zc[j + 1]) + t.b0d * zo[j] + t.b0o * (zo[j - 1] + zo[j + 1]);
+    if constexpr (mode == LoadMode::zero) return r;  // not even the + 0.0 IEEE would keep
+    return r + load(j);
   };
-  sweep_towards_near(
-      factor_, stretches_, stencil, [&](std::size_t j) { return special_row(j, load(j)); }, zn);
-  sweep_away(factor_, zn, [&](std::size_t j, double x) { zn[j] = x; });
-  for (const auto& h : held_) zn[h.node] = h.value;  // exactly, not through the sweep
+  auto row = [&](std::size_t j) {
+    const std::uint32_t s = stencil_of_[j];
+    return s == general ? special_row(j, load(j)) : stencil_row(stencils_[s], j);
+  };
+  double* x = prev_;
+  const std::size_t last = line_.nodes() - 1, k = last / 2;
+  double yt = 0.0, yb = 0.0;
+  std::size_t j = 0, jb = last;
+  if (last > 2 * k) {  // the lower half's extra row
+    factor_.inward(row(jb), jb, yb, x);
+    --jb;
+  }
+  for (const Block& b : blocks_) {
+    if (b.top == general || b.bottom == general) {
+      factor_.inward(row(j), j, yt, x);
+      factor_.inward(row(jb), jb, yb, x);
+      ++j, --jb;
+      continue;
+    }
+    const Stencil top = stencils_[b.top], bottom = stencils_[b.bottom];  // constants of the loop
+    for (std::uint32_t c = 0; c < b.count; ++c, ++j, --jb) {
+      factor_.inward(stencil_row(top, j), j, yt, x);
+      factor_.inward(stencil_row(bottom, jb), jb, yb, x);
+    }
+  }
+  factor_.outward(row(k), yt, yb, x);
 }
 
 // (A + sum_J sigma_i h_i h_i^T)^{-1} r = y - sum_J mu_i w_i with

@@ -58,6 +58,75 @@ class FactoredTridiagonal {
   std::vector<double> coupling_;  // off_{j-1} / pivot_j (coupling_0 = 0)
 };
 
+/// The two-ended ("twisted") factors of a symmetric positive definite
+/// tridiagonal matrix: rows 0..k-1 eliminated from row 0 down, rows
+/// k+1..n-1 from row n-1 up, row k = (n-1)/2 last. A solve is then one sweep
+/// inwards from both ends and one sweep outwards from row k, each carrying
+/// two independent chains of multiply-subtracts (one per half), which a
+/// latency-bound processor runs in the time of one: the paper scheme's solve
+/// (paper_scheme.hpp) with per-row coefficients.
+class TwistedTridiagonal {
+ public:
+  TwistedTridiagonal() = default;
+  explicit TwistedTridiagonal(const Tridiagonal& a);
+  [[nodiscard]] std::size_t size() const { return inv_.size(); }
+  /// The twist row k = (n - 1) / 2.
+  [[nodiscard]] std::size_t twist() const { return (inv_.size() - 1) / 2; }
+  /// x = A^{-1} r into `x`, r_j = row(j) asked once per row, in the order of
+  /// the sweeps inwards (r may be formed on the fly, and `x` may hold the
+  /// inputs row(j) reads only at rows not yet reached).
+  template <class Row>
+  void solve(Row row, double* x) const {
+    const std::size_t last = inv_.size() - 1, k = last / 2;
+    double yt = 0.0, yb = 0.0;
+    std::size_t jb = last;
+    if (last > 2 * k) {  // the lower half's extra row
+      inward(row(jb), jb, yb, x);
+      --jb;
+    }
+    for (std::size_t j = 0; j < k; ++j, --jb) {
+      inward(row(j), j, yt, x);
+      inward(row(jb), jb, yb, x);
+    }
+    outward(row(k), yt, yb, x);
+  }
+  /// x <- A^{-1} x.
+  void solve(double* x) const {
+    solve([x](std::size_t j) { return x[j]; }, x);
+  }
+  /// The steps of a solve, for kernels that run the sweeps inwards
+  /// themselves: row j with right-hand side r, j < k in the upper half's
+  /// order (from row 0 down) or j > k in the lower half's (from row n - 1
+  /// up), each half carrying its chain y; then row k and the sweep outwards.
+  void inward(double r, std::size_t j, double& y, double* x) const {
+    y = r * inv_[j] - inward_[j] * y;
+    x[j] = y;
+  }
+  void outward(double r_twist, double y_top, double y_bottom, double* x) const {
+    const std::size_t last = inv_.size() - 1, k = last / 2;
+    const double* __restrict out = outward_.data();
+    const double xk = (r_twist - lower_ * y_top - upper_ * y_bottom) * inv_[k];  // row k meets both halves
+    x[k] = xk;
+    double xt = xk, xb = xk;
+    for (std::size_t i = 1; i <= k; ++i) {
+      xt = x[k - i] - out[k - i] * xt;
+      x[k - i] = xt;
+      xb = x[k + i] - out[k + i] * xb;
+      x[k + i] = xb;
+    }
+    for (std::size_t j = 2 * k + 1; j <= last; ++j) {  // the lower half's extra row
+      xb = x[j] - out[j] * xb;
+      x[j] = xb;
+    }
+  }
+
+ private:
+  std::vector<double> inv_;           // 1 / pivot
+  std::vector<double> inward_;        // a row's coupling to the row eliminated before it, over its pivot
+  std::vector<double> outward_;       // its coupling to the row solved before it on the way out, over its pivot
+  double lower_ = 0.0, upper_ = 0.0;  // A_{k,k-1}, A_{k,k+1}
+};
+
 class Mesh {
  public:
   /// M uniform elements on (0, L). Preconditions: L > 0, M >= 1.

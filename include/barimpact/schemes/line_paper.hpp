@@ -38,9 +38,11 @@
 //
 // Held ends (line_rigid.hpp): a clamped node's z is 0, a node driven at v(t)
 // moves by dt v(t_{n+1/2}); their rows become the identity and the support's
-// force is the original row's residual. The solve sweeps towards x = 0 with
-// the single bar's constant stencils inside each uniform stretch of a bar
-// and the general rows at body ends, joints, masses and held ends.
+// force is the original row's residual. The solve is two-ended, as the
+// single bar's (mesh.hpp's TwistedTridiagonal), each row's right-hand side
+// formed as the sweeps inwards reach it: the single bar's constant stencils
+// inside each uniform stretch of a bar, the general row at body ends,
+// joints, masses and held ends.
 //
 // Start: z^1 by Taylor with the initial acceleration (second order), as the
 // single bar's. Reported at t_n: u^n = exp(lambda t_n) z^n, v^n = (u^{n+1} -
@@ -55,6 +57,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -104,9 +107,22 @@ class LinePaper final : public LineScheme {
   LoadMode load_mode_ = LoadMode::zero;
   Tridiagonal mass_, stiff_, visc_;  // M, K, C of the line
   Tridiagonal b1_, b0_;              // B1 = 2M/dt^2 - (1 - 2 alpha) S, B0 = -M/dt^2 - alpha S + D/(2 dt)
-  FactoredTridiagonal factor_;       // A, held rows the identity
+  TwistedTridiagonal factor_;        // A, held rows the identity
   std::vector<HeldRow> held_;
-  std::vector<Stretch> stretches_;
+  // Each row's stencil: an index into stencils_ (a uniform stretch's
+  // constant coefficients of B1 and B0), or `general` (special_row).
+  struct Stencil {
+    double b1d, b1o, b0d, b0o;
+  };
+  static constexpr std::uint32_t general = 0xffffffffu;
+  std::vector<Stencil> stencils_;
+  std::vector<std::uint32_t> stencil_of_;
+  // A run of the solve's row pairs (top j, bottom jb) with the same two
+  // stencils; a general row is a block of its own.
+  struct Block {
+    std::uint32_t count, top, bottom;
+  };
+  std::vector<Block> blocks_;
   std::vector<double> viscosity_;  // c_j per bond
   bool viscous_ = false;
   std::vector<double> extra_;  // the links' s_i h_i and the force ends' values, z-units
