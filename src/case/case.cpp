@@ -815,6 +815,9 @@ Case read_case(Reader& r) {
   c.load.gravity = r.number("load", "gravity", 0.0);
   decide_single_bar(c);
   read_time(r, c);
+  // The single-bar schemes read a rigid obstacle's restitution from time.restitution.
+  if (c.single_bar && c.near_end.law == JointLaw::rigid && c.near_end.restitution_given)
+    c.time.restitution = c.near_end.restitution;
   read_output(r, c);
   if (c.single_bar && !line)
     check_bar_expressions(r, c);
