@@ -166,7 +166,7 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   c.joints = {j};
   c.near_end.law = j.law.law;
   c.time.scheme = scheme;
-  c.time.step = 0.5 / static_cast<double>(M);
+  c.time.step = (scheme == "characteristic" ? 1.0 : 0.5) / static_cast<double>(M);  // h/c, or h/2
   c.time.end = 1.0;
   auto s = barimpact::make_scheme(c);
   s->start();
@@ -491,7 +491,7 @@ const bool registered = [] {
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }
-  for (const char* scheme : {"central-difference", "newmark", "paper"}) {
+  for (const char* scheme : {"central-difference", "newmark", "paper", "characteristic"}) {
     const std::string name = fmt::format("BM_Line/{}", scheme);
     benchmark::RegisterBenchmark(name.c_str(), BM_LineStep, std::string(scheme))
         ->RangeMultiplier(10)

@@ -7,6 +7,7 @@
 
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/line_central_difference.hpp"
+#include "barimpact/schemes/line_characteristic.hpp"
 #include "barimpact/schemes/line_newmark.hpp"
 #include "barimpact/schemes/line_paper.hpp"
 #include "barimpact/schemes/line_rigid.hpp"
@@ -150,9 +151,9 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   }
   if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
     return rigid_line_misfit(c, line);
-  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (paper, newmark, "
-                                          "central-difference, moreau-jean, paoli-schatzman and mass-redistribution "
-                                          "can)",
+  if (name == "characteristic") return characteristic_line_misfit(c, line);
+  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (paper, newmark, central-difference, "
+                                          "moreau-jean, paoli-schatzman, mass-redistribution and characteristic can)",
                                           name)};
 }
 
@@ -166,6 +167,7 @@ std::unique_ptr<Scheme> make_line_scheme(const Case& c) {
     return std::make_unique<LineNewmark>(c, std::move(line));
   }
   if (auto s = make_rigid_line_scheme(c)) return s;
+  if (auto s = make_characteristic_line_scheme(c)) return s;
   throw InputError(fmt::format("time.scheme = \"{}\" cannot run a line of bodies yet", name));
 }
 

@@ -1,6 +1,7 @@
 #include "barimpact/schemes/scheme.hpp"
 
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/schemes/line_characteristic.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 
 #include <fmt/format.h>
@@ -80,7 +81,17 @@ double stable_step(const Case& c, bool consistent_mass) {
 
 std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
   if (!c.single_bar) {
-    if (auto m = line_scheme_misfit(c, build_line(c))) return SchemeMisfit{m->key, m->rule};
+    const Line line = build_line(c);
+    // The characteristic scheme steps at the bars' common transit time h/c.
+    if (c.time.scheme == "characteristic")
+      if (const auto dt = line_characteristic_step(line)) {
+        if (step_given && std::abs(c.time.step - *dt) > 1e-9 * *dt)
+          return SchemeMisfit{"step", fmt::format("= {} conflicts with characteristic, which sets dt = h/c = {} "
+                                                  "(omit time.step or give that value)",
+                                                  c.time.step, *dt)};
+        c.time.step = *dt;
+      }
+    if (auto m = line_scheme_misfit(c, line)) return SchemeMisfit{m->key, m->rule};
     return std::nullopt;
   }
   const SchemeSpec& s = spec(c.time.scheme);

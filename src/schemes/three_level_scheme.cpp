@@ -72,7 +72,10 @@ void ThreeLevelScheme::start() {
   // D_contact: the rigid obstacle's work over the first half step, its force
   // against the mean of the end's velocity at t = 0 and over (0, dt): the
   // Taylor step's own identity, (1/2) m (w^2 - v0^2) = F (dt/2) (v0 + w) / 2.
-  contact_half_ = -0.25 * dt_ * impulse * (v0_[0] + (next_[0] - cur_[0]) / dt_);
+  // A scheme whose force is the obstacle's exact reaction (characteristic),
+  // not an impulse, books it against the rate at t = 0, as the load's power.
+  contact_half_ = impulsive_contact() ? -0.25 * dt_ * impulse * (v0_[0] + (next_[0] - cur_[0]) / dt_)
+                                      : -0.5 * dt_ * impulse * v0_[0];
   contact_last_ = 0.0;
 }
 

@@ -225,7 +225,8 @@ Study converge(const Case& base, const StudyOptions& o) {
         t.value = o.vary->values[static_cast<std::size_t>(i)];
         sets.push_back({o.vary->key + "=" + t.value});
       }
-      if (scheme == "characteristic") step = base.bar.length / static_cast<double>(elements) / c;  // Courant 1
+      // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
+      if (scheme == "characteristic" && base.single_bar) step = base.bar.length / static_cast<double>(elements) / c;
       sets.push_back({fmt::format("time.step={}", step)});
       t.scale = (o.refine != Refine::none) ? static_cast<double>(f) : nan;
       if (o.refine == Refine::none && o.vary) {

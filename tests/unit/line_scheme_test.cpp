@@ -632,5 +632,23 @@ end = 0.01
   EXPECT_EQ(r.columns[2], "joint.b-c.force");
 }
 
+// A single bar's rigid near end with its own restitution: the single-bar
+// schemes run with it (they read time.restitution).
+TEST(LineCase, ASingleBarsRigidEndKeepsItsRestitution) {
+  const Case c = testing::case_from(R"toml(
+[[body]]
+name = "bar"
+velocity = "-1"
+[near_end]
+law = "rigid"
+restitution = 0.5
+[time]
+scheme = "moreau-jean"
+)toml");
+  ASSERT_TRUE(c.single_bar);
+  EXPECT_EQ(c.time.restitution, 0.5);
+  EXPECT_EQ(Case::from_string(c.to_toml(), {}, "resolved").time.restitution, 0.5);
+}
+
 }  // namespace
 }  // namespace barimpact

@@ -28,6 +28,7 @@ class CharacteristicScheme final : public CentralDifferenceScheme {
 
  protected:
   double enforce_contact(const double* prev, const double* cur, double* next) override;
+  [[nodiscard]] bool impulsive_contact() const override { return false; }
 
  private:
   double impedance_;     // rho c^2 / h = a / h

@@ -60,6 +60,9 @@ class ThreeLevelScheme : public Scheme {
   /// `prev` is u^{n-1}, `cur` u^n. In a lumped step only next[0] is written
   /// when it is called (the interior rows follow), and only next[0] may change.
   virtual double enforce_contact(const double* prev, const double* cur, double* next) = 0;
+  /// Whether enforce_contact's force is an impulse's (a correction of the
+  /// predicted u^{n+1}); false where it is the obstacle's exact reaction.
+  [[nodiscard]] virtual bool impulsive_contact() const { return true; }
   /// The rigid obstacle's clamp of lumped central differences:
   /// u_0^{n+1} = max(prediction, -g); returns the force behind it.
   double clamp_end(double* next) const;
