@@ -138,7 +138,7 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
       if (l.law.rigid())
         return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the rigid link \"{}\" (penalty laws only; "
                                                 "schemes that can: central-difference, moreau-jean, paoli-schatzman, "
-                                                "mass-redistribution)",
+                                                "mass-redistribution, characteristic)",
                                                 name, l.name)};
     return std::nullopt;
   }
@@ -152,9 +152,10 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
     return rigid_line_misfit(c, line);
   if (name == "characteristic") return characteristic_line_misfit(c, line);
-  return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run a line of bodies yet (paper, newmark, central-difference, "
-                                          "moreau-jean, paoli-schatzman, mass-redistribution and characteristic can)",
-                                          name)};
+  return LineMisfit{"scheme",
+                    fmt::format("= \"{}\" cannot run a line of bodies yet (paper, newmark, central-difference, "
+                                "moreau-jean, paoli-schatzman, mass-redistribution and characteristic can)",
+                                name)};
 }
 
 std::unique_ptr<Scheme> make_line_scheme(const Case& c) {

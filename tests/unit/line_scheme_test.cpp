@@ -358,7 +358,7 @@ TEST(LineSchemes, ImplicitPenaltySchemesRefuseRigidLinks) {
     EXPECT_EQ(misfit->key, "scheme");
     EXPECT_EQ(misfit->rule, fmt::format("= \"{}\" cannot run the rigid link \"joint.a-m\" (penalty laws only; schemes "
                                         "that can: central-difference, moreau-jean, paoli-schatzman, "
-                                        "mass-redistribution)",
+                                        "mass-redistribution, characteristic)",
                                         scheme));
     EXPECT_THROW((void)make_scheme(c), InputError);
     c.joints[0].law.law = JointLaw::cushion;
