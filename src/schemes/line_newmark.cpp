@@ -7,31 +7,32 @@ namespace barimpact {
 
 namespace {
 
-// A general tridiagonal LU (Thomas), the held rows made identity: lower
-// entries, reciprocal pivots and the eliminated upper entries.
-void factor(const Tridiagonal& a, const std::vector<char>& held, std::vector<double>& lower,
-            std::vector<double>& inv_pivot, std::vector<double>& upper) {
+// A's factors from the far end (the single bar's direction): pivots,
+// the first sweep's couplings and the back substitution's lower entries.
+void factor_from_far_end(const Tridiagonal& a, const std::vector<char>& held, std::vector<double>& coupling,
+                         std::vector<double>& inv_pivot, std::vector<double>& lower) {
   const std::size_t n = a.size();
-  lower.assign(n, 0.0);
+  coupling.assign(n, 0.0);
   inv_pivot.assign(n, 0.0);
-  upper.assign(n, 0.0);
-  for (std::size_t j = 0; j < n; ++j) {
-    const double l = (j > 0 && !held[j]) ? a.off[j - 1] : 0.0;
-    const double d = held[j] ? 1.0 : a.diag[j];
-    const double u = (j + 1 < n && !held[j]) ? a.off[j] : 0.0;
-    const double pivot = d - (j > 0 ? l * upper[j - 1] : 0.0);
-    lower[j] = j > 0 ? l * inv_pivot[j - 1] : 0.0;  // the multiplier: one fma on the forward chain
+  lower.assign(n, 0.0);
+  double below = 0.0;  // A_{j+1,j} of the row eliminated before
+  for (std::size_t j = n; j-- > 0;) {
+    const double up = (j + 1 < n && !held[j]) ? a.off[j] : 0.0;    // A_{j,j+1}
+    const double down = (j > 0 && !held[j]) ? a.off[j - 1] : 0.0;  // A_{j,j-1}
+    coupling[j] = j + 1 < n ? up * inv_pivot[j + 1] : 0.0;
+    const double pivot = (held[j] ? 1.0 : a.diag[j]) - coupling[j] * below;
     inv_pivot[j] = 1.0 / pivot;
-    upper[j] = u * inv_pivot[j];
+    lower[j] = down * inv_pivot[j];
+    below = down;
   }
 }
 
-void substitute(const std::vector<double>& lower, const std::vector<double>& inv_pivot,
-                const std::vector<double>& upper, std::vector<double>& x) {
+void solve_from_far_end(const std::vector<double>& coupling, const std::vector<double>& inv_pivot,
+                        const std::vector<double>& lower, std::vector<double>& x) {
   const std::size_t n = x.size();
-  for (std::size_t j = 1; j < n; ++j) x[j] -= lower[j] * x[j - 1];
-  x[n - 1] *= inv_pivot[n - 1];
-  for (std::size_t j = n - 1; j-- > 0;) x[j] = x[j] * inv_pivot[j] - upper[j] * x[j + 1];
+  for (std::size_t j = n - 1; j-- > 0;) x[j] -= coupling[j] * x[j + 1];
+  x[0] *= inv_pivot[0];
+  for (std::size_t j = 1; j < n; ++j) x[j] = x[j] * inv_pivot[j] - lower[j] * x[j - 1];
 }
 
 }  // namespace
@@ -50,33 +51,62 @@ LineNewmark::LineNewmark(const Case& c, Line line)
       held[j] = 1;
       held_.push_back(j);
     }
-  factor(a, held, lower_, inv_pivot_, upper_);
-  // The penalty links' responses to a unit force (none on held rows) and their Delassus matrix.
-  response_.assign(links, std::vector<double>(n, 0.0));
+  factor_from_far_end(a, held, coupling_, inv_pivot_, lower_);
+  for (const auto& b : line_.bonds) {
+    stiff_bond_.push_back(b.stiffness);
+    visc_bond_.push_back(b.viscosity);
+    viscous_ = viscous_ || b.viscosity != 0.0;
+  }
+  build_blocks();
+  // The links' Delassus matrix from their responses A^{-1} h_i (none on held rows).
+  std::vector<std::vector<double>> response(links, std::vector<double>(n, 0.0));
   for (std::size_t i = 0; i < links; ++i) {
     const Link& l = line_.links[i];
-    if (l.a != Link::ground && !held[l.a]) response_[i][l.a] = -1.0;
-    if (l.b != Link::ground && !held[l.b]) response_[i][l.b] = 1.0;
-    substitute(lower_, inv_pivot_, upper_, response_[i]);
+    if (l.a != Link::ground && !held[l.a]) response[i][l.a] = -1.0;
+    if (l.b != Link::ground && !held[l.b]) response[i][l.b] = 1.0;
+    solve_from_far_end(coupling_, inv_pivot_, lower_, response[i]);
   }
   std::vector<double> delassus(links * links, 0.0);
   std::vector<ContactLaw> laws;
   for (std::size_t i = 0; i < links; ++i) {
     laws.push_back(line_.links[i].law);
     for (std::size_t j = 0; j < links; ++j)
-      delassus[i * links + j] = line_.opening(i, response_[j].data()) - line_.links[i].gap;
+      delassus[i * links + j] = line_.opening(i, response[j].data()) - line_.links[i].gap;
   }
   penalty_ = PenaltyLinks(std::move(laws), std::move(delassus), beta_ * dt_ * dt_, gamma_ * dt_);
   for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
-  p_old_.assign(links, 0.0);
-  c_old_.assign(links, 0.0);
-  c_free_.assign(links, 0.0);
-  rate_free_.assign(links, 0.0);
-  active_.reserve(links);
-  for (const auto& b : line_.bonds) {
-    stiff_bond_.push_back(b.stiffness);
-    visc_bond_.push_back(b.viscosity);
-    viscous_ = viscous_ || b.viscosity != 0.0;
+  for (auto* x : {&p_old_, &c_old_, &c_free_, &rate_free_, &a_free_last_}) x->assign(links, 0.0);
+}
+
+// A's blocks: rows joined by element or spring bonds (a link's bond is
+// open, so A has no entry across it). A link's upper node b is the first
+// row of its block, its lower node a the last row of its own; on a block
+// that ends in a link, the weights of x_a in the first sweep's values and
+// the answer A^{-1} e_a.
+void LineNewmark::build_blocks() {
+  const std::size_t n = line_.nodes();
+  last_weight_.assign(n, 0.0);
+  last_response_.assign(n, 0.0);
+  std::size_t first = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    if (j + 1 < n && line_.bonds[j].kind != BondKind::open) continue;
+    Block block{first, j, none};
+    for (std::size_t i = 0; i < line_.links.size(); ++i)
+      if (line_.links[i].a == j && !line_.fixed(j)) block.far_link = i;
+    if (block.far_link != none) {
+      double product = 1.0;  // prod_{m = k+1}^{last} (-lower_m)
+      last_weight_[j] = inv_pivot_[j];
+      for (std::size_t k = j; k-- > first;) {
+        product *= -lower_[k + 1];
+        last_weight_[k] = inv_pivot_[k] * product;
+      }
+      std::vector<double> e(n, 0.0);
+      e[j] = 1.0;
+      solve_from_far_end(coupling_, inv_pivot_, lower_, e);
+      for (std::size_t k = first; k <= j; ++k) last_response_[k] = e[k];
+    }
+    blocks_.push_back(block);
+    first = j + 1;
   }
 }
 
@@ -88,16 +118,6 @@ void LineNewmark::residual(const std::vector<double>& u, const std::vector<doubl
   for (std::size_t j = 0; j < n; ++j) r[j] = (load_zero_ ? 0.0 : load_[j]) - r[j] - work_[j];
   if (line_.near.kind == EndKind::force) r[line_.near.node] += near_value(t);
   if (line_.far.kind == EndKind::force) r[line_.far.node] += far_value(t);
-}
-
-void LineNewmark::hold_ends(double t) {
-  for (const End* e : {&line_.near, &line_.far}) {
-    if (e->kind == EndKind::clamped) rhs_[e->node] = 0.0;
-    if (e->kind == EndKind::velocity) {  // v^{n+1} = v(t): a^{n+1} from v^{n+1} = v^* + gamma dt a^{n+1}
-      const double target = e == &line_.near ? near_value(t) : far_value(t);
-      rhs_[e->node] = (target - v_[e->node]) / (gamma_ * dt_);
-    }
-  }
 }
 
 // The support's force along +x on a held node at the current state: what
@@ -137,14 +157,14 @@ void LineNewmark::start() {
   }
   std::vector<char> held(n, 0);
   for (std::size_t j : held_) held[j] = 1;
-  std::vector<double> lower, inv_pivot, upper;
-  factor(mass_, held, lower, inv_pivot, upper);
+  std::vector<double> coupling, inv_pivot, lower;
+  factor_from_far_end(mass_, held, coupling, inv_pivot, lower);
   for (const End* e : {&line_.near, &line_.far}) {
     if (e->kind == EndKind::clamped) acc_[e->node] = 0.0;
     if (e->kind == EndKind::velocity)  // the history's slope over the first step
       acc_[e->node] = ((e == &line_.near ? near_value(dt_) : far_value(dt_)) - v_[e->node]) / dt_;
   }
-  substitute(lower, inv_pivot, upper, acc_);
+  solve_from_far_end(coupling, inv_pivot, lower, acc_);
   load_old_ = load_;
   for (std::size_t i = 0; i < force_.size(); ++i) {
     p_old_[i] = force_[i];
@@ -163,46 +183,65 @@ void LineNewmark::start() {
   ext_work_ = dissipation_ = 0.0;
 }
 
-// The links' compressions and rates with the free acceleration (every
-// force 0), then their forces at t_{n+1} by the active-set iteration.
+// The links' compressions and rates at t_{n+1} with every link force 0 (the
+// free accelerations at their nodes: a block's first row from the first
+// sweep's last value there, its last row by its weights), then their forces
+// by the active-set iteration, each entering its upper node's eliminated
+// right-hand side.
 void LineNewmark::solve_links() {
-  if (!has_penalty_) return;
   const std::size_t links = line_.links.size();
+  if (links == 0) return;
   const double bdt2 = beta_ * dt_ * dt_, gdt = gamma_ * dt_;
+  const double* __restrict y = rhs_.data();
+  for (const Block& b : blocks_) {
+    if (b.far_link == none) continue;
+    const double* __restrict w = last_weight_.data();
+    double x = 0.0;
+    for (std::size_t j = b.first; j <= b.last; ++j) x += w[j] * y[j];
+    a_free_last_[b.far_link] = x;
+  }
   for (std::size_t i = 0; i < links; ++i) {
-    const double free = line_.opening(i, rhs_.data()) - line_.links[i].gap;  // h_i . a_free
+    const Link& l = line_.links[i];
+    double free = 0.0;  // h_i . a_free
+    if (l.b != Link::ground && !line_.fixed(l.b)) free += y[l.b] * inv_pivot_[l.b];
+    if (l.a != Link::ground && !line_.fixed(l.a)) free -= a_free_last_[i];
     c_free_[i] = -(line_.opening(i, u_.data()) + bdt2 * free);
-    rate_free_[i] = -(line_.opening(i, v_.data()) - line_.links[i].gap + gdt * free);
+    rate_free_[i] = -(line_.opening(i, v_.data()) - l.gap + gdt * free);
   }
   penalty_.solve(c_free_.data(), rate_free_.data(), c_max_.data(), force_.data());
+  for (std::size_t i = 0; i < links; ++i) {
+    const Link& l = line_.links[i];
+    if (l.b != Link::ground && !line_.fixed(l.b)) rhs_[l.b] += force_[i];
+  }
 }
 
-// One step in three passes: predictors, right-hand side and the forward
-// elimination together; the back substitution (the free a^{n+1}); then, the
-// links' forces found from it, a, u, v and the budget's sums together, the
-// levels at t_n recovered from the predictors instead of copied.
+// One step in two passes (the single bar's): towards x = 0, the predictors,
+// right-hand side and first sweep; the links; away from x = 0, the back
+// substitution with a, u, v and the budget's sums.
 void LineNewmark::advance() {
   const double t = static_cast<double>(n_ + 1) * dt_;
   load_at(t);
-  forward(t);
-  const std::size_t n = line_.nodes();
-  // Back substitution: the free a^{n+1}.
-  double* __restrict x = rhs_.data();
-  const double* __restrict inv = inv_pivot_.data();
-  const double* __restrict up = upper_.data();
-  x[n - 1] *= inv[n - 1];
-  for (std::size_t j = n - 1; j-- > 0;) x[j] = x[j] * inv[j] - up[j] * x[j + 1];
+  const bool loaded = !load_zero_;
+  if (loaded)
+    viscous_ ? forward<true, true>(t) : forward<true, false>(t);
+  else
+    viscous_ ? forward<false, true>(t) : forward<false, false>(t);
   solve_links();
-  update(t);
+  if (loaded)
+    viscous_ ? backward<true, true>() : backward<true, false>();
+  else
+    viscous_ ? backward<false, true>() : backward<false, false>();
   ++n_;
   book_links(t);
 }
 
-// u^*, v^* in place; r = F + end forces - K u^* - C v^* (held rows: their
-// prescribed a); the forward elimination y_j = (r_j - l_j y_{j-1}) / pivot_j
-// in the same pass.
+// Towards x = 0: u^*, v^* in place (node j - 1's one row ahead, for the
+// bond below), r_j = F_j + T_j - T_{j-1} with T_j = k_j (u^*_{j+1} - u^*_j)
+// + c_j (v^*_{j+1} - v^*_j), y_j = r_j - coupling_j y_{j+1}. The end rows
+// take their end forces or their held accelerations.
+template <bool loaded, bool viscous>
 void LineNewmark::forward(double t) {
-  const std::size_t n = line_.nodes();
+  const std::size_t n = line_.nodes(), last = n - 1;
   const double dt = dt_, c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
   double* __restrict u = u_.data();
   double* __restrict v = v_.data();
@@ -210,89 +249,121 @@ void LineNewmark::forward(double t) {
   double* __restrict y = rhs_.data();
   const double* __restrict k = stiff_bond_.data();
   const double* __restrict c = visc_bond_.data();
-  const double* __restrict l = lower_.data();
+  const double* __restrict cp = coupling_.data();
   const double* __restrict f = load_.data();
-  const std::size_t near = line_.near.node, far = line_.far.node;
-  const double near_force = line_.near.kind == EndKind::force ? near_value(t) : 0.0;
-  const double far_force = line_.far.kind == EndKind::force ? far_value(t) : 0.0;
-  u[0] += dt * v[0] + c1 * a[0];
-  v[0] += c2 * a[0];
-  double tension_below = 0.0, carry = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    double r = (load_zero_ ? 0.0 : f[j]) - tension_below;
-    if (j + 1 < n) {
-      u[j + 1] += dt * v[j + 1] + c1 * a[j + 1];
-      v[j + 1] += c2 * a[j + 1];
-      tension_below = k[j] * (u[j + 1] - u[j]) + c[j] * (v[j + 1] - v[j]);
-      r += tension_below;
-    }
-    if (j == near || j == far) r = end_row(j, r + (j == near ? near_force : 0.0) + (j == far ? far_force : 0.0), t);
-    carry = r - l[j] * carry;
+  for (int e = 0; e < 2; ++e) {  // the ends' v^n and a^n, kept for their u^{n+1} - u^n
+    const std::size_t j = e == 0 ? 0 : last;
+    end_old_[e][0] = v[j];
+    end_old_[e][1] = a[j];
+  }
+  auto predict = [&](std::size_t j) {
+    u[j] += dt * v[j] + c1 * a[j];
+    v[j] += c2 * a[j];
+  };
+  auto tension = [&](std::size_t j) {  // bond j, predictors of j and j + 1 in place
+    double s = k[j] * (u[j + 1] - u[j]);
+    if constexpr (viscous) s += c[j] * (v[j + 1] - v[j]);
+    return s;
+  };
+  auto load = [&](std::size_t j) {
+    if constexpr (loaded) return f[j];
+    (void)j;
+    return 0.0;
+  };
+  predict(last);
+  if (n == 1) {
+    y[0] = end_row(0, load(0), t);
+    return;
+  }
+  predict(last - 1);
+  double below = tension(last - 1);
+  double carry = end_row(last, load(last) - below, t);
+  y[last] = carry;
+  for (std::size_t j = last - 1; j > 0; --j) {
+    const double above = below;
+    predict(j - 1);
+    below = tension(j - 1);
+    carry = load(j) + above - below - cp[j] * carry;
     y[j] = carry;
   }
+  y[0] = end_row(0, load(0) + below, t) - cp[0] * carry;
 }
 
-// An end node's row: its right-hand side, or a held end's prescribed
-// acceleration (clamped: 0; driven: v^{n+1} = v(t) = v^* + gamma dt a^{n+1}).
+// An end node's row: its right-hand side with its end force, or a held
+// end's prescribed acceleration (clamped: 0; driven: v^{n+1} = v(t) = v^* +
+// gamma dt a^{n+1}).
 double LineNewmark::end_row(std::size_t j, double r, double t) const {
   for (const End* e : {&line_.near, &line_.far}) {
     if (e->node != j) continue;
+    const double value = e == &line_.near ? near_value(t) : far_value(t);
     if (e->kind == EndKind::clamped) return 0.0;
-    if (e->kind == EndKind::velocity)
-      return ((e == &line_.near ? near_value(t) : far_value(t)) - v_[j]) / (gamma_ * dt_);
+    if (e->kind == EndKind::velocity) return (value - v_[j]) / (gamma_ * dt_);
+    if (e->kind == EndKind::force) r += value;
   }
   return r;
 }
 
-// a^{n+1} = a_free + sum p_i w_i; u, v from the predictors; the step's
-// external work (load) and viscous dissipation from the levels at t_n,
-// recovered: v^n = v^* - (1 - gamma) dt a^n, u^{n+1} - u^n = dt v^n + (1/2 - beta) dt^2 a^n + beta dt^2 a^{n+1}.
-void LineNewmark::update(double t) {
-  (void)t;
-  const std::size_t n = line_.nodes(), links = line_.links.size();
-  const double dt = dt_, bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
-  const double c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
-  active_.clear();
-  for (std::size_t i = 0; i < links; ++i)
-    if (force_[i] != 0.0) active_.push_back(i);  // reserved for every link: no allocation
-  double* __restrict u = u_.data();
-  double* __restrict v = v_.data();
-  double* __restrict a = acc_.data();
-  const double* __restrict x = rhs_.data();
-  const double* __restrict c = visc_bond_.data();
-  // At most two links push on most steps: their responses by raw pointers.
-  const double* w0 = active_.size() > 0 ? response_[active_[0]].data() : nullptr;
-  const double* w1 = active_.size() > 1 ? response_[active_[1]].data() : nullptr;
-  const double p0 = w0 ? force_[active_[0]] : 0.0, p1 = w1 ? force_[active_[1]] : 0.0;
-  auto accel = [&](std::size_t j) {
-    double anew = x[j];
-    if (w0) anew += p0 * w0[j];
-    if (w1) anew += p1 * w1[j];
-    for (std::size_t m = 2; m < active_.size(); ++m) anew += force_[active_[m]] * response_[active_[m]][j];
-    return anew;
-  };
-  for (int e = 0; e < 2; ++e) {  // the ends' u^{n+1} - u^n, for their forces' work
-    const std::size_t j = e == 0 ? line_.near.node : line_.far.node;
-    du_end_[e] = dt * (v[j] - c2 * a[j]) + c1 * a[j] + bdt2 * accel(j);
-  }
-  const bool loaded = !load_zero_;
-  double dw = 0.0, dd = 0.0, vbar_below = 0.0;
-  for (std::size_t j = 0; j < n; ++j) {
-    const double anew = accel(j);
-    const double vold = v[j] - c2 * a[j];
-    const double du = dt * vold + c1 * a[j] + bdt2 * anew;
-    u[j] += bdt2 * anew;
-    v[j] += gdt * anew;
-    a[j] = anew;
-    if (loaded) dw += du * 0.5 * (load_old_[j] + load_[j]);
-    if (viscous_) {
-      const double vbar = 0.5 * (v[j] + vold);
-      if (j > 0) dd += dt * c[j - 1] * (vbar - vbar_below) * (vbar - vbar_below);
-      vbar_below = vbar;
-    }
+// Away from x = 0, block by block: x_j = y_j inv_j - lower_j x_{j-1} (the
+// links' forces at the blocks' first rows already in y), plus - p A^{-1} e_a
+// on a block whose last-row link pushes; a, u, v from the predictors; the
+// step's load work and viscous dissipation from the levels at t_n,
+// recovered: v^n = v^* - (1 - gamma) dt a^n, u^{n+1} - u^n = dt v^n +
+// (1/2 - beta) dt^2 a^n + beta dt^2 a^{n+1}.
+template <bool loaded, bool viscous>
+void LineNewmark::backward() {
+  double x = 0.0, dw = 0.0, dd = 0.0, vbar_below = 0.0;
+  for (const Block& b : blocks_) {
+    const double p = b.far_link == none ? 0.0 : force_[b.far_link];
+    if (p != 0.0)
+      backward_block<loaded, viscous, true>(b.first, b.last, p, x, dw, dd, vbar_below);
+    else
+      backward_block<loaded, viscous, false>(b.first, b.last, 0.0, x, dw, dd, vbar_below);
   }
   step_work_ = dw;
   step_dissipation_ = dd;
+  const std::size_t last = line_.nodes() - 1;
+  const double dt = dt_, bdt2 = beta_ * dt * dt, c1 = (0.5 - beta_) * dt * dt;
+  for (int e = 0; e < 2; ++e) {
+    const std::size_t j = e == 0 ? 0 : last;
+    const double a_old = end_old_[e][1];
+    du_end_[e] = dt * end_old_[e][0] + c1 * a_old + bdt2 * acc_[j];
+  }
+}
+
+template <bool loaded, bool viscous, bool pushed>
+void LineNewmark::backward_block(std::size_t first, std::size_t last, double p, double& x, double& dw, double& dd,
+                                 double& vbar_below) {
+  const double dt = dt_, bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
+  const double c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
+  double* __restrict u = u_.data();
+  double* __restrict v = v_.data();
+  double* __restrict a = acc_.data();
+  const double* __restrict y = rhs_.data();
+  const double* __restrict inv = inv_pivot_.data();
+  const double* __restrict lo = lower_.data();
+  const double* __restrict g = last_response_.data();
+  const double* __restrict c = visc_bond_.data();
+  const double* __restrict f_old = load_old_.data();
+  const double* __restrict f = load_.data();
+  double work = 0.0, loss = 0.0, vb = vbar_below;
+  for (std::size_t j = first; j <= last; ++j) {
+    x = y[j] * inv[j] - lo[j] * x;
+    double anew = x;
+    if constexpr (pushed) anew -= p * g[j];
+    const double vold = v[j] - c2 * a[j];
+    if constexpr (loaded) work += (dt * vold + c1 * a[j] + bdt2 * anew) * 0.5 * (f_old[j] + f[j]);
+    u[j] += bdt2 * anew;
+    v[j] += gdt * anew;
+    a[j] = anew;
+    if constexpr (viscous) {
+      const double vbar = 0.5 * (v[j] + vold);
+      if (j > 0) loss += dt * c[j - 1] * (vbar - vb) * (vbar - vb);
+      vb = vbar;
+    }
+  }
+  dw += work;
+  dd += loss;
+  vbar_below = vb;
 }
 
 // The links' c_max, the ends' forces and supports, and the budget's end and link terms.

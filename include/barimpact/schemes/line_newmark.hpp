@@ -6,13 +6,23 @@
 //   u^{n+1} = u^* + beta dt^2 a^{n+1},  v^{n+1} = v^* + gamma dt a^{n+1},
 //
 // h_i = e_b - e_a the link's direction, p_i its law at (u^{n+1}, v^{n+1}).
-// A = M + gamma dt C + beta dt^2 K is factored once, with the rows of held
-// nodes replaced by their prescribed accelerations; the links' responses
-// w_i = A^{-1} h_i and the small Delassus matrix W_ij = h_i . w_j are
-// computed once, so that a step is one solve, the links' piecewise-linear
-// laws at t_{n+1} solved exactly together (penalty_links.hpp: an active-set
-// iteration over the laws' branches, one small dense solve per pass, until
-// a pass moves no link) and one update per active link.
+// A = M + gamma dt C + beta dt^2 K is factored once, from the far end
+// towards x = 0, with the rows of held nodes replaced by their prescribed
+// accelerations. Penalty links are not in A, so A falls apart into blocks
+// (the bodies joined by welded and spring joints), and a link joins the
+// last row a of one block to the first row b of the next (or a block's end
+// to the ground). A step is two passes, as the single bar's: towards x = 0,
+// the predictors, the right-hand side and the first sweep together; then,
+// the links' laws at t_{n+1} solved exactly together from the free
+// accelerations at their nodes (penalty_links.hpp: an active-set iteration
+// over the laws' branches with the Delassus matrix W_ij = h_i . A^{-1} h_j),
+// away from x = 0, the back substitution with a, u, v and the budget. The
+// free acceleration at a block's first row is known when the first sweep
+// ends there, and a link's force enters that row's eliminated right-hand
+// side alone; at a block's last row it is a dot product of the first
+// sweep's values with precomputed weights (taken on the blocks that end in
+// a link only), and the force's answer there, A^{-1} e_a on that block, is
+// added during the back substitution (only while the link pushes).
 // Budget of the trapezoidal rule: E_kin = v^T M v / 2, E_strain = u^T K u / 2
 // (bar elements; springs in E_obstacle with the links' stored energy),
 // dW = (u^{n+1} - u^n) . (F^n + F^{n+1}) / 2 with the end forces and the
@@ -41,26 +51,42 @@ class LineNewmark final : public LineScheme {
  private:
   /// r = F(t) + end forces - C v - K u at every free row; held rows get `held`.
   void residual(const std::vector<double>& u, const std::vector<double>& v, double t, std::vector<double>& r);
-  /// The links' forces at t_{n+1} (force_) given the free acceleration in rhs_.
+  void build_blocks();
+  /// The free accelerations at the links' nodes, then their forces at t_{n+1}.
   void solve_links();
-  /// The held ends' prescribed accelerations at t_{n+1} into rhs_.
-  void hold_ends(double t);
+  template <bool loaded, bool viscous>
   void forward(double t);
+  /// An end node's right-hand side r, or a held end's prescribed acceleration.
   [[nodiscard]] double end_row(std::size_t j, double r, double t) const;
-  void update(double t);
+  template <bool loaded, bool viscous>
+  void backward();
+  template <bool loaded, bool viscous, bool pushed>
+  void backward_block(std::size_t first, std::size_t last, double p, double& x, double& dw, double& dd,
+                      double& vbar_below);
   void book_links(double t);
   [[nodiscard]] double support(std::size_t node, double t) const;
 
+  /// A's blocks (rows first..last) and the link on each block's last row.
+  struct Block {
+    std::size_t first, last;
+    std::size_t far_link;  ///< the link whose lower node is `last`, or none
+  };
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+
   double beta_, gamma_;
   Tridiagonal mass_, stiff_, visc_;
-  std::vector<double> lower_, inv_pivot_, upper_;  // LU of A, the held rows made identity
-  std::vector<std::size_t> held_;                  // nodes held by their ends
-  std::vector<std::vector<double>> response_;      // w_i = A^{-1} h_i, per penalty link
-  PenaltyLinks penalty_;                           // the links' laws and Delassus matrix W_ij = h_i . w_j
+  // A's factors from the far end: y_j = r_j - coupling_j y_{j+1}, then
+  // x_j = y_j inv_pivot_j - lower_j x_{j-1}.
+  std::vector<double> coupling_, inv_pivot_, lower_;
+  std::vector<double> last_weight_;    // x_last = sum_j last_weight_j y_j on a block ending in a link
+  std::vector<double> last_response_;  // A^{-1} e_last on that block
+  std::vector<Block> blocks_;
+  std::vector<std::size_t> held_;  // nodes held by their ends
+  PenaltyLinks penalty_;           // the links' laws and Delassus matrix W_ij = h_i . A^{-1} h_j
   std::vector<double> u_, v_, acc_, rhs_, work_;
-  std::vector<double> load_old_, p_old_, c_old_, c_free_, rate_free_;
+  std::vector<double> load_old_, p_old_, c_old_, c_free_, rate_free_, a_free_last_;
   std::vector<double> stiff_bond_, visc_bond_;  // k_j, c_j per bond
-  std::vector<std::size_t> active_;             // links pushing this step
+  double end_old_[2][2] = {{0, 0}, {0, 0}};     // the ends' v^n and a^n, for u^{n+1} - u^n
   double du_end_[2] = {0, 0};                   // the ends' u^{n+1} - u^n
   double step_work_ = 0.0, step_dissipation_ = 0.0;
   bool viscous_ = false;
