@@ -41,6 +41,73 @@ def machine():
     return f"{model}, {cores} cores, {platform.system()} {platform.release()}, {cxx}"
 
 
+# The line benchmarks (BM_Line, BM_RigidLine) against the same scheme's single bar.
+LINE_ROWS = [
+    ("central-difference, 3-bar line (rigid links)", "BM_Line/central-difference", "BM_BareCentralDifference"),
+    ("newmark, 3-bar line (elastic links; the near end pushing)", "BM_Line/newmark", "BM_BareNewmark"),
+    ("paper, 3-bar line (elastic links; the near end pushing)", "BM_Line/paper", "BM_PaperStep"),
+    ("characteristic, 3-bar line (rigid links), dt = h/c", "BM_Line/characteristic", "BM_BareCharacteristic"),
+] + [(f"{s}, 3-bar line, links {state}", f"BM_RigidLine/{s}/{key}", f"BM_RigidBar/{s}")
+     for s in ("moreau-jean", "paoli-schatzman", "mass-redistribution")
+     for state, key in (("idle", "idle"), ("pushing", "active"))]
+
+
+def line_section(samples):
+    sizes = sorted({m for n, m in samples if n.startswith("BM_Line/")})
+    med = {k: statistics.median(v) for k, v in samples.items()}
+    rows, above, overhead = [], [], []
+    for label, name, base in LINE_ROWS:
+        cells, ratios = [], []
+        for m in sizes:
+            if (name, m) in med:
+                cells.append(f"{med[(name, m)]:.2f}")
+                ratio = med[(name, m)] / med[(base, m)]
+                ratios.append(f"{ratio:.2f}")
+                if ratio > 1.25:
+                    above.append(f"{label.split(',')[0]} at M = {m:,} ({ratio:.2f})")
+            else:
+                cells.append("")
+        rows.append(f"| {label} | " + " | ".join(cells) + " | " + " / ".join(ratios) + " |")
+        m0 = sizes[0]
+        if (name, m0) in med:  # what a step costs beyond its single bar's at the smallest M
+            overhead.append(f"{label.split(',')[0]} {(med[(name, m0)] - med[(base, m0)]) * m0:.0f} ns")
+    for name in ("BM_BareCentralDifference", "BM_BareNewmark", "BM_PaperStep", "BM_BareCharacteristic"):
+        rows.append(f"| single bar: {name[3:]} | " + " | ".join(f"{med[(name, m)]:.2f}" for m in sizes) + " | |")
+    for s in ("moreau-jean", "paoli-schatzman", "mass-redistribution"):
+        rows.append(f"| single bar: {s}, obstacle idle | " +
+                    " | ".join(f"{med[(f'BM_RigidBar/{s}', m)]:.2f}" if (f"BM_RigidBar/{s}", m) in med else ""
+                               for m in sizes) + " | |")
+    return f"""## A line of bodies against the single bar
+
+Nanoseconds per node-step, same run. A line is three bars of M elements in
+all (M/3, M/3, the rest) joined by a unilateral joint and a welded one,
+with a law at x = 0: rigid for central differences, characteristic and the
+rigid-contact schemes, elastic (k = 100) for Newmark and paper. The ratio is
+to the single bar of M elements in the same scheme: its bare loop for
+central differences, Newmark and characteristic, its own step
+(BM_PaperStep) for paper, its own step with the obstacle idle for the
+rigid-contact schemes. Target: <= 1.25 (above it in this run:
+{", ".join(above) if above else "none"}).
+
+| step | {" | ".join(f"M = {m:,}" for m in sizes)} | ratio to the single bar |
+|---|{"---:|" * len(sizes)}---|
+{chr(10).join(rows)}
+
+At M = {sizes[0]:,} a step costs a few hundred nanoseconds and what it does
+besides its sweeps shows (beyond the single bar's step: {", ".join(overhead)}):
+links, ends, statuses and the few general rows. Central differences and
+characteristic run each uniform stretch of a body as the single bar's
+vectorised pass; the rigid-contact schemes store a link's response on the
+bodies it touches only; Newmark runs the single bar's two passes, A
+factored from the far end, the links' free accelerations known between the
+sweeps and their forces entering the back substitution (docs/methods.md,
+"Lines of bodies: newmark"); paper runs the single bar's two-ended solve
+with its right-hand side formed in blocks of row pairs whose stencils are a
+uniform stretch's constants.
+
+"""
+
+
 def main():
     binary, out = sys.argv[1], sys.argv[2]
     build = os.path.dirname(os.path.dirname(os.path.abspath(binary)))
@@ -144,7 +211,7 @@ solves from both ends at once (two independent chains). Interior rows use
 the uniform mesh's constant stencils, so a step streams only its state and
 two factor arrays.
 
-## Sweeps: SIMD batches, threads, MPI
+{line_section(samples)}## Sweeps: SIMD batches, threads, MPI
 
 {sweep}
 
