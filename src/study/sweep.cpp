@@ -58,6 +58,27 @@ SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
   return r;
 }
 
+// [set]'s keys as --set overrides: section.key = value, and the named
+// elements' body.<name>.key = value (a TOML dotted key makes nested tables).
+void add_base_sets(const toml::table& keys, const std::string& prefix, std::vector<Case::Override>& out) {
+  for (auto&& [key, value] : keys) {
+    const std::string path = fmt::format("{}.{}", prefix, key.str());
+    if (const auto* inner = value.as_table())
+      add_base_sets(*inner, path, out);
+    else
+      out.push_back({fmt::format("{}={}", path, toml_value_text(value))});
+  }
+}
+
+// Whether a case's refusal of an axis's first value is about the key, not
+// the value: an unknown key, or a body, joint or gauge the case does not have.
+bool names_no_key(const std::string& what) {
+  for (const char* about_key : {"unknown", "no such case file", "expected section.key", "no body named",
+                                "no joint named", "no gauge named", "is not a section"})
+    if (what.find(about_key) != std::string::npos) return true;
+  return false;
+}
+
 }  // namespace
 
 SweepPlan SweepPlan::from_file(const fs::path& path) {
@@ -80,8 +101,7 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
   if (const auto* set = root.get_as<toml::table>("set")) {
     for (auto&& [section, keys] : *set) {
       if (!keys.is_table()) throw InputError(fmt::format("{}: [set] takes section.key = value", where(keys)));
-      for (auto&& [key, value] : *keys.as_table())
-        plan.base_sets_.push_back({fmt::format("{}.{}={}", section.str(), key.str(), toml_value_text(value))});
+      add_base_sets(*keys.as_table(), std::string(section.str()), plan.base_sets_);
     }
   }
   const auto* axes = root.get_as<toml::array>("axis");
@@ -131,9 +151,7 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
       (void)Case::from_file(plan.case_file_, probe);
     } catch (const InputError& e) {
       const std::string what = e.what();
-      if (what.find("unknown") != std::string::npos || what.find("no such case file") != std::string::npos ||
-          what.find("expected section.key") != std::string::npos)
-        throw InputError(fmt::format("{}: axis {}: {}", where(node), a.key, what));
+      if (names_no_key(what)) throw InputError(fmt::format("{}: axis {}: {}", where(node), a.key, what));
     }
     list.push_back(std::move(a));
   }

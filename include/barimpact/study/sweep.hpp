@@ -7,8 +7,8 @@
 //
 // The sweep file:
 //   case = "paper-example1.toml"          # relative to the sweep file
-//   [set]                                 # optional base overrides
-//   time.end = 2.0
+//   [set]                                 # optional base overrides: any --set key
+//   time.end = 2.0                        # (body.<name>.key = ... and the like too)
 //   [[axis]]
 //   key = "obstacle.stiffness"
 //   values = [100.0, 1000.0]              # a list, or
