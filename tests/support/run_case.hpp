@@ -2,6 +2,10 @@
 // run it, and read columns of its history.
 #pragma once
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
 
@@ -14,6 +18,20 @@ inline Case case_from(const std::string& toml, const std::vector<std::string>& s
   std::vector<Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
   return Case::from_string(toml, overrides, "test.toml");
+}
+
+// The one-line message of a case that must be refused; a failure (and "")
+// if it is accepted.
+inline std::string refusal(const std::string& toml, const std::vector<std::string>& sets = {}) {
+  try {
+    (void)case_from(toml, sets);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
+    return what;
+  }
+  ADD_FAILURE() << "accepted: " << toml << "\nwith " << fmt::format("{}", fmt::join(sets, " "));
+  return "";
 }
 
 inline Case example(const std::string& name, const std::vector<std::string>& sets = {}) {

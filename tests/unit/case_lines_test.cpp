@@ -19,19 +19,7 @@ namespace barimpact {
 namespace {
 
 using testing::case_from;
-
-// The message of a case that must be refused (one line), or "" (a failure).
-std::string refusal(const std::string& toml, const std::vector<std::string>& sets = {}) {
-  try {
-    (void)case_from(toml, sets);
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
-    return what;
-  }
-  ADD_FAILURE() << "accepted: " << toml << "\nwith " << fmt::format("{}", fmt::join(sets, " "));
-  return {};
-}
+using testing::refusal;
 
 // The case is refused with a message holding every part (the key first).
 #define EXPECT_REFUSED(toml, ...)                                                    \

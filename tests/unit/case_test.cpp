@@ -12,19 +12,7 @@ namespace barimpact {
 namespace {
 
 using testing::case_from;
-
-// The error message of a case that must be refused.
-std::string refusal(const std::string& toml, const std::vector<std::string>& sets = {}) {
-  try {
-    (void)case_from(toml, sets);
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line: " << what;
-    return what;
-  }
-  ADD_FAILURE() << "accepted: " << toml;
-  return {};
-}
+using testing::refusal;
 
 #define EXPECT_REFUSED(toml, ...)                                                               \
   do {                                                                                          \
