@@ -972,9 +972,12 @@ Case Case::line_view() const {
   b.kind = BodyKind::bar;
   b.length = bar.length;
   b.elements = bar.elements;
-  b.modulus = bar.stiffness / b.area;
-  b.density = bar.density / b.area;
-  b.viscosity = bar.viscosity / b.area;
+  // The body's own E, rho, eta while [bar]'s products still hold them (area
+  // != 1 would otherwise change them in their last bit on the way back).
+  auto per_area = [&](double own, double product) { return own * b.area == product ? own : product / b.area; };
+  b.modulus = per_area(b.modulus, bar.stiffness);
+  b.density = per_area(b.density, bar.density);
+  b.viscosity = per_area(b.viscosity, bar.viscosity);
   b.displacement = initial.displacement;
   b.velocity = initial.velocity;
   v.bodies = {b};

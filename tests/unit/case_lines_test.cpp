@@ -699,3 +699,25 @@ TEST(SweepLines, RefusesAnAxisNamingNoPartOfTheLine) {
     }
   }
 }
+
+// A single bar of area != 1 runs on [bar]'s products E A, rho A, eta A; its
+// case.toml still gives the body's own E, rho and eta, digit for digit.
+TEST(CaseLines, ASingleBarOfAreaNotOneKeepsItsOwnModulusInCaseToml) {
+  const barimpact::Case c = barimpact::testing::case_from(R"toml([[body]]
+name = "p"
+area = 3.0
+modulus = 0.1
+density = 0.7
+viscosity = 0.013
+[near_end]
+law = "elastic"
+)toml");
+  ASSERT_TRUE(c.single_bar);
+  const std::string text = c.to_toml();
+  for (const char* line : {"modulus = 0.1\n", "density = 0.7\n", "viscosity = 0.013\n"})
+    EXPECT_NE(text.find(line), std::string::npos) << line << "in\n" << text;
+  const barimpact::Case back = barimpact::testing::case_from(text);
+  EXPECT_EQ(back.bar.stiffness, c.bar.stiffness);
+  EXPECT_EQ(back.bar.density, c.bar.density);
+  EXPECT_EQ(back.bar.viscosity, c.bar.viscosity);
+}
