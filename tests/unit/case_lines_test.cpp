@@ -243,39 +243,6 @@ TEST(CaseLines, RefusesLawsOutOfPlace) {
 
 // ---- The keys each law uses.
 
-struct LawKeys {
-  const char* law;
-  std::vector<const char*> keys;
-};
-
-const std::vector<LawKeys>& laws() {
-  static const std::vector<LawKeys> l{{"welded", {}},
-                                      {"spring", {"stiffness", "viscosity"}},
-                                      {"elastic", {"stiffness", "gap"}},
-                                      {"viscoelastic", {"stiffness", "viscosity", "gap"}},
-                                      {"rigid", {"gap", "restitution"}},
-                                      {"cushion", {"stiffness", "restitution", "gap"}},
-                                      {"free", {}},
-                                      {"clamped", {}},
-                                      {"force", {"value"}},
-                                      {"velocity", {"value"}}};
-  return l;
-}
-
-bool uses(const LawKeys& l, std::string_view key) {
-  for (const char* k : l.keys)
-    if (key == k) return true;
-  return false;
-}
-
-// One key, in a section of its own law.
-std::string with_key(const std::string& section, const LawKeys& l, std::string_view key) {
-  const std::string value = key == "value" ? "\"1\"" : key == "restitution" ? "0.5" : "2.0";
-  if (section == "joint")
-    return three_bars(fmt::format("[[joint]]\nbetween = [\"a\", \"b\"]\nlaw = \"{}\"\n{} = {}\n", l.law, key, value));
-  return three_bars(fmt::format("[{}]\nlaw = \"{}\"\n{} = {}\n", section, l.law, key, value));
-}
-
 TEST(CaseLines, NamesTheKeysALawUses) {
   const std::string toml =
       "[[body]]\nname = \"a\"\n[[body]]\nname = \"b\"\n[[joint]]\nname = \"cushion\"\n"
