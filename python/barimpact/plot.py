@@ -24,7 +24,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact")
+COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic")
 FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
 DPI = 120
 
@@ -32,11 +32,12 @@ DPI = 120
 class RunData:
     """What the figures need: history columns, field snapshots, case, summary."""
 
-    def __init__(self, history, x, field_t, u, sigma, case, summary, body=None):
+    def __init__(self, history, x, field_t, u, sigma, case, summary, body=None, eps_p=None):
         self.history = history  # dict column -> 1-D array
         self.x, self.field_t, self.u, self.sigma = x, field_t, u, sigma
         self.case, self.summary = case, summary
         self.body = body  # the body of each field row (None: one bar)
+        self.eps_p = eps_p  # plastic strain at each snapshot and row (None: not written)
 
 
 def load(run_dir):
@@ -50,25 +51,34 @@ def load(run_dir):
     history = {name: h[:, i] for i, name in enumerate(names)}
     x = field_t = u = sigma = np.empty(0)
     body = None
+    eps_p = None
     if (d / "fields.csv").is_file():
-        f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2, usecols=range(5))
+        with open(d / "fields.csv") as stream:
+            header = stream.readline().strip().split(",")
+        numbers = [i for i, name in enumerate(header) if name != "body"]
+        f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2, usecols=numbers)
         if f.size:
+            col = {name: k for k, name in enumerate(header[i] for i in numbers)}
             field_t = np.unique(f[:, 0])
             nodes = f.shape[0] // field_t.size
             x = f[:nodes, 1]
             u = f[:, 2].reshape(field_t.size, nodes)
             sigma = f[:, 4].reshape(field_t.size, nodes)
-            body = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=1, usecols=5, dtype=str)[:nodes]
+            if "eps_p" in col:
+                eps_p = f[:, col["eps_p"]].reshape(field_t.size, nodes)
+            if "body" in header:
+                body = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=1, usecols=header.index("body"),
+                                  dtype=str)[:nodes]
     case = tomllib.loads((d / "case.toml").read_text())
     summary = json.loads((d / "summary.json").read_text())
-    return RunData(history, x, field_t, u, sigma, case, summary, body)
+    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p)
 
 
 def _from_result(result):
     history = {name: np.asarray(result[name]) for name in result.history_columns}
     return RunData(history, np.asarray(result.x), np.asarray(result.field_t), np.asarray(result.u),
                    np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary,
-                   np.asarray(result.field_body))
+                   np.asarray(result.field_body), np.asarray(result.eps_p))
 
 
 def _number(text):
@@ -234,10 +244,11 @@ def plot(source, out=None, formats=("png", "svg")):
     fig, ax = _figure("Energy budget")
     for name, label in (("E_kin", "kinetic"), ("E_strain", "strain"), ("E_obstacle", "obstacle"),
                         ("W_ext", "external work"), ("D_visc", "viscous dissipation"),
-                        ("D_contact", "contact dissipation")):
-        if name in h and (name != "D_contact" or np.any(h[name] != 0)):
+                        ("D_contact", "contact dissipation"), ("D_plastic", "plastic work")):
+        if name in h and (name not in ("D_contact", "D_plastic") or np.any(h[name] != 0)):
             ax.plot(t, h[name], lw=1.0, label=label)
-    balance = h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0)
+    balance = (h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0) +
+               h.get("D_plastic", 0.0))
     ax.plot(t, balance, "k-", lw=1.8, label="balance: kin + strain + obstacle - work + dissipation")
     ax.set_xlabel("t")
     ax.set_ylabel("energy")

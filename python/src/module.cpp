@@ -128,8 +128,8 @@ py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<p
   return a;
 }
 
-constexpr std::array<const char*, 10> columns{"t",        "U",          "V",     "R",      "E_kin",
-                                              "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact"};
+constexpr std::array<const char*, 10> columns{"t",          "U",     "V",      "R",         "E_kin",    "E_strain",
+                                              "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic"};
 
 }  // namespace
 
@@ -232,8 +232,8 @@ PYBIND11_MODULE(_core, m) {
         },
         "One history column (a strided view of `history`, no copy)");
   }
-  for (const auto& [name, member] :
-       {std::pair{"u", &Fields::u}, std::pair{"v", &Fields::v}, std::pair{"sigma", &Fields::sigma}}) {
+  for (const auto& [name, member] : {std::pair{"u", &Fields::u}, std::pair{"v", &Fields::v},
+                                     std::pair{"sigma", &Fields::sigma}, std::pair{"eps_p", &Fields::eps_p}}) {
     result.def_property_readonly(
         name,
         [member](py::object self) {

@@ -26,7 +26,8 @@ def test_same_bits_as_the_command_line(cli_runs, name):
 
 def test_columns_are_views_of_the_history():
     r = barimpact.run(EXAMPLES / "paper-example1.toml")
-    assert r.columns == ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact")
+    assert r.columns == ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact",
+                         "D_plastic")
     assert np.shares_memory(r.U, r.history) and np.shares_memory(r.t, r.history)
     assert np.array_equal(r.R, r.history[:, 3])
     assert not r.U.flags.writeable
@@ -186,12 +187,12 @@ def test_a_line_of_bodies_by_name():
         "time": {"scheme": "central-difference", "step": 0.01, "end": 4.0},
         "output": {"fields_at": [1.0]},
     })
-    assert r.history_columns[9:12] == ["D_contact", "joint.a-b.force", "joint.a-b.opening"]
+    assert r.history_columns[9:13] == ["D_contact", "D_plastic", "joint.a-b.force", "joint.a-b.opening"]
     force = r["joint.a-b.force"]
     assert force.shape == r.t.shape and np.max(force) > 0.4
     assert np.shares_memory(r.t, r["t"])
     assert set(r.field_body) == {"a", "b"} and len(r.field_body) == 51 + 101
-    total = r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc + r.D_contact
+    total = r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc + r.D_contact + r.D_plastic
     assert np.max(np.abs(total - total[0])) < 1e-12  # central differences' identity with rigid links
     with pytest.raises(KeyError):
         r["joint.nope.force"]

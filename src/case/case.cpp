@@ -38,7 +38,9 @@ struct SectionKeys {
 // The case-file contract: sections and keys, in file order.
 const std::array<SectionKeys, 8>& contract() {
   static const std::array<SectionKeys, 8> c{{
-      {"bar", {"length", "density", "stiffness", "viscosity", "elements", "far_end"}},
+      {"bar",
+       {"length", "density", "stiffness", "viscosity", "elements", "far_end", "material", "yield_stress",
+        "hardening_modulus", "hardening"}},
       {"load", {"body_force", "gravity"}},
       {"initial", {"displacement", "velocity"}},
       {"obstacle", {"kind", "stiffness", "gap", "viscosity"}},
@@ -55,7 +57,7 @@ const std::array<SectionKeys, 3>& array_contract() {
   static const std::array<SectionKeys, 3> c{{
       {"body",
        {"name", "kind", "length", "elements", "area", "modulus", "density", "viscosity", "mass", "displacement",
-        "velocity"}},
+        "velocity", "material", "yield_stress", "hardening_modulus", "hardening"}},
       {"joint", {"name", "between", "law", "stiffness", "viscosity", "restitution", "gap"}},
       {"gauge", {"name", "body", "at"}},
   }};
@@ -365,6 +367,35 @@ void check_expression(const Reader& r, std::string_view section, std::string_vie
 }
 
 // Today's single bar: [bar], [initial], [obstacle].
+// A bar's material keys; `modulus` names E's key (stiffness on [bar], whose
+// area is 1) for the rule E_t < E.
+MaterialData read_material(const Reader& r, const std::string& s, double e, std::string_view modulus) {
+  MaterialData m;
+  const std::string kind = r.word(s, "material", "elastic");
+  if (kind != "elastic" && kind != "plastic")
+    r.fail(s, "material", fmt::format("must be elastic or plastic (got \"{}\")", kind));
+  constexpr std::array<std::string_view, 3> plastic_keys{"yield_stress", "hardening_modulus", "hardening"};
+  if (kind == "elastic") {
+    for (std::string_view key : plastic_keys)
+      if (r.node(s, key) != nullptr) r.fail(s, key, "is used by material = \"plastic\" only (this bar is elastic)");
+    return m;
+  }
+  m.kind = MaterialKind::plastic;
+  if (r.node(s, "yield_stress") == nullptr) r.fail(s, "yield_stress", "is required when material = \"plastic\"");
+  m.yield_stress = r.number(s, "yield_stress", m.yield_stress);
+  m.hardening_modulus = r.number(s, "hardening_modulus", m.hardening_modulus);
+  if (!(m.yield_stress > 0)) r.fail(s, "yield_stress", fmt::format("must be > 0 (got {})", m.yield_stress));
+  if (!(m.hardening_modulus >= 0))
+    r.fail(s, "hardening_modulus", fmt::format("must be >= 0 (got {})", m.hardening_modulus));
+  if (!(m.hardening_modulus < e))
+    r.fail(s, "hardening_modulus", fmt::format("must be below {} = {} (got {})", modulus, e, m.hardening_modulus));
+  const std::string hardening = r.word(s, "hardening", "kinematic");
+  if (hardening != "kinematic" && hardening != "isotropic")
+    r.fail(s, "hardening", fmt::format("must be kinematic or isotropic (got \"{}\")", hardening));
+  m.hardening = hardening == "isotropic" ? Hardening::isotropic : Hardening::kinematic;
+  return m;
+}
+
 void read_bar(const Reader& r, Case& c) {
   BarData& bar = c.bar;
   bar.length = r.number("bar", "length", bar.length);
@@ -386,6 +417,7 @@ void read_bar(const Reader& r, Case& c) {
     bar.far_end = FarEnd::clamped;
   else
     r.fail("bar", "far_end", fmt::format("must be one of free, clamped (got \"{}\")", far_end));
+  bar.material = read_material(r, "bar", bar.stiffness, "stiffness");
 
   c.initial.displacement = r.expression("initial", "displacement", c.initial.displacement);
   c.initial.velocity = r.expression("initial", "velocity", c.initial.velocity);
@@ -569,7 +601,9 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   const std::string kind = r.word(s, "kind", "bar");
   if (kind != "bar" && kind != "mass") r.fail(s, "kind", fmt::format("must be bar or mass (got \"{}\")", kind));
   b.kind = kind == "bar" ? BodyKind::bar : BodyKind::mass;
-  const std::vector<std::string_view> bar_only{"length", "elements", "area", "modulus", "density", "viscosity"};
+  const std::vector<std::string_view> bar_only{
+      "length",    "elements", "area",         "modulus",           "density",
+      "viscosity", "material", "yield_stress", "hardening_modulus", "hardening"};
   for (std::string_view key : b.kind == BodyKind::mass ? bar_only : std::vector<std::string_view>{"mass"})
     if (r.node(s, key) != nullptr)
       r.fail(s, key,
@@ -597,6 +631,7 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   b.elements = static_cast<int>(elements);
   b.displacement = r.expression(s, "displacement", b.displacement);
   b.velocity = r.expression(s, "velocity", b.velocity);
+  b.material = read_material(r, s, b.modulus, "modulus");
   return b;
 }
 
@@ -708,6 +743,7 @@ void bar_as_line(Case& c) {
   b.viscosity = c.bar.viscosity;
   b.displacement = c.initial.displacement;
   b.velocity = c.initial.velocity;
+  b.material = c.bar.material;
   c.bodies = {b};
   const ObstacleKind k = c.obstacle.kind;
   c.near_end.law = k == ObstacleKind::none      ? JointLaw::free
@@ -725,7 +761,8 @@ void bar_as_line(Case& c) {
 void decide_single_bar(Case& c) {
   const BodyData& b = c.bodies.front();
   const JointLaw near = c.near_end.law, far = c.far_end.law;
-  c.single_bar = c.bodies.size() == 1 && b.kind == BodyKind::bar && c.joints.empty() && c.load.gravity == 0.0 &&
+  c.single_bar = c.bodies.size() == 1 && b.kind == BodyKind::bar && b.material.kind == MaterialKind::elastic &&
+                 c.joints.empty() && c.load.gravity == 0.0 &&
                  (near == JointLaw::free || near == JointLaw::elastic || near == JointLaw::viscoelastic ||
                   near == JointLaw::rigid) &&
                  (far == JointLaw::free || far == JointLaw::clamped);
@@ -947,6 +984,16 @@ void write_law(std::string& out, const LawData& d) {
   }
 }
 
+void write_material(std::string& out, const MaterialData& m) {
+  if (m.kind == MaterialKind::elastic) {
+    out += "material = \"elastic\"\n";
+    return;
+  }
+  out += fmt::format("material = \"plastic\"\nyield_stress = {}\nhardening_modulus = {}\nhardening = {}\n",
+                     toml_float(m.yield_stress), toml_float(m.hardening_modulus),
+                     m.hardening == Hardening::isotropic ? "\"isotropic\"" : "\"kinematic\"");
+}
+
 void write_body(std::string& out, const BodyData& b) {
   out +=
       fmt::format("[[body]]\nname = {}\nkind = {}\n", toml_string(b.name), toml_string(std::string(to_string(b.kind))));
@@ -957,9 +1004,11 @@ void write_body(std::string& out, const BodyData& b) {
   }
   out += fmt::format(
       "length = {}\nelements = {}\narea = {}\nmodulus = {}\ndensity = {}\nviscosity = {}\ndisplacement = {}\n"
-      "velocity = {}\n\n",
+      "velocity = {}\n",
       toml_float(b.length), b.elements, toml_float(b.area), toml_float(b.modulus), toml_float(b.density),
       toml_float(b.viscosity), toml_string(b.displacement), toml_string(b.velocity));
+  write_material(out, b.material);
+  out += "\n";
 }
 
 }  // namespace
@@ -997,14 +1046,16 @@ Case Case::line_view() const {
 
 namespace {
 
-// Today's spelling, for the one single-bar case the line's cannot hold: an
-// obstacle already penetrated at t = 0 (a negative gap, refused at a joint or end).
+// Today's spelling, for the one [bar] case the line's cannot hold: an
+// obstacle already penetrated at t = 0 (a negative gap, refused at a joint or
+// end, so only [obstacle] gives one).
 std::string bar_toml(const Case& c) {
   std::string out = "# barimpact resolved case: every key, defaults filled in\n\n";
-  out +=
-      fmt::format("[bar]\nlength = {}\ndensity = {}\nstiffness = {}\nviscosity = {}\nelements = {}\nfar_end = {}\n\n",
-                  toml_float(c.bar.length), toml_float(c.bar.density), toml_float(c.bar.stiffness),
-                  toml_float(c.bar.viscosity), c.bar.elements, toml_string(std::string(to_string(c.bar.far_end))));
+  out += fmt::format("[bar]\nlength = {}\ndensity = {}\nstiffness = {}\nviscosity = {}\nelements = {}\nfar_end = {}\n",
+                     toml_float(c.bar.length), toml_float(c.bar.density), toml_float(c.bar.stiffness),
+                     toml_float(c.bar.viscosity), c.bar.elements, toml_string(std::string(to_string(c.bar.far_end))));
+  if (c.bar.material.kind == MaterialKind::plastic) write_material(out, c.bar.material);
+  out += "\n";
   out += fmt::format("[initial]\ndisplacement = {}\nvelocity = {}\n\n", toml_string(c.initial.displacement),
                      toml_string(c.initial.velocity));
   out += fmt::format("[obstacle]\nkind = {}\nstiffness = {}\ngap = {}\nviscosity = {}\n\n",
@@ -1020,7 +1071,7 @@ std::string bar_toml(const Case& c) {
 
 std::string Case::to_toml() const {
   const Case v = line_view();
-  const bool bar_spelling = single_bar && obstacle.gap < 0;
+  const bool bar_spelling = near_end.gap < 0;
   std::string out = bar_spelling ? bar_toml(v) : "# barimpact resolved case: every key, defaults filled in\n\n";
   for (const auto& b : v.bodies)
     if (!bar_spelling) write_body(out, b);

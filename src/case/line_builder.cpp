@@ -87,6 +87,9 @@ void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, con
   }
   range.last = line.x.size() - 1;
   line.bodies.push_back(range);
+  line.plasticity.push_back(b.kind == BodyKind::bar && b.material.kind == MaterialKind::plastic
+                                ? std::optional<Plasticity>(Plasticity(b.modulus, b.material))
+                                : std::nullopt);
 }
 
 GaugePoint gauge_point(const Line& line, const Case& c, const GaugeData& g) {

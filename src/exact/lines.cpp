@@ -719,6 +719,8 @@ Rod rod_of(const BodyData& b) {
 std::unique_ptr<LineSolution> for_line_case(const Case& c) {
   double f = 0.0;
   if (!constant(c.load.body_force, f) || f != 0.0 || c.load.gravity != 0.0) return nullptr;
+  for (const BodyData& b : c.bodies)  // the solutions below are elastic
+    if (b.material.kind != MaterialKind::elastic) return nullptr;
   if (c.bodies.size() != 2 || c.joints.size() > 1) return nullptr;
   const BodyData& lower = c.bodies[0];
   const BodyData& upper = c.bodies[1];

@@ -19,7 +19,7 @@ bool HistoryRecorder::observe(const Scheme& s) {
   if (n % every_ != 0 && n != last_) return true;
   const Energies e = s.energies();
   rows_.push_back({s.time(), s.end_displacement(), s.end_velocity(), s.reaction(), e.kinetic, e.strain, e.obstacle,
-                   e.work, e.dissipation, e.contact});
+                   e.work, e.dissipation, e.contact, e.plastic});
   if (probes_ != nullptr && probes_->size() > 0) {
     extra_.resize(extra_.size() + probes_->size());  // within the reserve: no allocation
     probes_->read(s, extra_.data() + extra_.size() - probes_->size());
@@ -51,6 +51,7 @@ void FieldRecorder::begin(const Scheme& /*scheme*/, long long steps) {
   fields_.u.assign(steps_.size() * n, 0.0);
   fields_.v.assign(steps_.size() * n, 0.0);
   fields_.sigma.assign(steps_.size() * n, 0.0);
+  fields_.eps_p.assign(steps_.size() * n, 0.0);
   taken_ = 0;
 }
 
@@ -61,25 +62,30 @@ bool FieldRecorder::observe(const Scheme& s) {
   double* u = fields_.u.data() + at;
   double* v = fields_.v.data() + at;
   double* sigma = fields_.sigma.data() + at;
+  double* eps_p = fields_.eps_p.data() + at;
   for (std::size_t r = 0; r < n; ++r) {
     u[r] = s.displacement_at(fields_.node[r]);
     v[r] = s.velocity_at(fields_.node[r]);
   }
   // sigma per element, constant; a row takes the mean of its body's elements
   // beside it (one at the body's ends).
-  double left = 0.0;
+  double left = 0.0, left_ep = 0.0;
   for (std::size_t r = 0; r < n; ++r) {
     const bool last = r + 1 == n || fields_.body[r + 1] != fields_.body[r];
     const bool first = r == 0 || fields_.body[r - 1] != fields_.body[r];
     if (last) {
       sigma[r] = left;
+      eps_p[r] = left_ep;
       continue;
     }
     const Bond& b = bonds_[fields_.node[r]];
-    double sig = (b.axial * (u[r + 1] - u[r]) + b.damping * (v[r + 1] - v[r])) / b.h;
+    const double ep = s.plastic_strain(fields_.node[r]);
+    double sig = (b.axial * (u[r + 1] - u[r]) + b.damping * (v[r + 1] - v[r])) / b.h - b.axial * ep;
     if (b.area != 1.0) sig /= b.area;
     sigma[r] = first ? sig : 0.5 * (left + sig);
+    eps_p[r] = first ? ep : 0.5 * (left_ep + ep);
     left = sig;
+    left_ep = ep;
   }
   return true;
 }
@@ -90,6 +96,7 @@ Fields FieldRecorder::take() {
   fields_.u.resize(taken_ * n);
   fields_.v.resize(taken_ * n);
   fields_.sigma.resize(taken_ * n);
+  fields_.eps_p.resize(taken_ * n);
   return std::move(fields_);
 }
 

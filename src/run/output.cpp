@@ -48,7 +48,7 @@ RunDirectory::~RunDirectory() {
 namespace {
 
 // Shortest text that reads back to the same double.
-constexpr std::string_view budget_header = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact";
+constexpr std::string_view budget_header = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic";
 
 void write_history(const fs::path& path, const RunResult& result) {
   auto out = fmt::output_file(path.string());
@@ -58,8 +58,8 @@ void write_history(const fs::path& path, const RunResult& result) {
   out.print("\n");
   for (std::size_t k = 0; k < result.history.size(); ++k) {
     const HistoryRow& r = result.history[k];
-    out.print("{},{},{},{},{},{},{},{},{},{}", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext, r.D_visc,
-              r.D_contact);
+    out.print("{},{},{},{},{},{},{},{},{},{},{}", r.t, r.U, r.V, r.R, r.E_kin, r.E_strain, r.E_obstacle, r.W_ext,
+              r.D_visc, r.D_contact, r.D_plastic);
     for (std::size_t i = 0; i < n; ++i) out.print(",{}", result.extra[k * n + i]);
     out.print("\n");
   }
@@ -68,11 +68,12 @@ void write_history(const fs::path& path, const RunResult& result) {
 
 void write_fields(const fs::path& path, const RunResult& result) {
   auto out = fmt::output_file(path.string());
-  out.print("t,x,u,v,sigma,body\n");
+  out.print("t,x,u,v,sigma,eps_p,body\n");
   const Fields& f = result.fields;
   for (std::size_t s = 0; s < f.count(); ++s)
     for (std::size_t j = 0, i = s * f.nodes(); j < f.nodes(); ++j, ++i)
-      out.print("{},{},{},{},{},{}\n", f.t[s], f.x[j], f.u[i], f.v[i], f.sigma[i], f.body_names[f.body[j]]);
+      out.print("{},{},{},{},{},{},{}\n", f.t[s], f.x[j], f.u[i], f.v[i], f.sigma[i], f.eps_p[i],
+                f.body_names[f.body[j]]);
   out.close();
 }
 
@@ -178,7 +179,8 @@ void read_history(const fs::path& path, RunResult& result) {
   }
   while (std::getline(in, line)) {
     HistoryRow r{};
-    double* cells[] = {&r.t, &r.U, &r.V, &r.R, &r.E_kin, &r.E_strain, &r.E_obstacle, &r.W_ext, &r.D_visc, &r.D_contact};
+    double* cells[] = {&r.t,          &r.U,     &r.V,      &r.R,         &r.E_kin,    &r.E_strain,
+                       &r.E_obstacle, &r.W_ext, &r.D_visc, &r.D_contact, &r.D_plastic};
     std::size_t at = 0;
     auto next = [&] {
       const std::size_t end = std::min(line.find(',', at), line.size());

@@ -63,7 +63,7 @@ double Probes::tension(const Scheme& s, std::size_t j) const {
   const Bond& b = line_.bonds[j];
   double t = b.stiffness * (s.displacement_at(j + 1) - s.displacement_at(j));
   if (b.viscosity != 0.0) t += b.viscosity * (s.velocity_at(j + 1) - s.velocity_at(j));
-  return t;
+  return t - b.axial * s.plastic_strain(j);  // E A (eps - eps_p): 0 in an elastic body
 }
 
 double Probes::value(const Scheme& s, const Column& col) const {

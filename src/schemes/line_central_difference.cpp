@@ -4,7 +4,8 @@
 
 namespace barimpact {
 
-LineCentralDifference::LineCentralDifference(const Case& c, Line line) : LineScheme(c, std::move(line)) {
+LineCentralDifference::LineCentralDifference(const Case& c, Line line)
+    : LineScheme(c, std::move(line)), plastic_(line_) {
   const std::size_t n = line_.nodes();
   for (const auto& b : line_.bonds) {
     k_.push_back(b.stiffness);
@@ -17,13 +18,14 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line) : LineSch
   r_.assign(n, 0.0);
   rigid_.assign(line_.links.size(), 0.0);
   for (auto& l : levels_) l.assign(n, 0.0);
-  // Uniform interior nodes: both bonds the same element, no point mass, not held.
+  // Uniform interior nodes: both bonds the same element of one body, no point mass, not held.
   auto uniform = [&](std::size_t j) {
     if (j == 0 || j + 1 >= n || line_.fixed(j) || line_.point_mass[j] != 0.0) return false;
     const Bond &a = line_.bonds[j - 1], &b = line_.bonds[j];
     return a.kind == BondKind::element && b.kind == BondKind::element && a.stiffness == b.stiffness &&
-           a.viscosity == b.viscosity && a.mass == b.mass;
+           a.viscosity == b.viscosity && a.mass == b.mass && a.body == b.body;
   };
+  auto plastic = [&](const Bond& b) { return b.body < line_.plasticity.size() && line_.plasticity[b.body]; };
   for (std::size_t j = 0; j < n; ++j) {
     if (!uniform(j)) {
       special_.push_back(j);
@@ -31,10 +33,11 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line) : LineSch
     }
     const Bond& b = line_.bonds[j];
     if (!stretches_.empty() && stretches_.back().last == j && stretches_.back().k == b.stiffness &&
-        stretches_.back().c == b.viscosity && stretches_.back().inv_m == inv_m_[j])
+        stretches_.back().c == b.viscosity && stretches_.back().inv_m == inv_m_[j] &&
+        stretches_.back().plastic == plastic(b))
       ++stretches_.back().last;
     else
-      stretches_.push_back({j, j + 1, b.stiffness, b.viscosity, inv_m_[j]});
+      stretches_.push_back({j, j + 1, b.stiffness, b.viscosity, inv_m_[j], b.axial, plastic(b)});
   }
 }
 
@@ -42,9 +45,11 @@ double LineCentralDifference::row_force(const double* um, const double* u, std::
   const std::size_t n = line_.nodes();
   const double inv_dt = 1.0 / dt_;
   double r = load_zero_ ? 0.0 : load_[j];
+  const double* p = plastic_.active() ? plastic_.next() : nullptr;  // level n's, read before it moves on
   auto tension = [&](std::size_t b) {
     double t = k_[b] * (u[b + 1] - u[b]);
     if (viscous_) t += c_[b] * ((u[b + 1] - u[b]) - (um[b + 1] - um[b])) * inv_dt;
+    if (p != nullptr) t -= line_.bonds[b].axial * p[b];
     return t;
   };
   if (j + 1 < n) r += tension(j);
@@ -53,18 +58,24 @@ double LineCentralDifference::row_force(const double* um, const double* u, std::
 }
 
 template <bool viscous, bool loaded>
-void LineCentralDifference::uniform_rows(const double* __restrict um, const double* __restrict u,
+void LineCentralDifference::uniform_rows(const double* um, const double* u, double* up) const {
+  for (const Stretch& s : stretches_)
+    s.plastic ? stretch_rows<viscous, loaded, true>(s, um, u, up) : stretch_rows<viscous, loaded, false>(s, um, u, up);
+}
+
+template <bool viscous, bool loaded, bool plastic>
+void LineCentralDifference::stretch_rows(const Stretch& s, const double* __restrict um, const double* __restrict u,
                                          double* __restrict up) const {
   const double dt2 = dt_ * dt_, inv_dt = 1.0 / dt_;
   const double* __restrict f = load_.data();
-  for (const Stretch& s : stretches_) {
-    const double k = s.k, c = s.c * inv_dt, scale = dt2 * s.inv_m;
-    for (std::size_t j = s.first; j < s.last; ++j) {
-      double r = -k * (2.0 * u[j] - u[j - 1] - u[j + 1]);
-      if constexpr (loaded) r += f[j];
-      if constexpr (viscous) r -= c * (2.0 * (u[j] - um[j]) - (u[j - 1] - um[j - 1]) - (u[j + 1] - um[j + 1]));
-      up[j] = 2.0 * u[j] - um[j] + scale * r;
-    }
+  const double* __restrict p = plastic ? plastic_.next() : nullptr;
+  const double k = s.k, c = s.c * inv_dt, scale = dt2 * s.inv_m, axial = s.axial;
+  for (std::size_t j = s.first; j < s.last; ++j) {
+    double r = -k * (2.0 * u[j] - u[j - 1] - u[j + 1]);
+    if constexpr (loaded) r += f[j];
+    if constexpr (viscous) r -= c * (2.0 * (u[j] - um[j]) - (u[j - 1] - um[j - 1]) - (u[j + 1] - um[j + 1]));
+    if constexpr (plastic) r += axial * (p[j - 1] - p[j]);
+    up[j] = 2.0 * u[j] - um[j] + scale * r;
   }
 }
 
@@ -88,9 +99,11 @@ void LineCentralDifference::predict(const double* um, const double* u, double* u
   double* __restrict r = r_.data();
   for (std::size_t j = 0; j < n; ++j) r[j] = load_zero_ ? 0.0 : load_[j];
   const double inv_dt = 1.0 / dt_;
+  const double* p = plastic_.active() ? plastic_.next() : nullptr;
   for (std::size_t j = 0; j + 1 < n; ++j) {
     double tension = k_[j] * (u[j + 1] - u[j]);
     if (viscous_) tension += c_[j] * ((u[j + 1] - u[j]) - (um[j + 1] - um[j])) * inv_dt;
+    if (p != nullptr) tension -= line_.bonds[j].axial * p[j];
     r[j] += tension;
     r[j + 1] -= tension;
   }
@@ -171,11 +184,16 @@ void LineCentralDifference::start() {
     cur_[j] = prev_[j] = u0_[j];
     before[j] = u0_[j] - dt_ * v0_[j];
   }
+  if (plastic_.active()) plastic_.start(cur_);
   predict(before.data(), cur_, next_, 0.0, true);
   hold_ends(cur_, next_, 0.0);
   // The Taylor step moves by dt^2/2 a^0: a correction's force is twice a full step's.
   project(next_, 2.0);
   end_forces(before.data(), cur_, next_, 0.0, 2.0);
+  if (plastic_.active()) {
+    plastic_.advance(cur_, next_, true);
+    plastic_.rotate();
+  }
   // The first half step's share of the budget, dt/2 times the rates at t = 0.
   double power = 0.0, viscous = 0.0, contact = 0.0;
   for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : load_[j]) * v0_[j];
@@ -208,6 +226,10 @@ void LineCentralDifference::advance() {
   hold_ends(u, up, t);
   project(up, 1.0);
   end_forces(um, u, up, t, 1.0);
+  if (plastic_.active()) {
+    plastic_.advance(u, up);
+    plastic_.rotate();
+  }
   prev_ = cur_;
   cur_ = next_;
   next_ = up;
@@ -263,6 +285,9 @@ Energies LineCentralDifference::energies() const {
   if (n_ == 0) {
     for (std::size_t j = 0; j < line_.nodes(); ++j) e.kinetic += 0.5 * m_[j] * v0_[j] * v0_[j];
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
+    if (plastic_.active())
+      e.strain += plastic_.energy_correction(u0_.data(), plastic_.current(), u0_.data(), plastic_.current()) +
+                  plastic_.hardening_energy();
     e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
     return e;
   }
@@ -270,6 +295,13 @@ Energies LineCentralDifference::energies() const {
   const double s1 = half_step(prev_, cur_, BondKind::element, k1), s2 = half_step(cur_, next_, BondKind::element, k2);
   e.kinetic = 0.5 * (k1 + k2);
   e.strain = 0.5 * (s1 + s2);
+  if (plastic_.active()) {
+    const double *pm = plastic_.previous(), *p = plastic_.current(), *pp = plastic_.next();
+    e.strain +=
+        0.5 * (plastic_.energy_correction(prev_, pm, cur_, p) + plastic_.energy_correction(cur_, p, next_, pp)) +
+        plastic_.hardening_energy();
+    e.plastic = plastic_.work();
+  }
   e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +
                         line_.bond_form(BondKind::spring, false, cur_, next_));
   e.work = work_half_ - 0.5 * work_last_;

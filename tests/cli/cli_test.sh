@@ -16,8 +16,8 @@ if "$bin" run "$examples/paper-example1.toml" --out "$work/ex1" > "$work/stdout"
 for f in history.csv fields.csv case.toml summary.json; do
   [ -s "$work/ex1/$f" ] && ok || bad "missing $f"
 done
-[ "$(head -1 "$work/ex1/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact" ] && ok || bad "history columns"
-[ "$(head -1 "$work/ex1/fields.csv")" = "t,x,u,v,sigma,body" ] && ok || bad "fields columns"
+[ "$(head -1 "$work/ex1/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic" ] && ok || bad "history columns"
+[ "$(head -1 "$work/ex1/fields.csv")" = "t,x,u,v,sigma,eps_p,body" ] && ok || bad "fields columns"
 [ "$(wc -l < "$work/ex1/history.csv")" -eq 402 ] && ok || bad "history rows: $(wc -l < "$work/ex1/history.csv")"
 [ "$(wc -l < "$work/ex1/fields.csv")" -eq $((101 * 101 + 1)) ] && ok || bad "fields rows"
 grep -q '"complete": true' "$work/ex1/summary.json" && ok || bad "summary complete"
@@ -135,7 +135,7 @@ expect_refused "vanish at the clamped end" run "$ex1" --out "$work/refused" --se
 
 # barimpact exact: the same files for a case that admits an exact solution, exit 2 otherwise.
 "$bin" exact "$examples/clamped-periodic.toml" --out "$work/exact" > /dev/null && ok || bad "exact clamped"
-[ "$(head -1 "$work/exact/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,far_end.force,far_end.opening" ] && ok || bad "exact columns"
+[ "$(head -1 "$work/exact/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic,far_end.force,far_end.opening" ] && ok || bad "exact columns"
 expect_refused "admits no exact solution" exact "$examples/paper-example2.toml" --out "$work/refused"
 
 # barimpact converge: files, bad options refused, a failing run reported and not fatal.
@@ -203,9 +203,9 @@ lines="$examples/lines"
 for ex in saint-venant drop-mass hopkinson pile-hammer; do
   "$bin" run "$lines/$ex.toml" --out "$work/line-$ex" > /dev/null 2> "$work/err" && ok || bad "line $ex: $(cat "$work/err")"
 done
-[ "$(head -1 "$work/line-saint-venant/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,joint.short-long.force,joint.short-long.opening,gauge.mid.strain,gauge.mid.velocity,gauge.mid.force" ] && ok || bad "saint-venant columns"
-[ "$(head -1 "$work/line-pile-hammer/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,joint.capblock.force,joint.capblock.opening,body.ram.u,body.ram.v,gauge.head.strain,gauge.head.velocity,gauge.head.force" ] && ok || bad "pile-hammer columns"
-[ "$(cut -d, -f6 "$work/line-saint-venant/fields.csv" | sort -u | tr '\n' ' ')" = "body long short " ] && ok || bad "fields body column"
+[ "$(head -1 "$work/line-saint-venant/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic,joint.short-long.force,joint.short-long.opening,gauge.mid.strain,gauge.mid.velocity,gauge.mid.force" ] && ok || bad "saint-venant columns"
+[ "$(head -1 "$work/line-pile-hammer/history.csv")" = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic,joint.capblock.force,joint.capblock.opening,body.ram.u,body.ram.v,gauge.head.strain,gauge.head.velocity,gauge.head.force" ] && ok || bad "pile-hammer columns"
+[ "$(cut -d, -f7 "$work/line-saint-venant/fields.csv" | sort -u | tr '\n' ' ')" = "body long short " ] && ok || bad "fields body column"
 "$bin" run "$work/line-saint-venant/case.toml" --out "$work/line-again" > /dev/null && ok || bad "resolved line case"
 cmp -s "$work/line-saint-venant/history.csv" "$work/line-again/history.csv" && ok || bad "resolved line case differs"
 "$bin" exact "$lines/saint-venant.toml" --out "$work/line-exact" > /dev/null && ok || bad "line exact"

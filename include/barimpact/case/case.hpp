@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "barimpact/model/input_error.hpp"
+#include "barimpact/model/material.hpp"
 #include "barimpact/model/obstacle.hpp"
 
 namespace barimpact {
@@ -27,6 +28,7 @@ struct BarData {
   double viscosity = 0.0;         ///< b, Kelvin-Voigt
   int elements = 100;             ///< M, uniform P1 elements
   FarEnd far_end = FarEnd::free;  ///< x = L: free (sigma = 0) or clamped (u = 0)
+  MaterialData material;          ///< elastic, or elastic-plastic (stresses a u_x: area 1)
 };
 
 struct LoadData {
@@ -49,6 +51,7 @@ struct BodyData {
   double mass = 1.0;               ///< mass
   std::string displacement = "0";  ///< u0(x) (bar), a number (mass)
   std::string velocity = "0";      ///< v0(x) (bar), a number (mass)
+  MaterialData material;           ///< bar: elastic, or elastic-plastic (material.hpp)
 };
 
 /// A joint's or an end's law. At an end, the obstacle is a joint with the ground.

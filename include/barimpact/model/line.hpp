@@ -14,10 +14,12 @@
 
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "barimpact/model/contact_law.hpp"
+#include "barimpact/model/material.hpp"
 #include "barimpact/model/mesh.hpp"
 
 namespace barimpact {
@@ -91,6 +93,15 @@ struct Line {
   std::vector<GaugePoint> gauges;
   std::string body_force = "0";  ///< f(x, t), force per unit length on the bar elements
   double gravity = 0.0;          ///< g, towards -x
+  /// Per body (line order): its elastic-plastic material, none if elastic.
+  std::vector<std::optional<Plasticity>> plasticity;
+
+  /// Whether any body is elastic-plastic.
+  [[nodiscard]] bool plastic() const {
+    for (const auto& p : plasticity)
+      if (p) return true;
+    return false;
+  }
 
   [[nodiscard]] std::size_t nodes() const { return x.size(); }
   /// M_h (consistent) or its row sums (lumped), point masses on the diagonal.

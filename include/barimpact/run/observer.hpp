@@ -30,10 +30,10 @@ class Observer {
 
 /// One row of history.csv, at t_n.
 struct HistoryRow {
-  double t, U, V, R, E_kin, E_strain, E_obstacle, W_ext, D_visc, D_contact;
+  double t, U, V, R, E_kin, E_strain, E_obstacle, W_ext, D_visc, D_contact, D_plastic;
 
   /// E_total: constant for an exact solution, the budget's test.
-  [[nodiscard]] double total() const { return E_kin + E_strain + E_obstacle - W_ext + D_visc + D_contact; }
+  [[nodiscard]] double total() const { return E_kin + E_strain + E_obstacle - W_ext + D_visc + D_contact + D_plastic; }
 };
 
 /// Rows at steps 0, every, 2 every, ... and always at the last step.
@@ -65,6 +65,7 @@ struct Fields {
   std::vector<std::string> body_names;
   std::vector<double> t;
   std::vector<double> u, v, sigma;
+  std::vector<double> eps_p;  ///< plastic strain (tension positive), nodal as sigma
 
   [[nodiscard]] std::size_t count() const { return t.size(); }
   [[nodiscard]] std::size_t nodes() const { return x.size(); }

@@ -20,12 +20,19 @@
 // E_obstacle. The rigid links' work is D_contact (exact by this identity);
 // a penalty link's stored energy is its law's at u^n, so its share of the
 // budget closes to O(dt^2); a cushion's hysteresis is D_contact.
+//
+// Elastic-plastic bodies (plastic_bonds.hpp): N_j = A sigma_j + viscous,
+// sigma_j = E (eps_j - p_j) with p^n from the return map at u^n, so the
+// step stays explicit and p^{n+1} is computed as soon as u^{n+1} is; the
+// elastic stencil carries the plastic strains as forces A E (p_{j-1} - p_j),
+// and the budget's identity gains D_plastic (closing as the elastic one).
 #pragma once
 
 #include <array>
 #include <vector>
 
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/plastic_bonds.hpp"
 
 namespace barimpact {
 
@@ -41,6 +48,10 @@ class LineCentralDifference final : public LineScheme {
   }
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double plastic_strain(std::size_t bond) const override {
+    return plastic_.active() ? plastic_.current()[bond] : 0.0;
+  }
+  [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_.body_work(body); }
 
  private:
   /// next = 2 cur - prev + dt^2 r / m on the free nodes (`taylor`: the start's
@@ -66,14 +77,20 @@ class LineCentralDifference final : public LineScheme {
 
   // A stretch of interior nodes [first, last) of one uniform body: stencils
   // k (2u_j - u_{j-1} - u_{j+1}), the same with c, and one lumped mass.
+  // Elastic-plastic stretches add the plastic strains' forces E A (p_{j-1} - p_j).
   struct Stretch {
     std::size_t first, last;
     double k, c, inv_m;
+    double axial;  // E A
+    bool plastic;
   };
+  template <bool viscous, bool loaded, bool plastic>
+  void stretch_rows(const Stretch& s, const double* um, const double* u, double* up) const;
   std::vector<Stretch> stretches_;
   std::vector<std::size_t> special_;       // the nodes outside every stretch
   std::vector<double> k_, c_, inv_m_, m_;  // per bond; per node
   std::vector<double> r_, rigid_;          // forces at the level; rigid links' impulse forces
+  PlasticBonds plastic_;                   // the elastic-plastic elements' state (none: every body elastic)
   std::array<std::vector<double>, 3> levels_;
   double* prev_ = nullptr;
   double* cur_ = nullptr;

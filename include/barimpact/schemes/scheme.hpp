@@ -25,8 +25,9 @@ struct Energies {
   double work = 0.0;         ///< W_ext, cumulative work of f
   double dissipation = 0.0;  ///< D_visc, cumulative viscous dissipation (bars and dashpots)
   double contact = 0.0;      ///< D_contact, cumulative: the laws' hysteresis and inelastic impacts
+  double plastic = 0.0;      ///< D_plastic, cumulative plastic work dissipated (hardening's share is in E_strain)
 
-  [[nodiscard]] double total() const { return kinetic + strain + obstacle - work + dissipation + contact; }
+  [[nodiscard]] double total() const { return kinetic + strain + obstacle - work + dissipation + contact + plastic; }
 };
 
 class Scheme {
@@ -63,6 +64,10 @@ class Scheme {
   /// The force (compression > 0) on a held or loaded far end at t_n, when the
   /// scheme computes it; NaN: read it off the last element instead.
   [[nodiscard]] virtual double far_force() const;
+  /// Bond j's plastic strain at t_n (0 in an elastic body, material.hpp).
+  [[nodiscard]] virtual double plastic_strain(std::size_t /*bond*/) const { return 0.0; }
+  /// The plastic work body b has dissipated up to t_n.
+  [[nodiscard]] virtual double plastic_work(std::size_t /*body*/) const { return 0.0; }
   /// False once a level holds NaN or infinity.
   [[nodiscard]] virtual bool finite() const = 0;
 };

@@ -1,0 +1,80 @@
+// The elastic-plastic elements of a line (material.hpp) for a three-level
+// scheme: each element's plastic strain p and accumulated plastic strain at
+// levels n - 1, n, n + 1, the return map of a new level, and the scheme's
+// energy identity.
+//
+// A three-level scheme's internal force at level m is the elements' axial
+// force N^m = A sigma^m, sigma^m = E (eps^m - p^m). Tested with
+// (u^{m+1} - u^{m-1}) / 2, it does the work h A sigma^m (eps^{m+1} -
+// eps^{m-1}) / 2 per element, which is exactly
+//
+//   psi^{m+1/2} - psi^{m-1/2} + h A sigma^m (p^{m+1} - p^{m-1}) / 2,
+//   psi^{m+1/2} = h A E (eps^m - p^m)(eps^{m+1} - p^{m+1}) / 2,
+//
+// so E_strain holds psi (the elastic energy, at the half steps) and the
+// second term, summed over the steps, is the plastic work: D_plastic books
+// it less the energy the hardening stores (which E_strain holds). The
+// budget then closes as the elastic scheme's does. The centred term tends to
+// sigma_y |dp| (plus the hardening's share) as dt -> 0; along a monotone
+// plastic flow at constant stress it is that exactly.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "barimpact/model/line.hpp"
+
+namespace barimpact {
+
+class PlasticBonds {
+ public:
+  PlasticBonds() = default;
+  explicit PlasticBonds(const Line& line);
+
+  [[nodiscard]] bool active() const { return !ranges_.empty(); }
+
+  /// Level 0 from a virgin material at u0, as level n and in the place of
+  /// level n + 1 (the level the next step's forces read).
+  void start(const double* u0);
+  /// The state at u^{m+1} (`up`) from level m's (`next()`, at `u`), into the
+  /// free slot, and level m's plastic work h A sigma^m (p^{m+1} - p^{m-1}) / 2
+  /// booked (p^{m-1}: `current()`). `first`: the start's step, whose level
+  /// -1 is level 0 (half its share, as the start's other terms). Then rotate().
+  void advance(const double* u, const double* up, bool first = false);
+  /// Levels n - 1, n, n + 1 move on by one, as the scheme's.
+  void rotate();
+
+  /// Plastic strain per bond (0 in an elastic body): level n + 1 before
+  /// advance (the forces' level), level n after rotate.
+  [[nodiscard]] const double* next() const { return p_[next_].data(); }
+  [[nodiscard]] const double* current() const { return p_[cur_].data(); }
+  [[nodiscard]] const double* previous() const { return p_[prev_].data(); }
+
+  /// What the elastic-plastic elements' plastic strains change in the
+  /// half-step energy (b - a)^T K (d - c) / 2 that elastic elements would
+  /// have between levels (a, pa) and (b, pb): sum psi - k da db / 2.
+  [[nodiscard]] double energy_correction(const double* a, const double* pa, const double* b, const double* pb) const;
+  /// The energy the hardening stores at level n.
+  [[nodiscard]] double hardening_energy() const;
+  /// D_plastic at level n: the centred plastic work (its half-step sum, as
+  /// W_ext's) less the hardening's stored energy; the same for one body.
+  [[nodiscard]] double work() const;
+  [[nodiscard]] double body_work(std::size_t body) const;
+
+ private:
+  // The elements of one elastic-plastic body: bonds [first, last).
+  struct Range {
+    std::size_t first, last, body;
+    Plasticity law;
+    double inv_h, volume, k;  // 1 / h, A h, E A / h
+  };
+  [[nodiscard]] double hardening_energy(const Range& r) const;
+
+  std::vector<Range> ranges_;
+  std::array<std::vector<double>, 3> p_, accumulated_;
+  int prev_ = 2, cur_ = 0, next_ = 1;
+  std::vector<double> half_, last_, hardening0_;  // per body: the centred work's sums, the hardening at level 0
+};
+
+}  // namespace barimpact

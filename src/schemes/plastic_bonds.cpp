@@ -1,0 +1,127 @@
+#include "barimpact/schemes/plastic_bonds.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace barimpact {
+
+namespace {
+
+// The return map of material.hpp, branch-free so that it vectorises, over
+// bonds [first, last): p^{m+1} and alpha^{m+1} from eps^{m+1} and level m's
+// state; returns sum sigma^m (p^{m+1} - p^{m-1}).
+template <bool isotropic>
+double return_map(std::size_t first, std::size_t last, const Plasticity& law, double inv_h, const double* __restrict u,
+                  const double* __restrict up, const double* __restrict pm, const double* __restrict am,
+                  const double* __restrict p_before, double* __restrict pn, double* __restrict an) {
+  const double e = law.modulus, hm = law.plastic_modulus, sy = law.yield_stress;
+  const double inv = 1.0 / (e + hm);
+  double work = 0.0;
+  for (std::size_t j = first; j < last; ++j) {
+    const double sigma = e * ((u[j + 1] - u[j]) * inv_h - pm[j]);
+    const double trial = e * ((up[j + 1] - up[j]) * inv_h - pm[j]);
+    const double over = isotropic ? trial : trial - hm * pm[j];
+    const double radius = isotropic ? sy + hm * am[j] : sy;
+    const double dgamma = std::max(std::abs(over) - radius, 0.0) * inv;
+    const double p = pm[j] + std::copysign(dgamma, over);
+    work += sigma * (p - p_before[j]);
+    pn[j] = p;
+    an[j] = am[j] + dgamma;
+  }
+  return work;
+}
+
+}  // namespace
+
+PlasticBonds::PlasticBonds(const Line& line) {
+  for (std::size_t b = 0; b < line.bodies.size(); ++b) {
+    if (b >= line.plasticity.size() || !line.plasticity[b]) continue;
+    const BodyRange& body = line.bodies[b];
+    if (body.last == body.first) continue;
+    const Bond& e = line.bonds[body.first];
+    ranges_.push_back({body.first, body.last, b, *line.plasticity[b], 1.0 / e.h, e.area * e.h, e.stiffness});
+  }
+  for (auto* levels : {&p_, &accumulated_})
+    for (auto& level : *levels) level.assign(line.bonds.size(), 0.0);
+  half_.assign(line.bodies.size(), 0.0);
+  last_.assign(line.bodies.size(), 0.0);
+  hardening0_.assign(line.bodies.size(), 0.0);
+}
+
+void PlasticBonds::start(const double* u0) {
+  prev_ = 2;
+  cur_ = 0;
+  next_ = 1;
+  for (auto* levels : {&p_, &accumulated_})
+    for (auto& level : *levels) std::fill(level.begin(), level.end(), 0.0);
+  // From a virgin state: u0 as level m + 1 of a material at rest at u = 0.
+  const std::vector<double> zero(p_[0].size() + 1, 0.0);
+  for (const Range& r : ranges_)
+    (void)(r.law.isotropic ? return_map<true> : return_map<false>)(r.first, r.last, r.law, r.inv_h, zero.data(), u0,
+                                                                   zero.data(), zero.data(), zero.data(),
+                                                                   p_[next_].data(), accumulated_[next_].data());
+  p_[cur_] = p_[next_];
+  accumulated_[cur_] = accumulated_[next_];
+  std::fill(half_.begin(), half_.end(), 0.0);
+  std::fill(last_.begin(), last_.end(), 0.0);
+  for (const Range& r : ranges_) hardening0_[r.body] = hardening_energy(r);
+}
+
+void PlasticBonds::advance(const double* u, const double* up, bool first) {
+  for (const Range& r : ranges_) {
+    const double w = 0.5 * r.volume *
+                     (r.law.isotropic ? return_map<true>
+                                      : return_map<false>)(r.first, r.last, r.law, r.inv_h, u, up, p_[next_].data(),
+                                                           accumulated_[next_].data(), p_[cur_].data(),
+                                                           p_[prev_].data(), accumulated_[prev_].data());
+    half_[r.body] += w;
+    last_[r.body] = first ? 0.0 : w;  // the start's share is already half a level's, as W_ext's
+  }
+}
+
+void PlasticBonds::rotate() {
+  const int free = prev_;
+  prev_ = cur_;
+  cur_ = next_;
+  next_ = free;
+}
+
+double PlasticBonds::energy_correction(const double* a, const double* pa, const double* b, const double* pb) const {
+  double sum = 0.0;
+  for (const Range& r : ranges_) {
+    const double h = 1.0 / r.inv_h;
+    double s = 0.0;
+    for (std::size_t j = r.first; j < r.last; ++j)
+      s += h * (pa[j] * pb[j] * h - pa[j] * (b[j + 1] - b[j]) - pb[j] * (a[j + 1] - a[j]));
+    sum += 0.5 * r.k * s;
+  }
+  return sum;
+}
+
+double PlasticBonds::hardening_energy(const Range& r) const {
+  if (r.law.plastic_modulus == 0.0) return 0.0;
+  const std::vector<double>& a = r.law.isotropic ? accumulated_[cur_] : p_[cur_];
+  double s = 0.0;
+  for (std::size_t j = r.first; j < r.last; ++j) s += a[j] * a[j];
+  return 0.5 * r.law.plastic_modulus * r.volume * s;
+}
+
+double PlasticBonds::hardening_energy() const {
+  double s = 0.0;
+  for (const Range& r : ranges_) s += hardening_energy(r);
+  return s;
+}
+
+double PlasticBonds::work() const {
+  double s = 0.0;
+  for (const Range& r : ranges_) s += half_[r.body] - 0.5 * last_[r.body] - (hardening_energy(r) - hardening0_[r.body]);
+  return s;
+}
+
+double PlasticBonds::body_work(std::size_t body) const {
+  for (const Range& r : ranges_)
+    if (r.body == body) return half_[body] - 0.5 * last_[body] - (hardening_energy(r) - hardening0_[body]);
+  return 0.0;
+}
+
+}  // namespace barimpact
