@@ -128,7 +128,7 @@ py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<p
   return a;
 }
 
-constexpr std::array<const char*, 10> columns{"t",          "U",     "V",      "R",         "E_kin",    "E_strain",
+constexpr std::array<const char*, 11> columns{"t",          "U",     "V",      "R",         "E_kin",    "E_strain",
                                               "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic"};
 
 }  // namespace

@@ -218,4 +218,34 @@ bool ProgressMonitor::observe(const Scheme& s) {
   return report_(Progress{s.step(), steps_, s.time(), t_end_, elapsed});
 }
 
+PlasticMonitor::PlasticMonitor(const Line& line, long long every) : every_(every) {
+  for (std::size_t j = 0; j < line.bonds.size(); ++j) {
+    const Bond& b = line.bonds[j];
+    if (b.kind == BondKind::element && b.body < line.plasticity.size() && line.plasticity[b.body]) bonds_.push_back(j);
+  }
+  work_.assign(line.bodies.size(), 0.0);
+}
+
+void PlasticMonitor::begin(const Scheme& /*scheme*/, long long steps) {
+  last_ = steps;
+  largest_ = time_ = 0.0;
+  bond_ = bonds_.empty() ? 0 : bonds_.front();
+  std::fill(work_.begin(), work_.end(), 0.0);
+}
+
+bool PlasticMonitor::observe(const Scheme& s) {
+  const long long n = s.step();
+  if (bonds_.empty() || (n % every_ != 0 && n != last_)) return true;
+  for (std::size_t j : bonds_) {
+    const double p = s.plastic_strain(j);
+    if (std::abs(p) > std::abs(largest_)) {
+      largest_ = p;
+      bond_ = j;
+      time_ = s.time();
+    }
+  }
+  for (std::size_t b = 0; b < work_.size(); ++b) work_[b] = s.plastic_work(b);
+  return true;
+}
+
 }  // namespace barimpact

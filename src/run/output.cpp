@@ -265,6 +265,16 @@ std::string summary_json(const Case& c, const Summary& s) {
                       {"velocity_upper", e.closed ? number_or_null(e.velocity_upper) : nlohmann::json(nullptr)}});
     links[s.link_names[i]] = list;
   }
+  nlohmann::json plastic = nullptr;
+  if (s.plastic) {
+    nlohmann::json work = nlohmann::json::object();
+    for (const auto& [body, w] : s.plastic->work) work[body] = w;
+    plastic = {{"largest_strain", s.plastic->largest_strain},
+               {"body", s.plastic->body},
+               {"x", s.plastic->x},
+               {"t", s.plastic->t},
+               {"work", work}};
+  }
   const double rel = s.energy_initial != 0.0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   const nlohmann::json j = {
       {"complete", s.complete},
@@ -281,6 +291,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"max_penetration", s.max_penetration},
       {"max_reaction", s.max_reaction},
       {"links", links},
+      {"plastic", plastic},
       {"energy_initial", number_or_null(s.energy_initial)},
       {"energy_final", number_or_null(s.energy_final)},
       {"energy_error_max", number_or_null(s.energy_error_max)},
@@ -319,6 +330,12 @@ std::string summary_text(const Case& c, const Summary& s) {
     for (const auto& e : s.link_episodes[i]) largest = std::max(largest, e.max_force);
     out += fmt::format("  {}: {} contact episode(s), largest force {:.4g}\n", s.link_names[i],
                        s.link_episodes[i].size(), largest);
+  }
+  if (s.plastic) {
+    out += fmt::format("  plastic: largest eps_p {:.4g} in {} at x = {:.4g}, t = {:.4g}; plastic work",
+                       s.plastic->largest_strain, s.plastic->body, s.plastic->x, s.plastic->t);
+    for (const auto& [body, w] : s.plastic->work) out += fmt::format(" {} {:.4g}", body, w);
+    out += "\n";
   }
   if (std::isfinite(s.energy_initial))
     out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",

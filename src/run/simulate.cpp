@@ -87,14 +87,16 @@ struct Recorders {
   FieldRecorder fields;
   ContactMonitor contact;
   LinkMonitor links;
+  PlasticMonitor plastic;
   explicit Recorders(const Case& c)
       : line(build_line(c)),
         probes(c, line),
         history(c.output.every, &probes),
         fields(c, line, c.output.fields_at),
         contact(near_obstacle(c)),
-        links(line) {}
-  std::array<Observer*, 4> all() { return {&history, &fields, &contact, &links}; }
+        links(line),
+        plastic(line, c.output.every) {}
+  std::array<Observer*, 5> all() { return {&history, &fields, &contact, &links, &plastic}; }
 };
 
 RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
@@ -200,7 +202,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
   Recorders rec(c);
-  std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact, &rec.links};
+  std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact, &rec.links, &rec.plastic};
   if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
   return collect(c, loop, steps, rec, started, finite_rows);
@@ -219,7 +221,8 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
     const auto bad = std::find_if(r.history.begin(), r.history.end(), [](const HistoryRow& h) {
       return !(std::isfinite(h.t) && std::isfinite(h.U) && std::isfinite(h.V) && std::isfinite(h.R) &&
                std::isfinite(h.E_kin) && std::isfinite(h.E_strain) && std::isfinite(h.E_obstacle) &&
-               std::isfinite(h.W_ext) && std::isfinite(h.D_visc) && std::isfinite(h.D_contact));
+               std::isfinite(h.W_ext) && std::isfinite(h.D_visc) && std::isfinite(h.D_contact) &&
+               std::isfinite(h.D_plastic));
     });
     if (bad != r.history.end()) {
       r.extra.resize(static_cast<std::size_t>(bad - r.history.begin()) * r.columns.size());
@@ -243,6 +246,16 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
   s.link_episodes = rec.links.episodes();
   s.max_penetration = rec.contact.max_penetration();
   s.max_reaction = rec.contact.max_reaction();
+  if (rec.plastic.any()) {
+    PlasticSummary& p = s.plastic.emplace();
+    p.largest_strain = rec.plastic.largest();
+    const std::size_t j = rec.plastic.bond();
+    p.body = rec.line.bodies[rec.line.bonds[j].body].name;
+    p.x = 0.5 * (rec.line.x[j] + rec.line.x[j + 1]);
+    p.t = rec.plastic.time();
+    for (std::size_t b = 0; b < rec.line.bodies.size(); ++b)
+      if (rec.line.plasticity[b]) p.work.emplace_back(rec.line.bodies[b].name, rec.plastic.work()[b]);
+  }
   if (!r.history.empty()) {
     auto total = [](const HistoryRow& h) { return h.total(); };
     s.energy_initial = total(r.history.front());

@@ -52,7 +52,7 @@ TEST(Health, ChatterIsManyEpisodesOfAStepOrTwo) {
 }
 
 TEST(Health, TheEnergyScaleOfARunFromRestIsItsWork) {
-  std::vector<HistoryRow> rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 1.5, 0.5, 0, 2.0, 0, 0}};
+  std::vector<HistoryRow> rows{{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 1.5, 0.5, 0, 2.0, 0, 0, 0}};
   EXPECT_EQ(energy_scale(rows), 2.0);
   rows[1].W_ext = 0.0;
   EXPECT_EQ(energy_scale(rows), 2.0);  // no work either: the largest stored energy

@@ -157,6 +157,29 @@ class LinkMonitor final : public Observer {
   double largest_ = 0.0;
 };
 
+/// The largest plastic strain (by size, signed) of the elastic-plastic
+/// elements, where and when, sampled at the history's steps (every
+/// `every`-th and the last), and each body's plastic work at the last one.
+class PlasticMonitor final : public Observer {
+ public:
+  PlasticMonitor(const Line& line, long long every);
+  void begin(const Scheme& scheme, long long steps) override;
+  bool observe(const Scheme& scheme) override;
+  [[nodiscard]] bool any() const { return !bonds_.empty(); }
+  [[nodiscard]] double largest() const { return largest_; }
+  [[nodiscard]] std::size_t bond() const { return bond_; }
+  [[nodiscard]] double time() const { return time_; }
+  /// Per body of the line (0 for elastic bodies and masses).
+  [[nodiscard]] const std::vector<double>& work() const { return work_; }
+
+ private:
+  std::vector<std::size_t> bonds_;  // the elastic-plastic elements
+  long long every_ = 1, last_ = 0;
+  double largest_ = 0.0, time_ = 0.0;
+  std::size_t bond_ = 0;
+  std::vector<double> work_;
+};
+
 /// Where a run stands, for progress reports.
 struct Progress {
   long long step = 0;

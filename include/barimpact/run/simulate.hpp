@@ -3,8 +3,10 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
@@ -28,6 +30,16 @@ struct LoopResult {
 LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers,
                     const std::atomic<bool>* interrupt = nullptr);
 
+/// What the elastic-plastic bodies did (material.hpp): the largest plastic
+/// strain (signed, by size) at the history's steps, in the element centred
+/// at x, and each such body's plastic work at the end.
+struct PlasticSummary {
+  double largest_strain = 0.0;
+  std::string body;
+  double x = 0.0, t = 0.0;
+  std::vector<std::pair<std::string, double>> work;
+};
+
 struct Summary {
   std::string method;  ///< the scheme's name, or "exact"
   bool complete = true;
@@ -42,9 +54,10 @@ struct Summary {
   std::vector<std::vector<LinkEpisode>> link_episodes;
   double max_penetration = 0.0;
   double max_reaction = 0.0;
-  double energy_initial = 0.0;    ///< E_total at t = 0
-  double energy_final = 0.0;      ///< E_total at the last history row
-  double energy_error_max = 0.0;  ///< max over rows of |E_total - E_total(0)|
+  std::optional<PlasticSummary> plastic;  ///< none: every body elastic
+  double energy_initial = 0.0;            ///< E_total at t = 0
+  double energy_final = 0.0;              ///< E_total at the last history row
+  double energy_error_max = 0.0;          ///< max over rows of |E_total - E_total(0)|
   double run_seconds = 0.0;
   /// What the run's own health checks found (health.hpp): one line each.
   std::vector<std::string> warnings;
