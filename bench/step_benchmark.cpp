@@ -177,6 +177,42 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   per_node_step(state, s->nodes());
 }
 
+// Central differences through the elastic-plastic path (plastic_bonds.hpp)
+// against the same line elastic: two welded bars of M elements in all,
+// moving at -1 onto a rigid wall, dt = h/2. `elastic`: the material the
+// paper's; `unyielded`: plastic with a yield stress never reached (the
+// return map's pass and the plastic strains' forces, all zero); `yielding`:
+// sigma_y = 0.05 and E_t = 0.1, the bar yielding from the wall on.
+void BM_PlasticLineStep(benchmark::State& state, const std::string& material) {
+  const long long M = state.range(0), half = M / 2;
+  barimpact::Case c;
+  c.single_bar = false;
+  for (auto [name, elements] : {std::pair{"a", half}, std::pair{"b", M - half}}) {
+    barimpact::BodyData b;
+    b.name = name;
+    b.length = static_cast<double>(elements) / static_cast<double>(M);
+    b.elements = static_cast<int>(elements);
+    b.velocity = "-1";
+    if (material != "elastic") {
+      b.material.kind = barimpact::MaterialKind::plastic;
+      b.material.yield_stress = material == "yielding" ? 0.05 : 1e9;
+      b.material.hardening_modulus = 0.1;
+    }
+    c.bodies.push_back(b);
+  }
+  c.near_end.law = barimpact::JointLaw::rigid;
+  c.time.scheme = "central-difference";
+  c.time.step = 0.5 / static_cast<double>(M);
+  c.time.end = 1.0;
+  auto s = barimpact::make_scheme(c);
+  s->start();
+  for (auto _ : state) {
+    s->advance();
+    benchmark::DoNotOptimize(s->end_displacement());
+  }
+  per_node_step(state, s->nodes());
+}
+
 // The rigid-contact schemes (moreau-jean, paoli-schatzman,
 // mass-redistribution) on a line of three bars of M elements in all (M/3,
 // M/3, the rest: a rigid joint, a welded one, a rigid near end), dt = h/2,
@@ -494,6 +530,12 @@ const bool registered = [] {
   for (const char* scheme : {"central-difference", "newmark", "paper", "characteristic"}) {
     const std::string name = fmt::format("BM_Line/{}", scheme);
     benchmark::RegisterBenchmark(name.c_str(), BM_LineStep, std::string(scheme))
+        ->RangeMultiplier(10)
+        ->Range(100, 1'000'000);
+  }
+  for (const char* material : {"elastic", "unyielded", "yielding"}) {
+    const std::string name = fmt::format("BM_PlasticLine/central-difference/{}", material);
+    benchmark::RegisterBenchmark(name.c_str(), BM_PlasticLineStep, std::string(material))
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }

@@ -441,7 +441,8 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
         fmt::format("plot: {} holds no history.csv (give a directory written by barimpact run)", run_dir));
   std::vector<std::string> names;
   for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces",
-                             "gauges", "masses"})  // plot.py writes these; a line adds the last three
+                             "gauges", "masses", "plastic_map", "plastic_snapshots"})
+    // plot.py writes these; a line adds joint_forces, gauges and masses, a yielding bar the plastic ones
     for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
   barimpact::prepare_output_directory(target, "plot", names, force);
   // DIR/figures belongs to the run directory it is in, drawn or not.

@@ -266,6 +266,29 @@ def plot(source, out=None, formats=("png", "svg")):
         ax.set_ylabel("t")
         _save(fig, out, "stress_map", formats, written)
 
+    eps_p = getattr(data, "eps_p", None)
+    if data.field_t.size >= 2 and eps_p is not None and eps_p.size and np.any(eps_p != 0):
+        fig, ax = _figure("Plastic strain eps_p(x, t)", grid=False)
+        limit = float(np.max(np.abs(eps_p)))
+        for rows in _body_rows(data):
+            mesh = ax.pcolormesh(data.x[rows], data.field_t, eps_p[:, rows], cmap="PuOr_r", vmin=-limit, vmax=limit,
+                                 shading="nearest")
+        fig.colorbar(mesh, ax=ax, label="eps_p (tension > 0)")
+        ax.set_xlabel("x")
+        ax.set_ylabel("t")
+        _save(fig, out, "plastic_map", formats, written)
+        fig, ax = _figure("Plastic strain eps_p(x) at snapshot times")
+        chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
+        for i in chosen:
+            for n, rows in enumerate(_body_rows(data)):
+                line, = ax.plot(data.x[rows], eps_p[i, rows], lw=1.2,
+                                label=f"t = {data.field_t[i]:.3g}" if n == 0 else None,
+                                color=None if n == 0 else line.get_color())
+        ax.set_xlabel("x")
+        ax.set_ylabel("eps_p")
+        ax.legend(fontsize=8, ncol=2)
+        _save(fig, out, "plastic_snapshots", formats, written)
+
     if data.field_t.size >= 1:
         fig, ax = _figure("Displacement u(x) at snapshot times")
         chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))

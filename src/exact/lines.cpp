@@ -716,9 +716,98 @@ Rod rod_of(const BodyData& b) {
 
 }  // namespace
 
+// ---------------------------------------------------------------------------
+// VonKarman
+
+VonKarman::VonKarman(const Rod& bar, double yield_stress, double tangent_modulus, double velocity)
+    : bar_(bar), sigma_y_(yield_stress), E_t_(tangent_modulus), V_(velocity) {
+  check_rod(bar);
+  require(yield_stress > 0.0 && tangent_modulus > 0.0 && tangent_modulus < bar.modulus && std::isfinite(velocity),
+          "von Karman's problem needs sigma_y > 0, 0 < E_t < E and a finite velocity");
+  c0_ = bar_.wave_speed();
+  c1_ = std::sqrt(E_t_ / bar_.density);
+  sign_ = V_ >= 0.0 ? 1.0 : -1.0;
+  eps_y_ = sigma_y_ / bar_.modulus;
+  v_y_ = c0_ * eps_y_;
+  plastic_ = std::abs(V_) > v_y_;
+  eps_plateau_ = plastic_ ? eps_y_ + (std::abs(V_) - v_y_) / c1_ : std::abs(V_) / c0_;
+  sigma_plateau_ = plastic_ ? sigma_y_ + E_t_ * (eps_plateau_ - eps_y_) : bar_.modulus * eps_plateau_;
+}
+
+double VonKarman::precursor_stress() const {
+  return -sign_ * (plastic_ ? sigma_y_ : sigma_plateau_);
+}
+double VonKarman::plateau_stress() const {
+  return -sign_ * sigma_plateau_;
+}
+double VonKarman::plateau_strain() const {
+  return -sign_ * eps_plateau_;
+}
+double VonKarman::plateau_plastic_strain() const {
+  return plastic_ ? -sign_ * (eps_plateau_ - sigma_plateau_ / bar_.modulus) : 0.0;
+}
+
+LineFields VonKarman::fields(std::size_t body, double x, double t) const {
+  check_body(body, bodies());
+  const double front0 = c0_ * t, front1 = plastic_ ? c1_ * t : 0.0;
+  const double eps1 = plastic_ ? -sign_ * eps_y_ : plateau_strain(), v1 = plastic_ ? sign_ * v_y_ : V_;
+  LineFields f;
+  if (x >= front0) return f;  // ahead of the precursor: at rest
+  if (x >= front1) {
+    f = {-(front0 - x) * eps1, v1, eps1, 0.0};
+  } else {
+    const double eps2 = plateau_strain();
+    f = {-(front0 - front1) * eps1 - (front1 - x) * eps2, V_, eps2, 0.0};
+  }
+  f.axial_force = bar_.area * (x >= front1 ? precursor_stress() : plateau_stress());
+  return f;
+}
+
+double VonKarman::link_force(std::size_t i, double /*t*/) const {
+  check_link(i, links());
+  return 0.0;
+}
+double VonKarman::link_opening(std::size_t i, double /*t*/) const {
+  check_link(i, links());
+  return 0.0;
+}
+
+double VonKarman::plastic_strain(std::size_t body, double x, double t) const {
+  check_body(body, bodies());
+  return plastic_ && x < c1_ * t ? plateau_plastic_strain() : 0.0;
+}
+
+double VonKarman::work(double t) const {
+  return -bar_.area * plateau_stress() * V_ * t;
+}
+
+std::optional<Energies> VonKarman::energies(double t) const {
+  const double A = bar_.area, rho = bar_.density, E = bar_.modulus;
+  const double l1 = plastic_ ? (c0_ - c1_) * t : c0_ * t, l2 = plastic_ ? c1_ * t : 0.0;  // precursor, plastic zone
+  const double s1 = std::abs(precursor_stress()), v1 = plastic_ ? v_y_ : std::abs(V_);
+  const double s2 = sigma_plateau_, p2 = std::abs(plateau_plastic_strain());
+  const double H = E * E_t_ / (E - E_t_);
+  Energies e;
+  e.kinetic = 0.5 * rho * A * (v1 * v1 * l1 + V_ * V_ * l2);
+  e.strain = A * (0.5 * s1 * s1 / E * l1 + (0.5 * s2 * s2 / E + 0.5 * H * p2 * p2) * l2);
+  e.work = work(t);
+  e.plastic = A * sigma_y_ * p2 * l2;
+  return e;
+}
+
 std::unique_ptr<LineSolution> for_line_case(const Case& c) {
   double f = 0.0;
   if (!constant(c.load.body_force, f) || f != 0.0 || c.load.gravity != 0.0) return nullptr;
+  if (c.bodies.size() == 1 && c.bodies[0].kind == BodyKind::bar &&
+      c.bodies[0].material.kind == MaterialKind::plastic) {  // von Karman's: driven at a constant velocity
+    const BodyData& b = c.bodies[0];
+    double v = 0.0, u0 = 0.0, v0 = 0.0;
+    if (b.viscosity == 0.0 && b.material.hardening_modulus > 0.0 && c.near_end.law == JointLaw::velocity &&
+        constant(c.near_end.value, v) && constant(b.displacement, u0) && constant(b.velocity, v0) && u0 == 0.0 &&
+        v0 == 0.0)
+      return std::make_unique<VonKarman>(rod_of(b), b.material.yield_stress, b.material.hardening_modulus, v);
+    return nullptr;
+  }
   for (const BodyData& b : c.bodies)  // the solutions below are elastic
     if (b.material.kind != MaterialKind::elastic) return nullptr;
   if (c.bodies.size() != 2 || c.joints.size() > 1) return nullptr;

@@ -47,6 +47,14 @@ class TabulatedLine final : public Scheme {
   double velocity_at(std::size_t j) const override { return s_->fields(body_of_[j], line_.x[j], time()).v; }
   double link_force(std::size_t i) const override { return s_->link_force(i, time()); }
   double link_opening(std::size_t i) const override { return s_->link_opening(i, time()); }
+  double plastic_strain(std::size_t bond) const override {  // at the element's centre
+    const std::size_t b = line_.bonds[bond].body;
+    return s_->plastic_strain(b, 0.5 * (line_.x[bond] + line_.x[bond + 1]), time());
+  }
+  double plastic_work(std::size_t body) const override {
+    const auto e = s_->energies(time());
+    return e && s_->bodies() == 1 && body == 0 ? e->plastic : 0.0;
+  }
   Energies energies() const override;
   bool finite() const override { return true; }
 
@@ -62,8 +70,9 @@ class TabulatedLine final : public Scheme {
 };
 
 Energies TabulatedLine::energies() const {
-  Energies e;
   const double t = time();
+  if (auto closed = s_->energies(t)) return *closed;
+  Energies e;
   constexpr int cells = 20000;
   for (std::size_t b = 0; b < line_.bodies.size(); ++b) {
     const BodyRange& r = line_.bodies[b];

@@ -19,14 +19,11 @@ double return_map(std::size_t first, std::size_t last, const Plasticity& law, do
   double work = 0.0;
   for (std::size_t j = first; j < last; ++j) {
     const double sigma = e * ((u[j + 1] - u[j]) * inv_h - pm[j]);
-    const double trial = e * ((up[j + 1] - up[j]) * inv_h - pm[j]);
-    const double over = isotropic ? trial : trial - hm * pm[j];
-    const double radius = isotropic ? sy + hm * am[j] : sy;
-    const double dgamma = std::max(std::abs(over) - radius, 0.0) * inv;
-    const double p = pm[j] + std::copysign(dgamma, over);
+    double p = pm[j], alpha = am[j];
+    (void)Plasticity::return_map<isotropic>(e * ((up[j + 1] - up[j]) * inv_h - pm[j]), hm, sy, inv, p, alpha);
     work += sigma * (p - p_before[j]);
     pn[j] = p;
-    an[j] = am[j] + dgamma;
+    an[j] = alpha;
   }
   return work;
 }

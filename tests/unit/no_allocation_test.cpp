@@ -299,3 +299,59 @@ fields_at = [1.0, 2.5]
 
 }  // namespace
 }  // namespace barimpact
+
+namespace barimpact {
+namespace {
+
+// Elastic-plastic bodies under central differences: the return map's pass,
+// the plastic strains' forces and the monitor of the largest plastic strain.
+TEST(TimeLoop, PlasticCentralDifferencesNeverAllocate) {
+  const Case c = testing::case_from(R"toml([[body]]
+name = "a"
+elements = 40
+velocity = "-1"
+material = "plastic"
+yield_stress = 0.2
+hardening_modulus = 0.1
+hardening = "isotropic"
+[[body]]
+name = "b"
+elements = 20
+velocity = "-1"
+material = "plastic"
+yield_stress = 0.3
+[near_end]
+law = "rigid"
+[time]
+scheme = "central-difference"
+step = 0.005
+end = 3
+[output]
+fields_at = [1.0, 2.5]
+)toml");
+  auto s = make_scheme(c);
+  const Line line = build_line(c);
+  const Probes probes(c, line);
+  HistoryRecorder history(c.output.every, &probes);
+  FieldRecorder fields(c, line, c.output.fields_at);
+  ContactMonitor contact(c.obstacle);
+  LinkMonitor links(line);
+  PlasticMonitor plastic(line, c.output.every);
+  const std::array<Observer*, 5> observers{&history, &fields, &contact, &links, &plastic};
+  const long long steps = c.step_count();
+  for (auto* o : observers) o->begin(*s, steps);
+  s->start();
+  allocations = 0;
+  counting = true;
+  for (long long n = 0; n <= steps; ++n) {
+    if (n > 0) s->advance();
+    for (auto* o : observers) o->observe(*s);
+  }
+  counting = false;
+  EXPECT_EQ(allocations.load(), 0);
+  EXPECT_LT(plastic.largest(), 0.0);  // it yielded, in compression
+  EXPECT_GT(history.rows().back().D_plastic, 0.0);
+}
+
+}  // namespace
+}  // namespace barimpact

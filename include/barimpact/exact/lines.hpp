@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
@@ -82,6 +83,12 @@ class LineSolution {
   [[nodiscard]] virtual double energy(double t) const = 0;
   /// Work done on the line by the ends' prescribed forces over (0, t).
   [[nodiscard]] virtual double work(double /*t*/) const { return 0.0; }
+  /// The whole budget at t where the solution knows it in closed form
+  /// (an elastic-plastic bar's plastic work, say); none: the tabulation
+  /// integrates kinetic and elastic strain energy over the bodies.
+  [[nodiscard]] virtual std::optional<Energies> energies(double /*t*/) const { return std::nullopt; }
+  /// Body i's plastic strain at x, t (0 in an elastic body).
+  [[nodiscard]] virtual double plastic_strain(std::size_t /*body*/, double /*x*/, double /*t*/) const { return 0.0; }
   /// One line naming the solution, for summaries.
   [[nodiscard]] virtual const char* name() const = 0;
 };
@@ -275,6 +282,54 @@ class Junction final : public LineSolution {
 /// one needs zero body force, zero gravity, zero viscosity and initial
 /// data given as constants. A rigid joint's restitution is not read: in
 /// the continuum the contact stores and dissipates nothing.
+/// Von Karman's problem (von Karman & Duwez, J. Appl. Phys. 21, 1950): an
+/// elastic-plastic bar (E, rho, A; yield stress sigma_y, bilinear with
+/// tangent modulus E_t > 0, material.hpp) on [0, L], at rest and
+/// undeformed, its end x = 0 driven into it at a constant velocity V > 0
+/// (V < 0 pulls: the same with tension). Two fronts leave x = 0: the
+/// elastic precursor at c0 = sqrt(E / rho), behind it sigma = -sigma_y,
+/// v = v_y = c0 eps_y (eps_y = sigma_y / E), and, when V > v_y, the plastic
+/// front at c1 = sqrt(E_t / rho), behind it v = V, eps = -(eps_y + (V - v_y)
+/// / c1), sigma = -(sigma_y + E_t (|eps| - eps_y)). Loading is monotone, so
+/// kinematic and isotropic hardening agree; valid until the precursor
+/// reaches x = L. The budget is closed-form: the fronts dissipate nothing
+/// beyond the material's plastic work (each jump follows a straight piece
+/// of the stress-strain curve).
+class VonKarman final : public LineSolution {
+ public:
+  VonKarman(const Rod& bar, double yield_stress, double tangent_modulus, double velocity);
+
+  [[nodiscard]] double elastic_speed() const { return c0_; }
+  [[nodiscard]] double plastic_speed() const { return c1_; }
+  /// The stresses behind the precursor and behind the plastic front (V's sign: compression for V > 0).
+  [[nodiscard]] double precursor_stress() const;
+  [[nodiscard]] double plateau_stress() const;
+  [[nodiscard]] double plateau_strain() const;
+  [[nodiscard]] double plateau_plastic_strain() const;
+
+  std::size_t bodies() const override { return 1; }
+  double body_near(std::size_t /*i*/) const override { return 0.0; }
+  double body_far(std::size_t /*i*/) const override { return bar_.length; }
+  LineFields fields(std::size_t body, double x, double t) const override;
+  std::size_t links() const override { return 0; }
+  double link_force(std::size_t i, double t) const override;
+  double link_opening(std::size_t i, double t) const override;
+  double valid_until() const override { return bar_.length / c0_; }
+  double energy(double t) const override { return work(t); }
+  /// The driven end's work: -N(0) V t.
+  double work(double t) const override;
+  std::optional<Energies> energies(double t) const override;
+  double plastic_strain(std::size_t body, double x, double t) const override;
+  const char* name() const override { return "von Karman: an elastic-plastic bar struck at a constant velocity"; }
+
+ private:
+  Rod bar_;
+  double sigma_y_, E_t_, V_;
+  double c0_, c1_, sign_, v_y_, eps_y_;
+  double eps_plateau_, sigma_plateau_;  // magnitudes
+  bool plastic_ = false;                // V beyond v_y
+};
+
 [[nodiscard]] std::unique_ptr<LineSolution> for_line_case(const Case& c);
 
 }  // namespace barimpact::exact

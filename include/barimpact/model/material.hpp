@@ -14,6 +14,7 @@
 // hardening stores H alpha^2 / 2 (isotropic) or H eps_p^2 / 2 (kinematic).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 namespace barimpact {
@@ -55,19 +56,23 @@ struct Plasticity {
   /// `dgamma` is the plastic strain increment's size (0 while elastic).
   double stress(double eps, PlasticState& s, double& dgamma) const {
     const double trial = modulus * (eps - s.strain);
-    const double centre = isotropic ? 0.0 : plastic_modulus * s.strain;
-    const double radius = yield_stress + (isotropic ? plastic_modulus * s.accumulated : 0.0);
-    const double over = trial - centre;
-    const double f = std::abs(over) - radius;
-    if (f <= 0.0) {
-      dgamma = 0.0;
-      return trial;
-    }
-    dgamma = f / (modulus + plastic_modulus);
-    const double step = over > 0.0 ? dgamma : -dgamma;
-    s.strain += step;
-    s.accumulated += dgamma;
-    return trial - modulus * step;
+    const double inv = 1.0 / (modulus + plastic_modulus);
+    dgamma = isotropic ? return_map<true>(trial, plastic_modulus, yield_stress, inv, s.strain, s.accumulated)
+                       : return_map<false>(trial, plastic_modulus, yield_stress, inv, s.strain, s.accumulated);
+    return modulus * (eps - s.strain);
+  }
+
+  /// The return map's core, branch-free so that loops over elements
+  /// vectorise: from the trial stress E (eps - p), the new p and alpha in
+  /// place; returns dgamma (inv = 1 / (E + H)).
+  template <bool iso>
+  static double return_map(double trial, double h, double sigma_y, double inv, double& p, double& alpha) {
+    const double over = iso ? trial : trial - h * p;
+    const double radius = iso ? sigma_y + h * alpha : sigma_y;
+    const double dgamma = std::max(std::abs(over) - radius, 0.0) * inv;
+    p += std::copysign(dgamma, over);
+    alpha += dgamma;
+    return dgamma;
   }
 
   /// The energy the hardening stores per unit volume.
