@@ -125,7 +125,9 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
     } else if (t->contains("from")) {
       const double bad = std::numeric_limits<double>::quiet_NaN();
       const double from = (*t)["from"].value_or(bad), to = (*t)["to"].value_or(bad);
-      const int64_t count = (*t)["count"].value_or(int64_t{0});
+      // An integer only: toml++ converts a float out of int64's range with undefined behaviour.
+      const auto* counted = t->get_as<int64_t>("count");
+      const int64_t count = counted != nullptr ? counted->get() : 0;
       const std::string scale = (*t)["scale"].value_or(std::string("linear"));
       if (!std::isfinite(from) || !std::isfinite(to) || count < 2 || count > 100000)
         throw InputError(fmt::format("{}: axis {}: a range needs numbers from, to and count >= 2", where(node), a.key));
