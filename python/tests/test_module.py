@@ -196,3 +196,20 @@ def test_a_line_of_bodies_by_name():
     assert np.max(np.abs(total - total[0])) < 1e-12  # central differences' identity with rigid links
     with pytest.raises(KeyError):
         r["joint.nope.force"]
+
+
+def test_an_elastic_plastic_bar():
+    # A yielding bar from a dict: D_plastic grows, the budget closes, eps_p is
+    # a field like sigma, the summary names the largest plastic strain.
+    r = barimpact.run({
+        "body": [{"name": "rod", "elements": 100, "velocity": "-1", "material": "plastic", "yield_stress": 0.4,
+                  "hardening_modulus": 0.2, "hardening": "isotropic"}],
+        "near_end": {"law": "rigid"},
+        "time": {"scheme": "central-difference", "step": 0.005, "end": 2.0},
+        "output": {"fields_at": [0.5, 2.0]},
+    })
+    assert r.D_plastic[-1] > 0.05 and np.all(np.diff(r.D_plastic) >= -1e-15)
+    total = r.E_kin + r.E_strain + r.E_obstacle - r.W_ext + r.D_visc + r.D_contact + r.D_plastic
+    assert np.max(np.abs(total[1:] - total[1])) < 1e-12
+    assert r.eps_p.shape == r.sigma.shape and np.min(r.eps_p) < 0.0
+    assert r.summary["plastic"]["body"] == "rod" and r.summary["plastic"]["largest_strain"] < 0.0

@@ -16,15 +16,23 @@ double return_map(std::size_t first, std::size_t last, const Plasticity& law, do
                   const double* __restrict p_before, double* __restrict pn, double* __restrict an) {
   const double e = law.modulus, hm = law.plastic_modulus, sy = law.yield_stress;
   const double inv = 1.0 / (e + hm);
-  double work = 0.0;
-  for (std::size_t j = first; j < last; ++j) {
+  auto element = [&](std::size_t j) {  // returns sigma^m (p^{m+1} - p^{m-1})
     const double sigma = e * ((u[j + 1] - u[j]) * inv_h - pm[j]);
-    double p = pm[j], alpha = am[j];
+    double p = pm[j], alpha = isotropic ? am[j] : 0.0;  // kinematic hardening needs no alpha
     (void)Plasticity::return_map<isotropic>(e * ((up[j + 1] - up[j]) * inv_h - pm[j]), hm, sy, inv, p, alpha);
-    work += sigma * (p - p_before[j]);
     pn[j] = p;
-    an[j] = alpha;
-  }
+    if constexpr (isotropic) an[j] = alpha;
+    return sigma * (p - p_before[j]);
+  };
+  // Eight partial sums in a fixed order: the sum vectorises (one chain of
+  // additions would bind the loop to their latency) and stays deterministic.
+  double partial[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  std::size_t j = first;
+  for (; j + 8 <= last; j += 8)
+    for (std::size_t k = 0; k < 8; ++k) partial[k] += element(j + k);
+  double work = 0.0;
+  for (; j < last; ++j) work += element(j);
+  for (double x : partial) work += x;
   return work;
 }
 

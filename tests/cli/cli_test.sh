@@ -231,6 +231,28 @@ printf '[[body]]\nname = "a"\n[[body]]\nname = "b"\n[[body]]\nname = "c"\n[[join
 expect_refused "consecutive" run "$work/badline.toml" --out "$work/refused"
 printf '[[body]]\nname = "a"\n[[body]]\nname = "a"\n' > "$work/badline.toml"
 expect_refused "repeats the body name" run "$work/badline.toml" --out "$work/refused"
+# Elastic-plastic bars: the three examples run and close their budgets; the columns; exact; the rules.
+plastic="$examples/plastic"
+for ex in taylor-bar paper-example1-yielding pipe-whip; do
+  "$bin" run "$plastic/$ex.toml" --out "$work/plastic-$ex" > /dev/null 2> "$work/err" && ok || bad "plastic $ex: $(cat "$work/err")"
+done
+head -1 "$work/plastic-taylor-bar/history.csv" | grep -q "^t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic,gauge.mid" && ok || bad "plastic history columns"
+[ "$(head -1 "$work/plastic-taylor-bar/fields.csv")" = "t,x,u,v,sigma,eps_p,body" ] && ok || bad "plastic fields columns"
+/usr/bin/python3 - "$work/plastic-taylor-bar" <<'PY' && ok || bad "plastic summary"
+import json, sys
+s = json.load(open(sys.argv[1] + "/summary.json"))
+p = s["plastic"]
+assert p["largest_strain"] < 0 and p["body"] == "bar" and p["work"]["bar"] > 0, p
+assert s["energy_error_relative"] < 1e-9, s["energy_error_relative"]
+PY
+"$bin" run "$work/plastic-paper-example1-yielding/case.toml" --out "$work/plastic-again" > /dev/null && ok || bad "resolved plastic case"
+cmp -s "$work/plastic-paper-example1-yielding/history.csv" "$work/plastic-again/history.csv" && ok || bad "resolved plastic case differs"
+printf '[[body]]\nname = "rod"\nelements = 100\nmaterial = "plastic"\nyield_stress = 0.1\nhardening_modulus = 0.25\n[near_end]\nlaw = "velocity"\nvalue = "0.3"\n[time]\nscheme = "central-difference"\nstep = 0.005\nend = 0.8\n' > "$work/von-karman.toml"
+"$bin" exact "$work/von-karman.toml" --out "$work/von-karman-exact" > "$work/out" 2>&1 && grep -q "von Karman" "$work/out" && ok || bad "von karman exact: $(cat "$work/out")"
+expect_refused "body.bar.yield_stress must be > 0" run "$plastic/taylor-bar.toml" --out "$work/refused" --set body.bar.yield_stress=0
+expect_refused "body.bar.hardening_modulus must be below modulus" run "$plastic/taylor-bar.toml" --out "$work/refused" --set body.bar.hardening_modulus=3e11
+expect_refused "time.scheme = \"paper\" cannot run the elastic-plastic body \"bar\"" run "$plastic/taylor-bar.toml" --out "$work/refused" --set time.scheme=paper
+expect_refused "bar.yield_stress is used by material = \"plastic\" only" run "$ex1" --out "$work/refused" --set bar.yield_stress=1
 printf '[bar]\n[[body]]\nname = "a"\n' > "$work/badline.toml"
 expect_refused "cannot be combined with [[body]]" run "$work/badline.toml" --out "$work/refused"
 
