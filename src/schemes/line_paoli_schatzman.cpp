@@ -5,7 +5,7 @@
 
 namespace barimpact {
 
-LinePaoliSchatzman::LinePaoliSchatzman(const Case& c, Line line) : LineScheme(c, std::move(line)) {
+LinePaoliSchatzman::LinePaoliSchatzman(const Case& c, Line line) : LineScheme(c, std::move(line)), plastic_(line_) {
   const std::size_t n = line_.nodes();
   mass_ = line_.mass(true);
   Tridiagonal m = mass_;
@@ -38,9 +38,11 @@ LinePaoliSchatzman::LinePaoliSchatzman(const Case& c, Line line) : LineScheme(c,
 
 double LinePaoliSchatzman::special_row(const double* um, const double* u, std::size_t j) {
   const double inv_dt = 1.0 / dt_;
+  const double* p = plastic_.active() ? plastic_.next() : nullptr;  // level n's, read before it moves on
   auto tension = [&](std::size_t b) {
     double t = k_[b] * (u[b + 1] - u[b]);
     if (viscous_) t += c_[b] * ((u[b + 1] - u[b]) - (um[b + 1] - um[b])) * inv_dt;
+    if (p != nullptr) t -= line_.bonds[b].axial * p[b];
     return t;
   };
   double r = (load_zero_ ? 0.0 : load_[j]) + extra_[j];
@@ -63,12 +65,17 @@ template <bool viscous, bool loaded>
 void LinePaoliSchatzman::sweeps(const double* um, const double* u, double* up, double scale) {
   const double* f = load_.data();
   const double inv_dt = 1.0 / dt_;
+  const double* p = plastic_.active() ? plastic_.next() : nullptr;
   auto stencil = [&](const Stretch& s) {
     const double k = k_[s.first], c = c_[s.first] * inv_dt;
+    const Bond& b = line_.bonds[s.first];
+    const bool plastic = p != nullptr && b.body < line_.plasticity.size() && line_.plasticity[b.body];
+    const double axial = plastic ? b.axial : 0.0;  // the plastic strains' forces E A (p_{j-1} - p_j)
     return [=](std::size_t j) {
       double r = -k * (2.0 * u[j] - u[j - 1] - u[j + 1]);
       if constexpr (loaded) r += f[j];
       if constexpr (viscous) r -= c * (2.0 * (u[j] - um[j]) - (u[j - 1] - um[j - 1]) - (u[j + 1] - um[j + 1]));
+      if (plastic) r += axial * (p[j - 1] - p[j]);
       return r;
     };
   };
@@ -141,9 +148,14 @@ void LinePaoliSchatzman::start() {
     before[j] = u0_[j] - dt_ * v0_[j];
   }
   const double taylor = 0.5 * dt_ * dt_;
+  if (plastic_.active()) plastic_.start(cur_);
   predict(before.data(), cur_, next_, 0.0, taylor);
   project(cur_, next_, 2.0);  // the Taylor step moves by dt^2/2 a: a correction's force is twice a full step's
   end_forces(before.data(), cur_, next_, 0.0, taylor);
+  if (plastic_.active()) {
+    plastic_.advance(cur_, next_, true);
+    plastic_.rotate();
+  }
   // The first half step's share of the budget, dt/2 times the rates at t = 0.
   double power = 0.0, viscous = 0.0, contact = 0.0;
   for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : load_[j]) * v0_[j];
@@ -174,6 +186,10 @@ void LinePaoliSchatzman::advance() {
   predict(um, u, up, t, dt2);
   project(um, up, 1.0);
   end_forces(um, u, up, t, dt2);
+  if (plastic_.active()) {
+    plastic_.advance(u, up);
+    plastic_.rotate();
+  }
   prev_ = cur_;
   cur_ = next_;
   next_ = up;
@@ -232,11 +248,21 @@ Energies LinePaoliSchatzman::energies() const {
     e.kinetic = 0.5 * mass_.quadratic_form(v0_);
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
     e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
+    if (plastic_.active())
+      e.strain += plastic_.energy_correction(u0_.data(), plastic_.current(), u0_.data(), plastic_.current()) +
+                  plastic_.hardening_energy();
     return e;
   }
   e.kinetic = 0.5 * (half_step_kinetic(prev_, cur_) + half_step_kinetic(cur_, next_));
   e.strain = 0.25 * (line_.bond_form(BondKind::element, false, prev_, cur_) +
                      line_.bond_form(BondKind::element, false, cur_, next_));
+  if (plastic_.active()) {
+    const double *pm = plastic_.previous(), *p = plastic_.current(), *pp = plastic_.next();
+    e.strain +=
+        0.5 * (plastic_.energy_correction(prev_, pm, cur_, p) + plastic_.energy_correction(cur_, p, next_, pp)) +
+        plastic_.hardening_energy();
+    e.plastic = plastic_.work();
+  }
   e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +
                         line_.bond_form(BondKind::spring, false, cur_, next_));
   e.work = work_half_ - 0.5 * work_last_;

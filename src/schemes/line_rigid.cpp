@@ -56,11 +56,14 @@ std::vector<Stretch> uniform_stretches(const Line& line, std::vector<unsigned ch
     special[h.node] = 1;
     if (h.neighbour != HeldRow::none) special[h.neighbour] = 1;
   }
+  auto plastic = [&](const Bond& b) { return b.body < line.plasticity.size() && line.plasticity[b.body]; };
   auto uniform = [&](std::size_t j) {
     if (j == 0 || j + 1 >= n || special[j] || line.fixed(j) || line.point_mass[j] != 0.0) return false;
     const Bond &l = line.bonds[j - 1], &r = line.bonds[j];
+    // A stretch is elastic or elastic-plastic of one E A throughout (the plastic strains' forces E A (p_{j-1} - p_j)).
     return l.kind == BondKind::element && r.kind == BondKind::element && l.stiffness == r.stiffness &&
-           l.viscosity == r.viscosity && l.mass == r.mass;
+           l.viscosity == r.viscosity && l.mass == r.mass && plastic(l) == plastic(r) &&
+           (!plastic(l) || l.axial == r.axial);
   };
   std::vector<Stretch> out;
   for (std::size_t j = 1; j + 1 < n; ++j) {

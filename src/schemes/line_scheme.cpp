@@ -133,11 +133,11 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
-  if (name != "central-difference")
+  if (name != "central-difference" && name != "paoli-schatzman")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])
         return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the elastic-plastic body \"{}\" yet (schemes "
-                                                "that can: central-difference)",
+                                                "that can: central-difference, paoli-schatzman)",
                                                 name, line.bodies[b].name)};
   if (name == "paper" || name == "newmark") {
     for (const auto& l : line.links)

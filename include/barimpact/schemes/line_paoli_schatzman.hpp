@@ -22,6 +22,9 @@
 // H^{n+1/2} = |w|_M^2 / 2 + (u^n)^T K u^{n+1} / 2: the rigid links' work is
 // D_contact, exact by the scheme's identity; a penalty link's energy is its
 // law's at u^n (O(dt^2)), a cushion's hysteresis is D_contact.
+// Elastic-plastic bodies as central-difference's (plastic_bonds.hpp): the
+// axial forces at t_n from the return map at u^n, D_plastic by the same
+// identity (the consistent mass changes only the kinetic energy).
 #pragma once
 
 #include <array>
@@ -29,6 +32,7 @@
 
 #include "barimpact/schemes/line_rigid.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/plastic_bonds.hpp"
 
 namespace barimpact {
 
@@ -44,6 +48,10 @@ class LinePaoliSchatzman final : public LineScheme {
   }
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double plastic_strain(std::size_t bond) const override {
+    return plastic_.active() ? plastic_.current()[bond] : 0.0;
+  }
+  [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_.body_work(body); }
 
  private:
   /// up = 2 u - um + scale M^{-1} r, r the forces at level u (rates from um),
@@ -68,6 +76,7 @@ class LinePaoliSchatzman final : public LineScheme {
   std::vector<Stretch> stretches_;
   std::vector<HeldRow> held_;
   RigidLinks rigid_;
+  PlasticBonds plastic_;  // the elastic-plastic elements' state (none: every body elastic)
   std::vector<double> q_, mu_;
   std::vector<unsigned char> all_;
   std::array<std::vector<double>, 3> levels_;
