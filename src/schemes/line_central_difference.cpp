@@ -59,8 +59,10 @@ double LineCentralDifference::row_force(const double* um, const double* u, std::
 
 template <bool viscous, bool loaded>
 void LineCentralDifference::uniform_rows(const double* um, const double* u, double* up) const {
+  const bool yielded = !plastic_.pristine();  // before the first yield every p is 0: the elastic stencil
   for (const Stretch& s : stretches_)
-    s.plastic ? stretch_rows<viscous, loaded, true>(s, um, u, up) : stretch_rows<viscous, loaded, false>(s, um, u, up);
+    s.plastic&& yielded ? stretch_rows<viscous, loaded, true>(s, um, u, up)
+                        : stretch_rows<viscous, loaded, false>(s, um, u, up);
 }
 
 template <bool viscous, bool loaded, bool plastic>

@@ -69,7 +69,8 @@ void LinePaoliSchatzman::sweeps(const double* um, const double* u, double* up, d
   auto stencil = [&](const Stretch& s) {
     const double k = k_[s.first], c = c_[s.first] * inv_dt;
     const Bond& b = line_.bonds[s.first];
-    const bool plastic = p != nullptr && b.body < line_.plasticity.size() && line_.plasticity[b.body];
+    const bool plastic =
+        p != nullptr && !plastic_.pristine() && b.body < line_.plasticity.size() && line_.plasticity[b.body];
     const double axial = plastic ? b.axial : 0.0;  // the plastic strains' forces E A (p_{j-1} - p_j)
     return [=](std::size_t j) {
       double r = -k * (2.0 * u[j] - u[j - 1] - u[j + 1]);

@@ -36,6 +36,22 @@ double return_map(std::size_t first, std::size_t last, const Plasticity& law, do
   return work;
 }
 
+// Whether any element of bonds [first, last) yields at u^{m+1} from level
+// m's state: a read-only pass that vectorises (an integer OR, no stores).
+template <bool isotropic>
+bool yields(std::size_t first, std::size_t last, const Plasticity& law, double inv_h, const double* __restrict up,
+            const double* __restrict pm, const double* __restrict am) {
+  const double e = law.modulus, hm = law.plastic_modulus, sy = law.yield_stress;
+  int any = 0;
+  for (std::size_t j = first; j < last; ++j) {
+    const double trial = e * ((up[j + 1] - up[j]) * inv_h - pm[j]);
+    const double over = isotropic ? trial : trial - hm * pm[j];
+    const double radius = isotropic ? sy + hm * am[j] : sy;
+    any |= std::abs(over) > radius ? 1 : 0;
+  }
+  return any != 0;
+}
+
 }  // namespace
 
 PlasticBonds::PlasticBonds(const Line& line) {
@@ -67,28 +83,43 @@ void PlasticBonds::start(const double* u0) {
                                                                    p_[next_].data(), accumulated_[next_].data());
   p_[cur_] = p_[next_];
   accumulated_[cur_] = accumulated_[next_];
+  quiet_ = false;  // the start's step books its work whatever happens
+  pristine_ = std::all_of(p_[cur_].begin(), p_[cur_].end(), [](double x) { return x == 0.0; });
   std::fill(half_.begin(), half_.end(), 0.0);
   std::fill(last_.begin(), last_.end(), 0.0);
   for (const Range& r : ranges_) hardening0_[r.body] = hardening_energy(r);
 }
 
 void PlasticBonds::advance(const double* u, const double* up, bool first) {
+  bool yielding = false;
+  for (const Range& r : ranges_)
+    yielding =
+        yielding || (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law, r.inv_h, up,
+                                                                     p_[next_].data(), accumulated_[next_].data());
+  if (!yielding && quiet_) {  // p^{m+1} = p^m = p^{m-1}: level m + 1 is level m's arrays, its work 0
+    fresh_ = next_;
+    for (const Range& r : ranges_) last_[r.body] = 0.0;
+    return;
+  }
+  fresh_ = 0;
+  while (fresh_ == cur_ || fresh_ == next_) ++fresh_;  // three arrays, at most two levels in use
+  quiet_ = !yielding;
+  pristine_ = pristine_ && !yielding;
   for (const Range& r : ranges_) {
     const double w = 0.5 * r.volume *
                      (r.law.isotropic ? return_map<true>
                                       : return_map<false>)(r.first, r.last, r.law, r.inv_h, u, up, p_[next_].data(),
                                                            accumulated_[next_].data(), p_[cur_].data(),
-                                                           p_[prev_].data(), accumulated_[prev_].data());
+                                                           p_[fresh_].data(), accumulated_[fresh_].data());
     half_[r.body] += w;
     last_[r.body] = first ? 0.0 : w;  // the start's share is already half a level's, as W_ext's
   }
 }
 
 void PlasticBonds::rotate() {
-  const int free = prev_;
   prev_ = cur_;
   cur_ = next_;
-  next_ = free;
+  next_ = fresh_;
 }
 
 double PlasticBonds::energy_correction(const double* a, const double* pa, const double* b, const double* pb) const {

@@ -44,6 +44,9 @@ class PlasticBonds {
   void advance(const double* u, const double* up, bool first = false);
   /// Levels n - 1, n, n + 1 move on by one, as the scheme's.
   void rotate();
+  /// No element has yielded yet: every plastic strain is 0 (the schemes'
+  /// elastic stencils then hold).
+  [[nodiscard]] bool pristine() const { return pristine_; }
 
   /// Plastic strain per bond (0 in an elastic body): level n + 1 before
   /// advance (the forces' level), level n after rotate.
@@ -72,8 +75,13 @@ class PlasticBonds {
   [[nodiscard]] double hardening_energy(const Range& r) const;
 
   std::vector<Range> ranges_;
+  // Three arrays for levels n - 1, n, n + 1; a level no element yields into
+  // shares its predecessor's array (a step where nothing yields, after one
+  // where nothing did, writes nothing).
   std::array<std::vector<double>, 3> p_, accumulated_;
-  int prev_ = 2, cur_ = 0, next_ = 1;
+  int prev_ = 2, cur_ = 0, next_ = 1, fresh_ = 2;
+  bool quiet_ = false;                            // p^{n+1} = p^n: nothing yielded at the last step
+  bool pristine_ = true;                          // nothing has ever yielded
   std::vector<double> half_, last_, hardening0_;  // per body: the centred work's sums, the hardening at level 0
 };
 
