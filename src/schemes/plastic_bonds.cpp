@@ -52,6 +52,15 @@ bool yields(std::size_t first, std::size_t last, const Plasticity& law, double i
   return any != 0;
 }
 
+// The same while nothing has yielded (p = alpha = 0): |u_{j+1} - u_j| > h sigma_y / E.
+bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double h,
+                      const double* __restrict up) {
+  const double limit = h * law.yield_stress / law.modulus;
+  int any = 0;
+  for (std::size_t j = first; j < last; ++j) any |= std::abs(up[j + 1] - up[j]) > limit ? 1 : 0;
+  return any != 0;
+}
+
 }  // namespace
 
 PlasticBonds::PlasticBonds(const Line& line) {
@@ -93,9 +102,10 @@ void PlasticBonds::start(const double* u0) {
 void PlasticBonds::advance(const double* u, const double* up, bool first) {
   bool yielding = false;
   for (const Range& r : ranges_)
-    yielding =
-        yielding || (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law, r.inv_h, up,
-                                                                     p_[next_].data(), accumulated_[next_].data());
+    yielding = yielding || (pristine_ ? yields_from_rest(r.first, r.last, r.law, 1.0 / r.inv_h, up)
+                                      : (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law,
+                                                                                         r.inv_h, up, p_[next_].data(),
+                                                                                         accumulated_[next_].data()));
   if (!yielding && quiet_) {  // p^{m+1} = p^m = p^{m-1}: level m + 1 is level m's arrays, its work 0
     fresh_ = next_;
     for (const Range& r : ranges_) last_[r.body] = 0.0;
