@@ -77,4 +77,11 @@ for name in rigid-example1 rigid-clamped penalty-example1; do
   echo "![work-precision, $name](figures/verification-$name-work_precision.png)" >> "$doc"
   echo >> "$doc"
 done
+
+echo "## 5. Elastic-plastic: von Karman's bar" >> "$doc"
+echo >> "$doc"
+echo "A bilinear bar driven at a constant velocity (examples/plastic/von-karman.toml): the struck end's" >> "$doc"
+echo "force R against the closed form (U is prescribed). Its jump at t = 0 bounds the L1 order by 1:" >> "$doc"
+echo >> "$doc"
+study von-karman examples/plastic/von-karman.toml --schemes central-difference,paoli-schatzman --levels 5
 echo "Regenerated $doc"
