@@ -52,12 +52,14 @@ bool yields(std::size_t first, std::size_t last, const Plasticity& law, double i
   return any != 0;
 }
 
-// The same while nothing has yielded (p = alpha = 0): |u_{j+1} - u_j| > h sigma_y / E.
-bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double h,
+// The same while nothing has yielded (p = alpha = 0), in the return map's
+// own arithmetic (so that it yields exactly where the map would): |E (u_{j+1}
+// - u_j) / h| > sigma_y.
+bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
                       const double* __restrict up) {
-  const double limit = h * law.yield_stress / law.modulus;
+  const double e = law.modulus, sy = law.yield_stress;
   int any = 0;
-  for (std::size_t j = first; j < last; ++j) any |= std::abs(up[j + 1] - up[j]) > limit ? 1 : 0;
+  for (std::size_t j = first; j < last; ++j) any |= std::abs(e * ((up[j + 1] - up[j]) * inv_h)) > sy ? 1 : 0;
   return any != 0;
 }
 
@@ -102,7 +104,7 @@ void PlasticBonds::start(const double* u0) {
 void PlasticBonds::advance(const double* u, const double* up, bool first) {
   bool yielding = false;
   for (const Range& r : ranges_)
-    yielding = yielding || (pristine_ ? yields_from_rest(r.first, r.last, r.law, 1.0 / r.inv_h, up)
+    yielding = yielding || (pristine_ ? yields_from_rest(r.first, r.last, r.law, r.inv_h, up)
                                       : (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law,
                                                                                          r.inv_h, up, p_[next_].data(),
                                                                                          accumulated_[next_].data()));
