@@ -802,7 +802,10 @@ std::unique_ptr<LineSolution> for_line_case(const Case& c) {
       c.bodies[0].material.kind == MaterialKind::plastic) {  // von Karman's: driven at a constant velocity
     const BodyData& b = c.bodies[0];
     double v = 0.0, u0 = 0.0, v0 = 0.0;
-    if (b.viscosity == 0.0 && b.material.hardening_modulus > 0.0 && c.near_end.law == JointLaw::velocity &&
+    // A far end loaded from t = 0 would change the bar before the precursor
+    // arrives; a free, held or unilateral one acts only after L / c0.
+    const bool far_quiet = c.far_end.law != JointLaw::force && c.far_end.law != JointLaw::velocity;
+    if (far_quiet && b.viscosity == 0.0 && b.material.hardening_modulus > 0.0 && c.near_end.law == JointLaw::velocity &&
         constant(c.near_end.value, v) && constant(b.displacement, u0) && constant(b.velocity, v0) && u0 == 0.0 &&
         v0 == 0.0)
       return std::make_unique<VonKarman>(rod_of(b), b.material.yield_stress, b.material.hardening_modulus, v);

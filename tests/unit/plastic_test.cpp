@@ -260,6 +260,17 @@ TEST(VonKarman, TheExactBudgetCloses) {
   EXPECT_GT(exact.plateau_plastic_strain(), 0.0);
 }
 
+// `barimpact exact` knows the case only while nothing else loads the bar
+// before the precursor arrives: a far end driven from t = 0 has no
+// closed form here.
+TEST(VonKarman, IsTheExactSolutionOnlyOfItsOwnCase) {
+  const Case c = case_from(von_karman_case(100, 0.5));
+  EXPECT_NE(exact::for_line_case(c), nullptr);
+  for (const char* far : {"law = \"force\"\nvalue = \"0.5\"", "law = \"velocity\"\nvalue = \"-0.1\""})
+    EXPECT_EQ(exact::for_line_case(case_from(von_karman_case(100, 0.5) + "[far_end]\n" + far + "\n")), nullptr) << far;
+  EXPECT_NE(exact::for_line_case(case_from(von_karman_case(100, 0.5) + "[far_end]\nlaw = \"clamped\"\n")), nullptr);
+}
+
 // ---- The budget, unloading, the elastic limit
 
 // The explicit schemes' identity with D_plastic (plastic_bonds.hpp; for
@@ -267,8 +278,10 @@ TEST(VonKarman, TheExactBudgetCloses) {
 // the budget as the elastic scheme's closes: to round-off from row 1 on
 // (1e-12 of the scale over 3000 steps), with a rigid wall (D_contact), a
 // viscous bar, gravity, a welded elastic bar and a spring to a mass, and
-// isotropic hardening reversing at the rebounds. D_plastic grows, never
-// falls.
+// isotropic hardening reversing at the rebounds. Here D_plastic never
+// falls; the centred work can dip by O(dt) where a reversal falls between
+// steps (measured -1.6e-6 against increments of 7e-5 at dt = 0.004 in a
+// cyclic case), which is the price of the exact budget.
 TEST(PlasticBudget, ClosesToRoundOffWithTheExplicitSchemes) {
   for (const char* scheme : {"central-difference", "paoli-schatzman"}) {
     const Case c = case_from(fmt::format(R"toml([[body]]
