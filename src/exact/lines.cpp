@@ -719,8 +719,8 @@ Rod rod_of(const BodyData& b) {
 // ---------------------------------------------------------------------------
 // VonKarman
 
-VonKarman::VonKarman(const Rod& bar, double yield_stress, double tangent_modulus, double velocity)
-    : bar_(bar), sigma_y_(yield_stress), E_t_(tangent_modulus), V_(velocity) {
+VonKarman::VonKarman(const Rod& bar, double yield_stress, double tangent_modulus, double velocity, bool wall)
+    : bar_(bar), sigma_y_(yield_stress), E_t_(tangent_modulus), V_(velocity), wall_(wall) {
   check_rod(bar);
   require(yield_stress > 0.0 && tangent_modulus > 0.0 && tangent_modulus < bar.modulus && std::isfinite(velocity),
           "von Karman's problem needs sigma_y > 0, 0 < E_t < E and a finite velocity");
@@ -752,7 +752,10 @@ LineFields VonKarman::fields(std::size_t body, double x, double t) const {
   const double front0 = c0_ * t, front1 = plastic_ ? c1_ * t : 0.0;
   const double eps1 = plastic_ ? -sign_ * eps_y_ : plateau_strain(), v1 = plastic_ ? sign_ * v_y_ : V_;
   LineFields f;
-  if (x >= front0) return f;  // ahead of the precursor: at rest
+  if (x >= front0) {  // ahead of the precursor: at rest (moving at -V towards the wall)
+    if (wall_) f = {-V_ * t, -V_, 0.0, 0.0};
+    return f;
+  }
   if (x >= front1) {
     f = {-(front0 - x) * eps1, v1, eps1, 0.0};
   } else {
@@ -760,12 +763,16 @@ LineFields VonKarman::fields(std::size_t body, double x, double t) const {
     f = {-(front0 - front1) * eps1 - (front1 - x) * eps2, V_, eps2, 0.0};
   }
   f.axial_force = bar_.area * (x >= front1 ? precursor_stress() : plateau_stress());
+  if (wall_) {  // the bar's frame: it moved at -V
+    f.u -= V_ * t;
+    f.v -= V_;
+  }
   return f;
 }
 
-double VonKarman::link_force(std::size_t i, double /*t*/) const {
+double VonKarman::link_force(std::size_t i, double t) const {
   check_link(i, links());
-  return 0.0;
+  return t > 0.0 ? -bar_.area * plateau_stress() : 0.0;  // the wall's push: the plateau's compression
 }
 double VonKarman::link_opening(std::size_t i, double /*t*/) const {
   check_link(i, links());
@@ -778,7 +785,11 @@ double VonKarman::plastic_strain(std::size_t body, double x, double t) const {
 }
 
 double VonKarman::work(double t) const {
-  return -bar_.area * plateau_stress() * V_ * t;
+  return wall_ ? 0.0 : -bar_.area * plateau_stress() * V_ * t;
+}
+
+double VonKarman::energy(double t) const {
+  return wall_ ? 0.5 * bar_.density * bar_.area * bar_.length * V_ * V_ : work(t);
 }
 
 std::optional<Energies> VonKarman::energies(double t) const {
@@ -789,6 +800,10 @@ std::optional<Energies> VonKarman::energies(double t) const {
   const double H = E * E_t_ / (E - E_t_);
   Energies e;
   e.kinetic = 0.5 * rho * A * (v1 * v1 * l1 + V_ * V_ * l2);
+  if (wall_) {  // the bar's frame: velocities -V + v, the part ahead still moving at -V
+    const double ahead = bar_.length - c0_ * t, w1 = v1 - std::abs(V_);
+    e.kinetic = 0.5 * rho * A * (V_ * V_ * ahead + w1 * w1 * l1);
+  }
   e.strain = A * (0.5 * s1 * s1 / E * l1 + (0.5 * s2 * s2 / E + 0.5 * H * p2 * p2) * l2);
   e.work = work(t);
   e.plastic = A * sigma_y_ * p2 * l2;
@@ -809,6 +824,10 @@ std::unique_ptr<LineSolution> for_line_case(const Case& c) {
         constant(c.near_end.value, v) && constant(b.displacement, u0) && constant(b.velocity, v0) && u0 == 0.0 &&
         v0 == 0.0)
       return std::make_unique<VonKarman>(rod_of(b), b.material.yield_stress, b.material.hardening_modulus, v);
+    // The bar moving at v0 < 0 onto a rigid wall: von Karman's problem at V = -v0, seen from the bar.
+    if (far_quiet && b.viscosity == 0.0 && b.material.hardening_modulus > 0.0 && c.near_end.law == JointLaw::rigid &&
+        c.near_end.gap == 0.0 && constant(b.displacement, u0) && constant(b.velocity, v0) && u0 == 0.0 && v0 < 0.0)
+      return std::make_unique<VonKarman>(rod_of(b), b.material.yield_stress, b.material.hardening_modulus, -v0, true);
     return nullptr;
   }
   for (const BodyData& b : c.bodies)  // the solutions below are elastic

@@ -295,9 +295,15 @@ class Junction final : public LineSolution {
 /// reaches x = L. The budget is closed-form: the fronts dissipate nothing
 /// beyond the material's plastic work (each jump follows a straight piece
 /// of the stress-strain curve).
+///
+/// With `wall`, the same seen from the bar: the bar moves at -V onto a rigid
+/// wall at x = 0 (a rigid near end, one link) that stops it; every velocity
+/// and displacement shifts by -V and -V t, the wall's force is the
+/// plateau's compression, and the wall does no work (the kinetic energy
+/// lost is the strain energy and the plastic work).
 class VonKarman final : public LineSolution {
  public:
-  VonKarman(const Rod& bar, double yield_stress, double tangent_modulus, double velocity);
+  VonKarman(const Rod& bar, double yield_stress, double tangent_modulus, double velocity, bool wall = false);
 
   [[nodiscard]] double elastic_speed() const { return c0_; }
   [[nodiscard]] double plastic_speed() const { return c1_; }
@@ -311,11 +317,12 @@ class VonKarman final : public LineSolution {
   double body_near(std::size_t /*i*/) const override { return 0.0; }
   double body_far(std::size_t /*i*/) const override { return bar_.length; }
   LineFields fields(std::size_t body, double x, double t) const override;
-  std::size_t links() const override { return 0; }
+  std::size_t links() const override { return wall_ ? 1 : 0; }
   double link_force(std::size_t i, double t) const override;
   double link_opening(std::size_t i, double t) const override;
   double valid_until() const override { return bar_.length / c0_; }
-  double energy(double t) const override { return work(t); }
+  /// Driven: the work done so far (the budget starts at 0); against the wall: the kinetic energy at t = 0.
+  double energy(double t) const override;
   /// The driven end's work: -N(0) V t.
   double work(double t) const override;
   std::optional<Energies> energies(double t) const override;
@@ -328,6 +335,7 @@ class VonKarman final : public LineSolution {
   double c0_, c1_, sign_, v_y_, eps_y_;
   double eps_plateau_, sigma_plateau_;  // magnitudes
   bool plastic_ = false;                // V beyond v_y
+  bool wall_ = false;                   // seen from the bar, moving at -V onto a rigid wall
 };
 
 [[nodiscard]] std::unique_ptr<LineSolution> for_line_case(const Case& c);
