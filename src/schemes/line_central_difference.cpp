@@ -192,10 +192,7 @@ void LineCentralDifference::start() {
   // The Taylor step moves by dt^2/2 a^0: a correction's force is twice a full step's.
   project(next_, 2.0);
   end_forces(before.data(), cur_, next_, 0.0, 2.0);
-  if (plastic_.active()) {
-    plastic_.advance(cur_, next_, true);
-    plastic_.rotate();
-  }
+  if (plastic_.active()) plastic_.advance(cur_, next_, true);
   // The first half step's share of the budget, dt/2 times the rates at t = 0.
   double power = 0.0, viscous = 0.0, contact = 0.0;
   for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : load_[j]) * v0_[j];
@@ -228,10 +225,7 @@ void LineCentralDifference::advance() {
   hold_ends(u, up, t);
   project(up, 1.0);
   end_forces(um, u, up, t, 1.0);
-  if (plastic_.active()) {
-    plastic_.advance(u, up);
-    plastic_.rotate();
-  }
+  if (plastic_.active()) plastic_.advance(u, up);
   prev_ = cur_;
   cur_ = next_;
   next_ = up;
@@ -287,9 +281,7 @@ Energies LineCentralDifference::energies() const {
   if (n_ == 0) {
     for (std::size_t j = 0; j < line_.nodes(); ++j) e.kinetic += 0.5 * m_[j] * v0_[j] * v0_[j];
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
-    if (plastic_.active())
-      e.strain += plastic_.energy_correction(u0_.data(), plastic_.current(), u0_.data(), plastic_.current()) +
-                  plastic_.hardening_energy();
+    if (plastic_.active()) e.strain += plastic_.strain_energy(u0_.data());
     e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
     return e;
   }
@@ -298,10 +290,7 @@ Energies LineCentralDifference::energies() const {
   e.kinetic = 0.5 * (k1 + k2);
   e.strain = 0.5 * (s1 + s2);
   if (plastic_.active()) {
-    const double *pm = plastic_.previous(), *p = plastic_.current(), *pp = plastic_.next();
-    e.strain +=
-        0.5 * (plastic_.energy_correction(prev_, pm, cur_, p) + plastic_.energy_correction(cur_, p, next_, pp)) +
-        plastic_.hardening_energy();
+    e.strain += plastic_.strain_energy(prev_, cur_, next_);
     e.plastic = plastic_.work();
   }
   e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +

@@ -153,10 +153,7 @@ void LinePaoliSchatzman::start() {
   predict(before.data(), cur_, next_, 0.0, taylor);
   project(cur_, next_, 2.0);  // the Taylor step moves by dt^2/2 a: a correction's force is twice a full step's
   end_forces(before.data(), cur_, next_, 0.0, taylor);
-  if (plastic_.active()) {
-    plastic_.advance(cur_, next_, true);
-    plastic_.rotate();
-  }
+  if (plastic_.active()) plastic_.advance(cur_, next_, true);
   // The first half step's share of the budget, dt/2 times the rates at t = 0.
   double power = 0.0, viscous = 0.0, contact = 0.0;
   for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : load_[j]) * v0_[j];
@@ -187,10 +184,7 @@ void LinePaoliSchatzman::advance() {
   predict(um, u, up, t, dt2);
   project(um, up, 1.0);
   end_forces(um, u, up, t, dt2);
-  if (plastic_.active()) {
-    plastic_.advance(u, up);
-    plastic_.rotate();
-  }
+  if (plastic_.active()) plastic_.advance(u, up);
   prev_ = cur_;
   cur_ = next_;
   next_ = up;
@@ -249,19 +243,14 @@ Energies LinePaoliSchatzman::energies() const {
     e.kinetic = 0.5 * mass_.quadratic_form(v0_);
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
     e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
-    if (plastic_.active())
-      e.strain += plastic_.energy_correction(u0_.data(), plastic_.current(), u0_.data(), plastic_.current()) +
-                  plastic_.hardening_energy();
+    if (plastic_.active()) e.strain += plastic_.strain_energy(u0_.data());
     return e;
   }
   e.kinetic = 0.5 * (half_step_kinetic(prev_, cur_) + half_step_kinetic(cur_, next_));
   e.strain = 0.25 * (line_.bond_form(BondKind::element, false, prev_, cur_) +
                      line_.bond_form(BondKind::element, false, cur_, next_));
   if (plastic_.active()) {
-    const double *pm = plastic_.previous(), *p = plastic_.current(), *pp = plastic_.next();
-    e.strain +=
-        0.5 * (plastic_.energy_correction(prev_, pm, cur_, p) + plastic_.energy_correction(cur_, p, next_, pp)) +
-        plastic_.hardening_energy();
+    e.strain += plastic_.strain_energy(prev_, cur_, next_);
     e.plastic = plastic_.work();
   }
   e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +

@@ -111,6 +111,7 @@ void PlasticBonds::advance(const double* u, const double* up, bool first) {
   if (!yielding && quiet_) {  // p^{m+1} = p^m = p^{m-1}: level m + 1 is level m's arrays, its work 0
     fresh_ = next_;
     for (const Range& r : ranges_) last_[r.body] = 0.0;
+    rotate();
     return;
   }
   fresh_ = 0;
@@ -126,6 +127,7 @@ void PlasticBonds::advance(const double* u, const double* up, bool first) {
     half_[r.body] += w;
     last_[r.body] = first ? 0.0 : w;  // the start's share is already half a level's, as W_ext's
   }
+  rotate();
 }
 
 void PlasticBonds::rotate() {
@@ -160,15 +162,28 @@ double PlasticBonds::hardening_energy() const {
   return s;
 }
 
+double PlasticBonds::strain_energy(const double* u0) const {
+  return energy_correction(u0, current(), u0, current()) + hardening_energy();
+}
+
+double PlasticBonds::strain_energy(const double* um, const double* u, const double* up) const {
+  return 0.5 * (energy_correction(um, previous(), u, current()) + energy_correction(u, current(), up, next())) +
+         hardening_energy();
+}
+
+double PlasticBonds::body_work(const Range& r) const {
+  return half_[r.body] - 0.5 * last_[r.body] - (hardening_energy(r) - hardening0_[r.body]);
+}
+
 double PlasticBonds::work() const {
   double s = 0.0;
-  for (const Range& r : ranges_) s += half_[r.body] - 0.5 * last_[r.body] - (hardening_energy(r) - hardening0_[r.body]);
+  for (const Range& r : ranges_) s += body_work(r);
   return s;
 }
 
 double PlasticBonds::body_work(std::size_t body) const {
   for (const Range& r : ranges_)
-    if (r.body == body) return half_[body] - 0.5 * last_[body] - (hardening_energy(r) - hardening0_[body]);
+    if (r.body == body) return body_work(r);
   return 0.0;
 }
 

@@ -117,7 +117,6 @@ step = 0.001
     for (int n = 0; n < 400; ++n) {
       for (std::size_t j = 1; j < up.size(); ++j) up[j] = up[j - 1] + (u[j] - u[j - 1]) + step(rng) * 0.05;
       bonds.advance(u.data(), up.data());
-      bonds.rotate();
       for (std::size_t j = 0; j < line.bonds.size(); ++j) {
         double dgamma = 0.0;
         (void)law.stress((up[j + 1] - up[j]) * (1.0 / line.bonds[j].h), states[j], dgamma);

@@ -37,29 +37,28 @@ class PlasticBonds {
   /// Level 0 from a virgin material at u0, as level n and in the place of
   /// level n + 1 (the level the next step's forces read).
   void start(const double* u0);
-  /// The state at u^{m+1} (`up`) from level m's (`next()`, at `u`), into the
-  /// free slot, and level m's plastic work h A sigma^m (p^{m+1} - p^{m-1}) / 2
-  /// booked (p^{m-1}: `current()`). `first`: the start's step, whose level
-  /// -1 is level 0 (half its share, as the start's other terms). Then rotate().
+  /// The state at u^{m+1} (`up`) from level m's (`next()`, at `u`), and
+  /// level m's plastic work h A sigma^m (p^{m+1} - p^{m-1}) / 2 booked
+  /// (p^{m-1}: `current()`); then levels n - 1, n, n + 1 move on by one, as
+  /// the scheme's. `first`: the start's step, whose level -1 is level 0
+  /// (half its share, as the start's other terms).
   void advance(const double* u, const double* up, bool first = false);
-  /// Levels n - 1, n, n + 1 move on by one, as the scheme's.
-  void rotate();
   /// No element has yielded yet: every plastic strain is 0 (the schemes'
   /// elastic stencils then hold).
   [[nodiscard]] bool pristine() const { return pristine_; }
 
   /// Plastic strain per bond (0 in an elastic body): level n + 1 before
-  /// advance (the forces' level), level n after rotate.
+  /// advance (the forces' level), level n after it.
   [[nodiscard]] const double* next() const { return p_[next_].data(); }
   [[nodiscard]] const double* current() const { return p_[cur_].data(); }
   [[nodiscard]] const double* previous() const { return p_[prev_].data(); }
 
-  /// What the elastic-plastic elements' plastic strains change in the
-  /// half-step energy (b - a)^T K (d - c) / 2 that elastic elements would
-  /// have between levels (a, pa) and (b, pb): sum psi - k da db / 2.
-  [[nodiscard]] double energy_correction(const double* a, const double* pa, const double* b, const double* pb) const;
-  /// The energy the hardening stores at level n.
-  [[nodiscard]] double hardening_energy() const;
+  /// What the plastic strains add to an elastic scheme's strain energy at
+  /// level n (E_strain's share beyond (1/2) u^T K u): at the start, from u0
+  /// alone; later, the mean of the half-step corrections between levels
+  /// (u^{n-1}, u^n) and (u^n, u^{n+1}). Both include the hardening's energy.
+  [[nodiscard]] double strain_energy(const double* u0) const;
+  [[nodiscard]] double strain_energy(const double* um, const double* u, const double* up) const;
   /// D_plastic at level n: the centred plastic work (its half-step sum, as
   /// W_ext's) less the hardening's stored energy; the same for one body.
   [[nodiscard]] double work() const;
@@ -72,7 +71,13 @@ class PlasticBonds {
     Plasticity law;
     double inv_h, volume, k;  // 1 / h, A h, E A / h
   };
+  void rotate();
   [[nodiscard]] double hardening_energy(const Range& r) const;
+  [[nodiscard]] double hardening_energy() const;
+  /// The half-step energy's correction between levels (a, pa) and (b, pb):
+  /// sum psi - k da db / 2 over the elastic-plastic elements.
+  [[nodiscard]] double energy_correction(const double* a, const double* pa, const double* b, const double* pb) const;
+  [[nodiscard]] double body_work(const Range& r) const;
 
   std::vector<Range> ranges_;
   // Three arrays for levels n - 1, n, n + 1; a level no element yields into
