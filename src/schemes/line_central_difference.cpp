@@ -257,13 +257,7 @@ void LineCentralDifference::book_budget(const double* um, const double* u, const
       dd += c_[j] * ((u[j + 1] - u[j]) - (um[j + 1] - um[j])) * inv_dt * 0.5 *
             ((up[j + 1] - up[j]) - (um[j + 1] - um[j]));
   }
-  for (std::size_t i = 0; i < line_.links.size(); ++i) {
-    const Link& l = line_.links[i];
-    const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
-    if (l.law.rigid()) dc += force_[i] * dcomp;
-    if (l.law.kind == LawKind::viscoelastic)
-      dd += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, u))) * dcomp;
-  }
+  book_link_work(um, u, up, dd, dc);
 }
 
 double LineCentralDifference::half_step(const double* a, const double* b, BondKind kind, double& kinetic) const {

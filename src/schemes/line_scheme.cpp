@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -86,6 +87,17 @@ double LineScheme::link_energy(const double* u) const {
   double e = 0.0;
   for (std::size_t i = 0; i < line_.links.size(); ++i) e += line_.links[i].law.energy(-line_.opening(i, u), c_max_[i]);
   return e;
+}
+
+void LineScheme::book_link_work(const double* um, const double* u, const double* up, double& viscous,
+                                double& contact) const {
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const Link& l = line_.links[i];
+    const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
+    if (l.law.rigid()) contact += force_[i] * dcomp;
+    if (l.law.kind == LawKind::viscoelastic)
+      viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, u))) * dcomp;
+  }
 }
 
 double LineScheme::link_hysteresis() const {

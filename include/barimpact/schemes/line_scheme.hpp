@@ -53,6 +53,10 @@ class LineScheme : public Scheme {
   /// Energy stored in the penalty links at u, and what their hysteresis dissipated.
   [[nodiscard]] double link_energy(const double* u) const;
   [[nodiscard]] double link_hysteresis() const;
+  /// A three-level scheme's level-m link terms, each link's force at t_m
+  /// tested with (c^{m+1} - c^{m-1}) / 2: a rigid link's into `contact`
+  /// (D_contact), a viscoelastic link's beyond its spring into `viscous`.
+  void book_link_work(const double* um, const double* u, const double* up, double& viscous, double& contact) const;
 
   Line line_;
   double dt_;
