@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 
+#include "../support/line_parts.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/exact/exact.hpp"
@@ -20,32 +21,9 @@
 namespace barimpact {
 namespace {
 
-BodyData bar(const std::string& name, double length, int elements, const std::string& velocity = "0") {
-  BodyData b;
-  b.name = name;
-  b.length = length;
-  b.elements = elements;
-  b.velocity = velocity;
-  return b;
-}
-
-BodyData mass(const std::string& name, double m, double v) {
-  BodyData b;
-  b.name = name;
-  b.kind = BodyKind::mass;
-  b.mass = m;
-  b.velocity = fmt::format("{}", v);
-  return b;
-}
-
-JointData joint(const std::string& lower, const std::string& upper, JointLaw law) {
-  JointData j;
-  j.name = lower + "-" + upper;
-  j.lower = lower;
-  j.upper = upper;
-  j.law.law = law;
-  return j;
-}
+using testing::bar;
+using testing::joint;
+using testing::mass;
 
 Case line_case(std::vector<BodyData> bodies, std::vector<JointData> joints, const std::string& scheme, double dt,
                double end) {
