@@ -6,6 +6,7 @@
 #include <array>
 #include <atomic>
 #include <cstdlib>
+#include <functional>
 #include <new>
 #include <string>
 #include <utility>
@@ -35,6 +36,43 @@ void operator delete(void* p, std::size_t) noexcept {
 namespace barimpact {
 namespace {
 
+// What stepping a case through a run's observers left: the allocations
+// counted from step 0 on, the rows and snapshots recorded, the contact
+// episodes at x = 0, the largest plastic strain and the last row's D_plastic.
+struct Counted {
+  long allocations = 0;
+  std::size_t rows = 0, snapshots = 0, contacts = 0;
+  double largest_plastic_strain = 0.0, plastic_work = 0.0;
+};
+
+// Steps case `c` with the observers a run uses (history, fields, contact,
+// links, plastic); `each` sees the scheme after every step, inside the count.
+Counted count_loop(const Case& c, const std::function<void(const Scheme&)>& each = nullptr) {
+  auto s = make_scheme(c);
+  const Line line = build_line(c);
+  const Probes probes(c, line);
+  HistoryRecorder history(c.output.every, &probes);
+  FieldRecorder fields(c, line, c.output.fields_at);
+  ContactMonitor contact(c.obstacle);
+  LinkMonitor links(line);
+  PlasticMonitor plastic(line, c.output.every);
+  const std::array<Observer*, 5> observers{&history, &fields, &contact, &links, &plastic};
+  const long long steps = c.step_count();
+  for (auto* o : observers) o->begin(*s, steps);
+  s->start();
+  allocations = 0;
+  counting = true;
+  for (long long n = 0; n <= steps; ++n) {
+    if (n > 0) s->advance();
+    for (auto* o : observers) o->observe(*s);
+    if (each) each(*s);
+  }
+  counting = false;
+  return {allocations.load(), history.rows().size(),
+          fields.taken(),     contact.intervals().size(),
+          plastic.largest(),  history.rows().empty() ? 0.0 : history.rows().back().D_plastic};
+}
+
 TEST(TimeLoop, NeverAllocates) {
   // Every branch of the step: viscosity, shift, a load that depends on t,
   // contact with a gap; observers recording every row and two snapshots.
@@ -53,27 +91,12 @@ lambda = 0.25
 [output]
 fields_at = [1.0, 2.5]
 )toml");
-  auto scheme = make_scheme(c);
-  const Line line = build_line(c);
-  const Probes probes(c, line);
-  HistoryRecorder history(c.output.every, &probes);
-  FieldRecorder fields(c, line, c.output.fields_at);
-  ContactMonitor contact(c.obstacle);
-  LinkMonitor links(line);
-  const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
   const long long steps = c.step_count();
-  for (auto* o : observers) o->begin(*scheme, steps);
-  scheme->start();
-  counting = true;
-  for (long long n = 0; n <= steps; ++n) {
-    if (n > 0) scheme->advance();
-    for (auto* o : observers) o->observe(*scheme);
-  }
-  counting = false;
-  EXPECT_EQ(allocations.load(), 0);
-  EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
-  EXPECT_EQ(fields.taken(), 2u);
-  EXPECT_GE(contact.intervals().size(), 1u);
+  const Counted r = count_loop(c);
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_EQ(r.rows, static_cast<std::size_t>(steps + 1));
+  EXPECT_EQ(r.snapshots, 2u);
+  EXPECT_GE(r.contacts, 1u);
 }
 
 // The rigid-contact schemes on a line of several bodies: rigid joints and a
@@ -97,14 +120,14 @@ TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
       c.bodies.push_back(b);
     }
     JointData ab, bm;
-    ab.name = "a-b";
-    ab.lower = "a";
-    ab.upper = "b";
+    ab.name = std::string("a-b");
+    ab.lower = std::string("a");
+    ab.upper = std::string("b");
     ab.law.law = JointLaw::rigid;
     ab.law.gap = 0.01;
-    bm.name = "b-m";
-    bm.lower = "b";
-    bm.upper = "m";
+    bm.name = std::string("b-m");
+    bm.lower = std::string("b");
+    bm.upper = std::string("m");
     bm.law.law = redistribution ? JointLaw::spring : JointLaw::rigid;
     c.joints = {ab, bm};
     c.near_end.law = JointLaw::rigid;
@@ -116,28 +139,11 @@ TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
     c.time.step = redistribution || std::string(scheme) == "moreau-jean" ? 0.02 : 0.01;
     c.time.end = 3.0;
     c.output.fields_at = {1.0, 2.5};
-    auto s = make_scheme(c);
-    const Line line = build_line(c);
-    const Probes probes(c, line);
-    HistoryRecorder history(c.output.every, &probes);
-    FieldRecorder fields(c, line, c.output.fields_at);
-    ContactMonitor contact(c.obstacle);
-    LinkMonitor links(line);
-    const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
     const long long steps = c.step_count();
-    for (auto* o : observers) o->begin(*s, steps);
-    s->start();
-    allocations = 0;
-    counting = true;
     double largest = 0.0;
-    for (long long n = 0; n <= steps; ++n) {
-      if (n > 0) s->advance();
-      for (auto* o : observers) o->observe(*s);
-      largest = std::max(largest, s->link_force(1));
-    }
-    counting = false;
-    EXPECT_EQ(allocations.load(), 0) << scheme;
-    EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
+    const Counted r = count_loop(c, [&](const Scheme& s) { largest = std::max(largest, s.link_force(1)); });
+    EXPECT_EQ(r.allocations, 0) << scheme;
+    EXPECT_EQ(r.rows, static_cast<std::size_t>(steps + 1));
     EXPECT_GT(largest, 0.0) << scheme;  // the joint a-b pushed
   }
 }
@@ -163,22 +169,22 @@ TEST(TimeLoop, ImplicitPenaltyLineSchemesNeverAllocate) {
       c.bodies.push_back(b);
     }
     JointData ab, bm, mn;
-    ab.name = "a-b";
-    ab.lower = "a";
-    ab.upper = "b";
+    ab.name = std::string("a-b");
+    ab.lower = std::string("a");
+    ab.upper = std::string("b");
     ab.law.law = JointLaw::viscoelastic;
     ab.law.stiffness = 300.0;
     ab.law.viscosity = 3.0;
     ab.law.gap = 0.01;
-    bm.name = "b-m";
-    bm.lower = "b";
-    bm.upper = "m";
+    bm.name = std::string("b-m");
+    bm.lower = std::string("b");
+    bm.upper = std::string("m");
     bm.law.law = JointLaw::cushion;
     bm.law.stiffness = 200.0;
     bm.law.restitution = 0.5;
-    mn.name = "m-n";
-    mn.lower = "m";
-    mn.upper = "n";
+    mn.name = std::string("m-n");
+    mn.lower = std::string("m");
+    mn.upper = std::string("n");
     mn.law.law = JointLaw::spring;
     mn.law.stiffness = 50.0;
     c.joints = {ab, bm, mn};
@@ -193,28 +199,13 @@ TEST(TimeLoop, ImplicitPenaltyLineSchemesNeverAllocate) {
     c.time.step = 0.005;
     c.time.end = 3.0;
     c.output.fields_at = {1.0, 2.5};
-    auto s = make_scheme(c);
-    const Line line = build_line(c);
-    const Probes probes(c, line);
-    HistoryRecorder history(c.output.every, &probes);
-    FieldRecorder fields(c, line, c.output.fields_at);
-    ContactMonitor contact(c.obstacle);
-    LinkMonitor links(line);
-    const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
     const long long steps = c.step_count();
-    for (auto* o : observers) o->begin(*s, steps);
-    s->start();
-    allocations = 0;
-    counting = true;
     double largest[3] = {0, 0, 0};
-    for (long long n = 0; n <= steps; ++n) {
-      if (n > 0) s->advance();
-      for (auto* o : observers) o->observe(*s);
-      for (std::size_t i = 0; i < 3; ++i) largest[i] = std::max(largest[i], s->link_force(i));
-    }
-    counting = false;
-    EXPECT_EQ(allocations.load(), 0) << scheme;
-    EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
+    const Counted r = count_loop(c, [&](const Scheme& s) {
+      for (std::size_t i = 0; i < 3; ++i) largest[i] = std::max(largest[i], s.link_force(i));
+    });
+    EXPECT_EQ(r.allocations, 0) << scheme;
+    EXPECT_EQ(r.rows, static_cast<std::size_t>(steps + 1));
     for (double f : largest) EXPECT_GT(f, 0.0) << scheme;
   }
 }
@@ -272,36 +263,13 @@ end = 5
 [output]
 fields_at = [1.0, 2.5]
 )toml");
-  auto s = make_scheme(c);
-  const Line line = build_line(c);
-  const Probes probes(c, line);
-  HistoryRecorder history(c.output.every, &probes);
-  FieldRecorder fields(c, line, c.output.fields_at);
-  ContactMonitor contact(c.obstacle);
-  LinkMonitor links(line);
-  const std::array<Observer*, 4> observers{&history, &fields, &contact, &links};
   const long long steps = c.step_count();
-  for (auto* o : observers) o->begin(*s, steps);
-  s->start();
-  allocations = 0;
-  counting = true;
   double largest = 0.0;
-  for (long long n = 0; n <= steps; ++n) {
-    if (n > 0) s->advance();
-    for (auto* o : observers) o->observe(*s);
-    largest = std::max(largest, s->link_force(1));
-  }
-  counting = false;
-  EXPECT_EQ(allocations.load(), 0);
-  EXPECT_EQ(history.rows().size(), static_cast<std::size_t>(steps + 1));
+  const Counted r = count_loop(c, [&](const Scheme& s) { largest = std::max(largest, s.link_force(1)); });
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_EQ(r.rows, static_cast<std::size_t>(steps + 1));
   EXPECT_GT(largest, 0.0);  // the joint m2-c pushed
 }
-
-}  // namespace
-}  // namespace barimpact
-
-namespace barimpact {
-namespace {
 
 // Elastic-plastic bodies under central differences: the return map's pass,
 // the plastic strains' forces and the monitor of the largest plastic strain.
@@ -329,28 +297,11 @@ end = 3
 [output]
 fields_at = [1.0, 2.5]
 )toml");
-  auto s = make_scheme(c);
-  const Line line = build_line(c);
-  const Probes probes(c, line);
-  HistoryRecorder history(c.output.every, &probes);
-  FieldRecorder fields(c, line, c.output.fields_at);
-  ContactMonitor contact(c.obstacle);
-  LinkMonitor links(line);
-  PlasticMonitor plastic(line, c.output.every);
-  const std::array<Observer*, 5> observers{&history, &fields, &contact, &links, &plastic};
   const long long steps = c.step_count();
-  for (auto* o : observers) o->begin(*s, steps);
-  s->start();
-  allocations = 0;
-  counting = true;
-  for (long long n = 0; n <= steps; ++n) {
-    if (n > 0) s->advance();
-    for (auto* o : observers) o->observe(*s);
-  }
-  counting = false;
-  EXPECT_EQ(allocations.load(), 0);
-  EXPECT_LT(plastic.largest(), 0.0);  // it yielded, in compression
-  EXPECT_GT(history.rows().back().D_plastic, 0.0);
+  const Counted r = count_loop(c);
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_LT(r.largest_plastic_strain, 0.0);  // it yielded, in compression
+  EXPECT_GT(r.plastic_work, 0.0);
 }
 
 }  // namespace
