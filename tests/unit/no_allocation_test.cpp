@@ -297,7 +297,6 @@ end = 3
 [output]
 fields_at = [1.0, 2.5]
 )toml");
-  const long long steps = c.step_count();
   const Counted r = count_loop(c);
   EXPECT_EQ(r.allocations, 0);
   EXPECT_LT(r.largest_plastic_strain, 0.0);  // it yielded, in compression
