@@ -18,6 +18,7 @@
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
+#include <initializer_list>
 #include <string>
 #include <utility>
 
@@ -39,6 +40,34 @@ end = 1
 void per_node_step(benchmark::State& state, std::size_t nodes) {
   state.counters["per_node_step"] = benchmark::Counter(
       static_cast<double>(nodes), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// Times the steps of case `c` through the library's scheme object.
+void time_steps(benchmark::State& state, const barimpact::Case& c) {
+  auto s = barimpact::make_scheme(c);
+  s->start();
+  for (auto _ : state) {
+    s->advance();
+    benchmark::DoNotOptimize(s->end_displacement());
+  }
+  per_node_step(state, s->nodes());
+}
+
+// Bars named by `parts` (name, elements) of M elements in all, welded end
+// to end on [0, 1], all moving at `velocity`; the line engine runs them.
+barimpact::Case bars(long long M, std::initializer_list<std::pair<const char*, long long>> parts,
+                     const std::string& velocity = "-1") {
+  barimpact::Case c;
+  c.single_bar = false;
+  for (auto [name, elements] : parts) {
+    barimpact::BodyData b;
+    b.name = name;
+    b.length = static_cast<double>(elements) / static_cast<double>(M);
+    b.elements = static_cast<int>(elements);
+    b.velocity = velocity;
+    c.bodies.push_back(b);
+  }
+  return c;
 }
 
 void BM_PaperStep(benchmark::State& state) {
@@ -135,13 +164,7 @@ void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigi
       "[bar]\nelements = {}\n[initial]\nvelocity = \"-1\"\n[obstacle]\nkind = \"{}\"\n[time]\n"
       "scheme = \"{}\"\n{}end = 1\n",
       M, rigid ? "rigid" : "elastic", scheme, scheme == "characteristic" ? "" : fmt::format("step = {}\n", h / 2)));
-  auto s = barimpact::make_scheme(c);
-  s->start();
-  for (auto _ : state) {
-    s->advance();
-    benchmark::DoNotOptimize(s->end_displacement());
-  }
-  per_node_step(state, s->nodes());
+  time_steps(state, c);
 }
 
 // A line of three bars of M elements in all (M/3, M/3, the rest; a rigid
@@ -150,16 +173,7 @@ void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigi
 // beside the single bar's bare loop of M elements.
 void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   const long long M = state.range(0), third = M / 3;
-  barimpact::Case c;
-  c.single_bar = false;
-  for (auto [name, elements] : {std::pair{"a", third}, std::pair{"b", third}, std::pair{"c", M - 2 * third}}) {
-    barimpact::BodyData b;
-    b.name = name;
-    b.length = static_cast<double>(elements) / static_cast<double>(M);
-    b.elements = static_cast<int>(elements);
-    b.velocity = "-1";
-    c.bodies.push_back(b);
-  }
+  barimpact::Case c = bars(M, {{"a", third}, {"b", third}, {"c", M - 2 * third}});
   barimpact::JointData j{std::string("a-b"), std::string("a"), std::string("b"), barimpact::LawData{}};
   const bool rigid = scheme != "newmark" && scheme != "paper";
   j.law.law = rigid ? barimpact::JointLaw::rigid : barimpact::JointLaw::elastic;
@@ -168,13 +182,7 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   c.time.scheme = scheme;
   c.time.step = (scheme == "characteristic" ? 1.0 : 0.5) / static_cast<double>(M);  // h/c, or h/2
   c.time.end = 1.0;
-  auto s = barimpact::make_scheme(c);
-  s->start();
-  for (auto _ : state) {
-    s->advance();
-    benchmark::DoNotOptimize(s->end_displacement());
-  }
-  per_node_step(state, s->nodes());
+  time_steps(state, c);
 }
 
 // Central differences through the elastic-plastic path (plastic_bonds.hpp)
@@ -185,32 +193,18 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
 // sigma_y = 0.05 and E_t = 0.1, the bar yielding from the wall on.
 void BM_PlasticLineStep(benchmark::State& state, const std::string& material) {
   const long long M = state.range(0), half = M / 2;
-  barimpact::Case c;
-  c.single_bar = false;
-  for (auto [name, elements] : {std::pair{"a", half}, std::pair{"b", M - half}}) {
-    barimpact::BodyData b;
-    b.name = name;
-    b.length = static_cast<double>(elements) / static_cast<double>(M);
-    b.elements = static_cast<int>(elements);
-    b.velocity = "-1";
+  barimpact::Case c = bars(M, {{"a", half}, {"b", M - half}});
+  for (barimpact::BodyData& b : c.bodies)
     if (material != "elastic") {
       b.material.kind = barimpact::MaterialKind::plastic;
       b.material.yield_stress = material == "yielding" ? 0.05 : 1e9;
       b.material.hardening_modulus = 0.1;
     }
-    c.bodies.push_back(b);
-  }
   c.near_end.law = barimpact::JointLaw::rigid;
   c.time.scheme = "central-difference";
   c.time.step = 0.5 / static_cast<double>(M);
   c.time.end = 1.0;
-  auto s = barimpact::make_scheme(c);
-  s->start();
-  for (auto _ : state) {
-    s->advance();
-    benchmark::DoNotOptimize(s->end_displacement());
-  }
-  per_node_step(state, s->nodes());
+  time_steps(state, c);
 }
 
 // The rigid-contact schemes (moreau-jean, paoli-schatzman,
@@ -224,16 +218,7 @@ void BM_PlasticLineStep(benchmark::State& state, const std::string& material) {
 // wave has crossed body a) carry impulses at every step.
 barimpact::Case rigid_line_case(long long M, const std::string& scheme, bool active) {
   const long long third = M / 3;
-  barimpact::Case c;
-  c.single_bar = false;
-  for (auto [name, elements] : {std::pair{"a", third}, std::pair{"b", third}, std::pair{"c", M - 2 * third}}) {
-    barimpact::BodyData b;
-    b.name = name;
-    b.length = static_cast<double>(elements) / static_cast<double>(M);
-    b.elements = static_cast<int>(elements);
-    b.velocity = active ? "-1" : "1";
-    c.bodies.push_back(b);
-  }
+  barimpact::Case c = bars(M, {{"a", third}, {"b", third}, {"c", M - 2 * third}}, active ? "-1" : "1");
   // Strings by construction: GCC 12 warns (-Wrestrict, a false positive) on
   // assigning these literals once inlined.
   barimpact::JointData j{"a-b", "a", "b", {}};
@@ -252,13 +237,7 @@ barimpact::Case rigid_line_case(long long M, const std::string& scheme, bool act
 }
 
 void BM_RigidLineStep(benchmark::State& state, const std::string& scheme, bool active) {
-  auto s = barimpact::make_scheme(rigid_line_case(state.range(0), scheme, active));
-  s->start();
-  for (auto _ : state) {
-    s->advance();
-    benchmark::DoNotOptimize(s->end_displacement());
-  }
-  per_node_step(state, s->nodes());
+  time_steps(state, rigid_line_case(state.range(0), scheme, active));
 }
 
 // The single bar of M elements moving at +1 away from the rigid obstacle:
@@ -269,13 +248,7 @@ void BM_RigidBarStep(benchmark::State& state, const std::string& scheme) {
       fmt::format("[bar]\nelements = {}\n[initial]\nvelocity = \"1\"\n[obstacle]\nkind = \"rigid\"\n[time]\n"
                   "scheme = \"{}\"\nstep = {}\nend = 1\n",
                   M, scheme, 0.5 / static_cast<double>(M)));
-  auto s = barimpact::make_scheme(c);
-  s->start();
-  for (auto _ : state) {
-    s->advance();
-    benchmark::DoNotOptimize(s->end_displacement());
-  }
-  per_node_step(state, s->nodes());
+  time_steps(state, c);
 }
 
 // The three-level bare loops' shared pieces: u^{n+1} over u^{n-1}, and the
