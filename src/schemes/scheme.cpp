@@ -82,8 +82,9 @@ double stable_step(const Case& c, bool consistent_mass) {
 std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
   if (!c.single_bar) {
     const Line line = build_line(c);
-    // The characteristic scheme steps at the bars' common transit time h/c.
-    if (c.time.scheme == "characteristic")
+    // The characteristic scheme steps at the bars' common transit time h/c
+    // (an elastic-plastic line it refuses first, below, whatever the step).
+    if (c.time.scheme == "characteristic" && !line.plastic())
       if (const auto dt = line_characteristic_step(line)) {
         if (step_given && std::abs(c.time.step - *dt) > 1e-9 * *dt)
           return SchemeMisfit{"step", fmt::format("= {} conflicts with characteristic, which sets dt = h/c = {} "

@@ -533,6 +533,11 @@ TEST(PlasticCase, RefusesBadMaterialKeysNamingThem) {
   EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"newmark\"\n")
                 .find("time.scheme = \"newmark\" cannot run the elastic-plastic body \"b\""),
             std::string::npos);
+  // characteristic refuses the body before it would discuss the step.
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"characteristic\"\n"
+                           "step = 0.001\n")
+                .find("time.scheme = \"characteristic\" cannot run the elastic-plastic body \"b\""),
+            std::string::npos);
 }
 
 // Both spellings hold the material; case.toml writes it and reads back to
