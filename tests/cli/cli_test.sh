@@ -233,7 +233,7 @@ printf '[[body]]\nname = "a"\n[[body]]\nname = "a"\n' > "$work/badline.toml"
 expect_refused "repeats the body name" run "$work/badline.toml" --out "$work/refused"
 # Elastic-plastic bars: the three examples run and close their budgets; the columns; exact; the rules.
 plastic="$examples/plastic"
-for ex in taylor-bar paper-example1-yielding pipe-whip; do
+for ex in taylor-bar paper-example1-yielding pipe-whip von-karman cyclic; do
   "$bin" run "$plastic/$ex.toml" --out "$work/plastic-$ex" > /dev/null 2> "$work/err" && ok || bad "plastic $ex: $(cat "$work/err")"
 done
 head -1 "$work/plastic-taylor-bar/history.csv" | grep -q "^t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic,gauge.mid" && ok || bad "plastic history columns"

@@ -205,6 +205,8 @@ TEST_P(VonKarmanOrders, TheExplicitSchemesConvergeToIt) {
     errors.push_back(profile_error(finest, exact));
   }
   for (std::size_t k = 1; k < errors.size(); ++k) {
+    fmt::print("{}: M = {} -> {}: order {:.2f} (stress), {:.2f} (velocity)\n", GetParam().scheme, 100 << (k - 1),
+               100 << k, std::log2(errors[k - 1].sigma / errors[k].sigma), std::log2(errors[k - 1].v / errors[k].v));
     EXPECT_GT(std::log2(errors[k - 1].sigma / errors[k].sigma), GetParam().each) << k << ": " << GetParam().measured;
     EXPECT_GT(std::log2(errors[k - 1].v / errors[k].v), GetParam().each) << k << ": " << GetParam().measured;
   }
@@ -333,8 +335,8 @@ fields_at = [0.8]
 // viscous bar, gravity, a welded elastic bar and a spring to a mass, and
 // isotropic hardening reversing at the rebounds. Here D_plastic never
 // falls; the centred work can dip by O(dt) where a reversal falls between
-// steps (measured -1.6e-6 against increments of 7e-5 at dt = 0.004 in a
-// cyclic case), which is the price of the exact budget.
+// steps (docs/methods.md: examples/plastic/cyclic.toml), the price of the
+// exact budget.
 TEST(PlasticBudget, ClosesToRoundOffWithTheExplicitSchemes) {
   for (const char* scheme : {"central-difference", "paoli-schatzman"}) {
     const Case c = case_from(fmt::format(R"toml([[body]]
