@@ -185,13 +185,15 @@ void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   time_steps(state, c);
 }
 
-// Central differences through the elastic-plastic path (plastic_bonds.hpp)
-// against the same line elastic: two welded bars of M elements in all,
-// moving at -1 onto a rigid wall, dt = h/2. `elastic`: the material the
-// paper's; `unyielded`: plastic with a yield stress never reached (the
-// return map's pass and the plastic strains' forces, all zero); `yielding`:
-// sigma_y = 0.05 and E_t = 0.1, the bar yielding from the wall on.
-void BM_PlasticLineStep(benchmark::State& state, const std::string& material) {
+// A scheme through the elastic-plastic path (plastic_bonds.hpp for the
+// explicit schemes, plastic_iteration.hpp for the implicit ones) against the
+// same line elastic: two welded bars of M elements in all, moving at -1 onto
+// a rigid wall (newmark: elastic, k = 100), dt = h/2. `elastic`: the
+// material the paper's; `unyielded`: plastic with a yield stress never
+// reached (the yield check, and the implicit schemes' snapshot of the
+// level); `yielding`: sigma_y = 0.05 and E_t = 0.1, the bar yielding from
+// the wall on.
+void BM_PlasticLineStep(benchmark::State& state, const std::string& scheme, const std::string& material) {
   const long long M = state.range(0), half = M / 2;
   barimpact::Case c = bars(M, {{"a", half}, {"b", M - half}});
   for (barimpact::BodyData& b : c.bodies)
@@ -200,8 +202,8 @@ void BM_PlasticLineStep(benchmark::State& state, const std::string& material) {
       b.material.yield_stress = material == "yielding" ? 0.05 : 1e9;
       b.material.hardening_modulus = 0.1;
     }
-  c.near_end.law = barimpact::JointLaw::rigid;
-  c.time.scheme = "central-difference";
+  c.near_end.law = scheme == "newmark" ? barimpact::JointLaw::elastic : barimpact::JointLaw::rigid;
+  c.time.scheme = scheme;
   c.time.step = 0.5 / static_cast<double>(M);
   c.time.end = 1.0;
   time_steps(state, c);
@@ -506,12 +508,13 @@ const bool registered = [] {
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }
-  for (const char* material : {"elastic", "unyielded", "yielding"}) {
-    const std::string name = fmt::format("BM_PlasticLine/central-difference/{}", material);
-    benchmark::RegisterBenchmark(name.c_str(), BM_PlasticLineStep, std::string(material))
-        ->RangeMultiplier(10)
-        ->Range(100, 1'000'000);
-  }
+  for (const char* scheme : {"central-difference", "newmark", "moreau-jean", "mass-redistribution"})
+    for (const char* material : {"elastic", "unyielded", "yielding"}) {
+      const std::string name = fmt::format("BM_PlasticLine/{}/{}", scheme, material);
+      benchmark::RegisterBenchmark(name.c_str(), BM_PlasticLineStep, std::string(scheme), std::string(material))
+          ->RangeMultiplier(10)
+          ->Range(100, 1'000'000);
+    }
   for (const char* scheme : {"moreau-jean", "paoli-schatzman", "mass-redistribution"}) {
     for (bool active : {false, true}) {
       const std::string name = fmt::format("BM_RigidLine/{}/{}", scheme, active ? "active" : "idle");

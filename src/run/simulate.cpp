@@ -40,7 +40,9 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
     scheme.advance();
     if (!scheme.finite()) {
       result.status = RunStatus::non_finite;
-      result.message = fmt::format("the state became non-finite at step {} (t = {})", n, scheme.time());
+      const std::string why = scheme.failure();
+      result.message = why.empty() ? fmt::format("the state became non-finite at step {} (t = {})", n, scheme.time())
+                                   : fmt::format("{} at step {} (t = {})", why, n, scheme.time());
       return result;
     }
     result.steps_done = n;

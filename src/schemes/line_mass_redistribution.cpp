@@ -28,6 +28,8 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
   Tridiagonal a = Tridiagonal::combine(2.0 / (dt_ * dt_), mass_, 0.5, k);
   held_ = hold_rows(line_, a);
   factor_ = FactoredTridiagonal(a, false);
+  std::vector<char> held(n, 0);
+  for (const auto& h : held_) held[h.node] = 1;
   for (const auto& b : line_.bonds) k_.push_back(b.stiffness);
   // The faces and their inner neighbours (M~ changed there) are special rows.
   face_.assign(n, 0);
@@ -48,6 +50,11 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
   q_.assign(rigid_.size(), 0.0);
   lambda_.assign(rigid_.size(), 0.0);
   all_.assign(rigid_.size(), 1);
+  set_plastic(a, held, 0.5, u_);  // a load at t_{n+1} enters Fbar (and a face's halved equilibrium) by half
+  if (plastic_iteration_.active()) {
+    for (auto* x : {&v_, &load_old_, &face_rho_}) snapshot_.keep(*x);
+    for (double* x : {&work_, &contact_}) snapshot_.keep(*x);
+  }
 }
 
 template <bool loaded>
@@ -160,6 +167,13 @@ void LineMassRedistribution::book_budget(double t0, double t1) {
 }
 
 void LineMassRedistribution::advance() {
+  if (plastic_iteration_.active())
+    advance_plastic([this] { advance_elastic(); }, u_);
+  else
+    advance_elastic();
+}
+
+void LineMassRedistribution::advance_elastic() {
   const double t0 = time(), t1 = static_cast<double>(n_ + 1) * dt_;
   if (!load_zero_ && !load_steady_) {
     std::swap(load_, load_old_);
@@ -191,6 +205,7 @@ void LineMassRedistribution::start() {
   v_ = v0_;
   for (const auto& h : held_)
     if (h.driven) v_[h.node] = h.near ? near_value(0.0) : far_value(0.0);
+  start_plastic(u_.data());
   load_at(0.0);
   load_old_ = load_;
   n_ = 0;
@@ -210,13 +225,14 @@ Energies LineMassRedistribution::energies() const {
   e.obstacle = 0.5 * line_.bond_form(BondKind::spring, false, u_.data(), u_.data());
   e.work = work_;
   e.contact = contact_;
+  add_plastic(e, u_.data());
   return e;
 }
 
 bool LineMassRedistribution::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) && std::isfinite(v_[last]) &&
-         std::isfinite(work_) && std::isfinite(contact_);
+  return failure_.empty() && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
+         std::isfinite(v_[last]) && std::isfinite(work_) && std::isfinite(contact_);
 }
 
 }  // namespace barimpact

@@ -13,6 +13,8 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
                                        th * th * dt * dt, line_.stiffness());
   held_ = hold_rows(line_, w);
   factor_ = FactoredTridiagonal(w, false);
+  std::vector<char> held(n, 0);
+  for (const auto& h : held_) held[h.node] = 1;
   // P = M - dt^2 theta (1 - theta) K - dt (1 - theta) C and Q = -dt K, bond by
   // bond: -(P - M) v - Q u = -(K (a v + dt u) + b C v), a bond's tension.
   for (const auto& b : line_.bonds) {
@@ -26,7 +28,12 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
   for (auto* v : {&u_, &v_, &u_old_, &v_old_, &y_, &load_old_}) v->assign(n, 0.0);
   for (auto* v : {&rate_old_, &q_, &p_}) v->assign(rigid_.size(), 0.0);
   active_.assign(rigid_.size(), 0);
-  needs_old_ = !load_zero_ || viscous_;
+  set_plastic(w, held, th * th * dt * dt,
+              u_);  // a load at t_{n+1}: v^{n+1} += theta dt W^{-1} g, u^{n+1} by theta dt that
+  if (plastic_iteration_.active()) {
+    for (auto* x : {&v_, &load_old_}) snapshot_.keep(*x);
+    for (double* x : {&work_, &dissipation_, &contact_}) snapshot_.keep(*x);
+  }
 }
 
 template <bool loaded>
@@ -143,6 +150,13 @@ void LineMoreauJean::book_budget(double t0, double t1) {
 }
 
 void LineMoreauJean::advance() {
+  if (plastic_iteration_.active())
+    advance_plastic([this] { advance_elastic(); }, u_);
+  else
+    advance_elastic();
+}
+
+void LineMoreauJean::advance_elastic() {
   const double t0 = time(), t1 = static_cast<double>(n_ + 1) * dt_;
   if (!load_zero_ && !load_steady_) {
     std::swap(load_, load_old_);
@@ -157,7 +171,8 @@ void LineMoreauJean::advance() {
     h.value = h.driven ? (h.near ? near_value(t1) : far_value(t1)) : 0.0;
   }
   predict_contacts();
-  if (needs_old_) {
+  if (!load_zero_ ||
+      viscous_) {  // the budget's load work and viscous loss need level n (plastic loads toggle load_zero_)
     std::copy(u_.begin(), u_.end(), u_old_.begin());
     std::copy(v_.begin(), v_.end(), v_old_.begin());
   }
@@ -173,6 +188,7 @@ void LineMoreauJean::start() {
   v_ = v0_;
   for (const auto& h : held_)
     if (h.driven) v_[h.node] = h.near ? near_value(0.0) : far_value(0.0);
+  start_plastic(u_.data());
   load_at(0.0);
   load_old_ = load_;
   n_ = 0;
@@ -193,13 +209,14 @@ Energies LineMoreauJean::energies() const {
   e.work = work_;
   e.dissipation = dissipation_;
   e.contact = contact_;
+  add_plastic(e, u_.data());
   return e;
 }
 
 bool LineMoreauJean::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) && std::isfinite(v_[last]) &&
-         std::isfinite(work_) && std::isfinite(dissipation_) && std::isfinite(contact_);
+  return failure_.empty() && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
+         std::isfinite(v_[last]) && std::isfinite(work_) && std::isfinite(dissipation_) && std::isfinite(contact_);
 }
 
 }  // namespace barimpact

@@ -76,6 +76,11 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   penalty_ = PenaltyLinks(std::move(laws), std::move(delassus), beta_ * dt_ * dt_, gamma_ * dt_);
   for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
   for (auto* x : {&p_old_, &c_old_, &c_free_, &rate_free_, &a_free_last_}) x->assign(links, 0.0);
+  set_plastic(a, held, beta_ * dt_ * dt_, u_);  // a load at t_{n+1} moves u^{n+1} by beta dt^2 A^{-1}
+  if (plastic_iteration_.active()) {
+    for (auto* x : {&v_, &acc_, &load_old_, &p_old_, &c_old_}) snapshot_.keep(*x);
+    for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_}) snapshot_.keep(*x);
+  }
 }
 
 // A's blocks: rows joined by element or spring bonds (a link's bond is
@@ -145,6 +150,7 @@ void LineNewmark::start() {
   u_ = u0_;
   v_ = v0_;
   std::fill(c_max_.begin(), c_max_.end(), 0.0);
+  start_plastic(u_.data());
   // a^0 = M^{-1} (F^0 - K u^0 - C v^0 + links), held rows at their ends' accelerations.
   load_at(0.0);
   residual(u_, v_, 0.0, acc_);
@@ -219,6 +225,13 @@ void LineNewmark::solve_links() {
 // right-hand side and first sweep; the links; away from x = 0, the back
 // substitution with a, u, v and the budget's sums.
 void LineNewmark::advance() {
+  if (plastic_iteration_.active())
+    advance_plastic([this] { advance_elastic(); }, u_);
+  else
+    advance_elastic();
+}
+
+void LineNewmark::advance_elastic() {
   const double t = static_cast<double>(n_ + 1) * dt_;
   load_at(t);
   const bool loaded = !load_zero_;
@@ -410,13 +423,14 @@ Energies LineNewmark::energies() const {
   e.work = ext_work_;
   e.dissipation = dissipation_;
   e.contact = link_hysteresis();
+  add_plastic(e, u_.data());
   return e;
 }
 
 bool LineNewmark::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) && std::isfinite(v_[last]) &&
-         std::isfinite(ext_work_) && std::isfinite(dissipation_);
+  return failure_.empty() && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
+         std::isfinite(v_[last]) && std::isfinite(ext_work_) && std::isfinite(dissipation_);
 }
 
 }  // namespace barimpact

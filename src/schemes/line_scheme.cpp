@@ -25,8 +25,10 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
     (l.law.rigid() ? has_rigid_ : has_penalty_) = true;
   }
   body_force_ = std::make_unique<Expression>(line_.body_force);
-  load_zero_ = body_force_->is_zero() && line_.gravity == 0.0;
-  load_steady_ = !body_force_->depends_on_t();
+  body_zero_ = load_zero_ = body_force_->is_zero() && line_.gravity == 0.0;
+  body_steady_ = load_steady_ = !body_force_->depends_on_t();
+  plastic_iteration_ = PlasticIteration(line_);
+  if (plastic_iteration_.active()) load_steady_ = false;  // the plastic strains' load moves
   if (line_.near.kind == EndKind::force || line_.near.kind == EndKind::velocity)
     near_value_ = std::make_unique<Expression>(line_.near.value);
   if (line_.far.kind == EndKind::force || line_.far.kind == EndKind::velocity)
@@ -44,7 +46,57 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
 
 void LineScheme::load_at(double t) {
   if (load_zero_ || (load_steady_ && t > 0.0)) return;  // zero, or computed at t = 0
-  line_.load(*body_force_, t, load_);
+  if (body_zero_)
+    std::fill(load_.begin(), load_.end(), 0.0);
+  else
+    line_.load(*body_force_, t, load_);
+  if (plastic_iteration_.loading()) plastic_iteration_.add_load(load_.data());
+}
+
+void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<char>& held, double c, std::vector<double>& u) {
+  if (!plastic_iteration_.active()) return;
+  plastic_iteration_.set_matrix(a, held, c);
+  snapshot_.keep(u);  // first: saved(0) is u^n
+  snapshot_.keep(load_);
+  snapshot_.keep(force_);
+  snapshot_.keep(c_max_);
+  snapshot_.keep(near_force_);
+  snapshot_.keep(far_force_);
+}
+
+void LineScheme::start_plastic(const double* u0) {
+  failure_.clear();
+  if (!plastic_iteration_.active()) return;
+  plastic_iteration_.start(u0);
+  plastic_loads();
+  since_kept_ = keep_interval_ = 1;
+  yielded_since_kept_ = false;
+}
+
+void LineScheme::keep_level() {
+  snapshot_.save();
+  kept_n_ = n_;
+  since_kept_ = 0;
+  yielded_since_kept_ = false;
+}
+
+// The schemes' loads carry G p^k while it may be nonzero.
+void LineScheme::plastic_loads() {
+  load_zero_ = body_zero_ && !plastic_iteration_.loading();
+}
+
+void LineScheme::fail_plastic() {
+  failure_ = fmt::format(
+      "the elastic-plastic iteration did not settle in {} steps (the plastic strains still move by {:.3g} times "
+      "the tolerance 1e-10 sigma_y / E)",
+      PlasticIteration::most_iterations, plastic_iteration_.misfit());
+}
+
+void LineScheme::add_plastic(Energies& e, const double* u) const {
+  if (!plastic_iteration_.active()) return;
+  e.strain += plastic_iteration_.strain_energy(u);
+  e.work -= plastic_iteration_.load_work(u);
+  e.plastic = plastic_iteration_.work();
 }
 
 void LineScheme::displacement(std::span<double> out) const {
@@ -145,11 +197,12 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
-  if (name != "central-difference" && name != "paoli-schatzman")
+  if (name == "paper" || name == "characteristic")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])
-        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the elastic-plastic body \"{}\" yet (schemes "
-                                                "that can: central-difference, paoli-schatzman)",
+        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the elastic-plastic body \"{}\" (schemes "
+                                                "that can: central-difference, paoli-schatzman, newmark, "
+                                                "moreau-jean, mass-redistribution)",
                                                 name, line.bodies[b].name)};
   if (name == "paper" || name == "newmark") {
     for (const auto& l : line.links)

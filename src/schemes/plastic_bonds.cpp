@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "yield_check.hpp"
+
 namespace barimpact {
 
 namespace {
@@ -36,43 +38,10 @@ double return_map(std::size_t first, std::size_t last, const Plasticity& law, do
   return work;
 }
 
-// Whether any element of bonds [first, last) yields at u^{m+1} from level
-// m's state: a read-only pass that vectorises (an integer OR, no stores).
-template <bool isotropic>
-bool yields(std::size_t first, std::size_t last, const Plasticity& law, double inv_h, const double* __restrict up,
-            const double* __restrict pm, const double* __restrict am) {
-  const double e = law.modulus, hm = law.plastic_modulus, sy = law.yield_stress;
-  int any = 0;
-  for (std::size_t j = first; j < last; ++j) {
-    const double trial = e * ((up[j + 1] - up[j]) * inv_h - pm[j]);
-    const double over = isotropic ? trial : trial - hm * pm[j];
-    const double radius = isotropic ? sy + hm * am[j] : sy;
-    any |= std::abs(over) > radius ? 1 : 0;
-  }
-  return any != 0;
-}
-
-// The same while nothing has yielded (p = alpha = 0), in the return map's
-// own arithmetic (so that it yields exactly where the map would): |E (u_{j+1}
-// - u_j) / h| > sigma_y.
-bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
-                      const double* __restrict up) {
-  const double e = law.modulus, sy = law.yield_stress;
-  int any = 0;
-  for (std::size_t j = first; j < last; ++j) any |= std::abs(e * ((up[j + 1] - up[j]) * inv_h)) > sy ? 1 : 0;
-  return any != 0;
-}
-
 }  // namespace
 
 PlasticBonds::PlasticBonds(const Line& line) {
-  for (std::size_t b = 0; b < line.bodies.size(); ++b) {
-    if (b >= line.plasticity.size() || !line.plasticity[b]) continue;
-    const BodyRange& body = line.bodies[b];
-    if (body.last == body.first) continue;
-    const Bond& e = line.bonds[body.first];
-    ranges_.push_back({body.first, body.last, b, *line.plasticity[b], 1.0 / e.h, e.area * e.h, e.stiffness});
-  }
+  ranges_ = plastic_bodies(line);
   for (auto* levels : {&p_, &accumulated_})
     for (auto& level : *levels) level.assign(line.bonds.size(), 0.0);
   half_.assign(line.bodies.size(), 0.0);
@@ -104,10 +73,11 @@ void PlasticBonds::start(const double* u0) {
 void PlasticBonds::advance(const double* u, const double* up, bool first) {
   bool yielding = false;
   for (const Range& r : ranges_)
-    yielding = yielding || (pristine_ ? yields_from_rest(r.first, r.last, r.law, r.inv_h, up)
-                                      : (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law,
-                                                                                         r.inv_h, up, p_[next_].data(),
-                                                                                         accumulated_[next_].data()));
+    yielding = yielding ||
+               (pristine_ ? detail::yields_from_rest(r.first, r.last, r.law, r.inv_h, up)
+                          : (r.law.isotropic ? detail::yields<true>
+                                             : detail::yields<false>)(r.first, r.last, r.law, r.inv_h, up,
+                                                                      p_[next_].data(), accumulated_[next_].data()));
   if (!yielding && quiet_) {  // p^{m+1} = p^m = p^{m-1}: level m + 1 is level m's arrays, its work 0
     fresh_ = next_;
     for (const Range& r : ranges_) last_[r.body] = 0.0;

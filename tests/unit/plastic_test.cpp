@@ -15,6 +15,7 @@
 #include "barimpact/exact/lines.hpp"
 #include "barimpact/model/material.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/plastic_bonds.hpp"
 
 namespace barimpact {
@@ -193,7 +194,7 @@ struct VonKarmanCase {
 
 class VonKarmanOrders : public ::testing::TestWithParam<VonKarmanCase> {};
 
-TEST_P(VonKarmanOrders, TheExplicitSchemesConvergeToIt) {
+TEST_P(VonKarmanOrders, TheSchemesConvergeToIt) {
   const exact::VonKarman exact({1.0, 1.0, 1.0, 1.0}, 0.1, 0.25, 0.3);
   ASSERT_DOUBLE_EQ(exact.plateau_stress(), -0.2);
   ASSERT_DOUBLE_EQ(exact.precursor_stress(), -0.1);
@@ -237,7 +238,35 @@ INSTANTIATE_TEST_SUITE_P(
     Schemes, VonKarmanOrders,
     ::testing::Values(VonKarmanCase{"central-difference", 0.5, 0.55, 0.001, "0.63 0.63 0.63 0.64; 0.64 0.61 0.65 0.58"},
                       // The consistent mass disperses the fronts more: 2% on the precursor.
-                      VonKarmanCase{"paoli-schatzman", 0.45, 0.5, 0.002, "0.53 0.58 0.53 0.49; 0.57 0.51 0.54 0.57"}));
+                      VonKarmanCase{"paoli-schatzman", 0.45, 0.5, 0.002, "0.53 0.58 0.53 0.49; 0.57 0.51 0.54 0.57"},
+                      // The trapezoidal rule three ways (the same numbers here: no rigid link, theta = 1/2).
+                      VonKarmanCase{"newmark", 0.5, 0.5, 0.002, "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"},
+                      VonKarmanCase{"moreau-jean", 0.5, 0.5, 0.002, "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"},
+                      VonKarmanCase{"mass-redistribution", 0.5, 0.5, 0.002,
+                                    "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"}));
+
+// The implicit schemes' Newton iteration (plastic_iteration.hpp) on von
+// Karman's problem: at dt = h/2 and at four times the explicit limit, a
+// level that yields takes two to four steps (one more each time the
+// plastic front reaches a new element within the step; measured means 2.53
+// and 3.15, at most 3 and 4).
+TEST(PlasticIteration, SettlesInAFewStepsPerLevel) {
+  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution"})
+    for (double courant : {0.5, 4.0}) {
+      const Case c = case_from(von_karman_case(200, courant, "isotropic", scheme));
+      auto s = make_scheme(c);
+      s->start();
+      for (long long n = 0; n < c.step_count(); ++n) s->advance();
+      ASSERT_TRUE(s->finite()) << s->failure();
+      const auto& effort = dynamic_cast<const LineScheme&>(*s).plastic_iteration().effort();
+      ASSERT_GT(effort.yielding_levels, 0);
+      const double mean = static_cast<double>(effort.steps) / static_cast<double>(effort.yielding_levels);
+      fmt::print("{} at Courant {}: {} yielding levels, {:.2f} steps each, at most {}\n", scheme, courant,
+                 effort.yielding_levels, mean, effort.most);
+      EXPECT_LE(mean, courant < 1.0 ? 2.7 : 3.3) << scheme << " " << courant;
+      EXPECT_LE(effort.most, 4) << scheme << " " << courant;
+    }
+}
 
 // Isotropic hardening gives the same run along von Karman's monotone
 // loading (the return maps differ only once the stress reverses).
@@ -310,7 +339,7 @@ fields_at = [0.8]
     EXPECT_NEAR(e.kinetic + e.strain + e.plastic, e0, 1e-15) << t;
     EXPECT_EQ(e.work, 0.0);
   }
-  for (const char* scheme : {"central-difference", "paoli-schatzman"}) {
+  for (const char* scheme : {"central-difference", "paoli-schatzman", "moreau-jean", "mass-redistribution"}) {
     std::vector<double> errors;
     RunResult finest;
     for (int m : {100, 200, 400, 800}) {
@@ -328,18 +357,12 @@ fields_at = [0.8]
 
 // ---- The budget, unloading, the elastic limit
 
-// The explicit schemes' identity with D_plastic (plastic_bonds.hpp; for
-// paoli-schatzman the consistent mass changes only E_kin) closes
-// the budget as the elastic scheme's closes: to round-off from row 1 on
-// (1e-12 of the scale over 3000 steps), with a rigid wall (D_contact), a
-// viscous bar, gravity, a welded elastic bar and a spring to a mass, and
-// isotropic hardening reversing at the rebounds. Here D_plastic never
-// falls; the centred work can dip by O(dt) where a reversal falls between
-// steps (docs/methods.md: examples/plastic/cyclic.toml), the price of the
-// exact budget.
-TEST(PlasticBudget, ClosesToRoundOffWithTheExplicitSchemes) {
-  for (const char* scheme : {"central-difference", "paoli-schatzman"}) {
-    const Case c = case_from(fmt::format(R"toml([[body]]
+// A yielding line for the budget tests: a plastic pile under a welded bar,
+// a spring and a mass, gravity, falling onto the near end: a rigid wall, or
+// for newmark an end held still (its penalty links close at O(dt^2) only);
+// viscous but under mass-redistribution (which refuses viscosity).
+std::string budget_line(const std::string& scheme) {
+  return fmt::format(R"toml([[body]]
 name = "pile"
 length = 1.0
 elements = 60
@@ -347,7 +370,7 @@ material = "plastic"
 yield_stress = 0.15
 hardening_modulus = 0.2
 hardening = "isotropic"
-viscosity = 0.002
+{}
 velocity = "-0.5"
 [[body]]
 name = "top"
@@ -365,7 +388,7 @@ between = ["top", "ram"]
 law = "spring"
 stiffness = 50.0
 [near_end]
-law = "rigid"
+{}
 [load]
 gravity = 0.3
 [time]
@@ -373,7 +396,22 @@ scheme = "{}"
 step = 0.005
 end = 15.0
 )toml",
-                                         scheme));
+                     scheme == "mass-redistribution" ? "" : "viscosity = 0.002",
+                     scheme == "newmark" ? "law = \"velocity\"\nvalue = \"0\"" : "law = \"rigid\"", scheme);
+}
+
+// The explicit schemes' identity with D_plastic (plastic_bonds.hpp; for
+// paoli-schatzman the consistent mass changes only E_kin) closes
+// the budget as the elastic scheme's closes: to round-off from row 1 on
+// (1e-12 of the scale over 3000 steps), with a rigid wall (D_contact), a
+// viscous bar, gravity, a welded elastic bar and a spring to a mass, and
+// isotropic hardening reversing at the rebounds. Here D_plastic never
+// falls; the centred work can dip by O(dt) where a reversal falls between
+// steps (docs/methods.md: examples/plastic/cyclic.toml), the price of the
+// exact budget.
+TEST(PlasticBudget, ClosesToRoundOffWithTheExplicitSchemes) {
+  for (const char* scheme : {"central-difference", "paoli-schatzman"}) {
+    const Case c = case_from(budget_line(scheme));
     const RunResult r = run(c);
     ASSERT_TRUE(r.summary.complete);
     const double scale = r.history.front().E_kin;
@@ -392,14 +430,42 @@ end = 15.0
   }
 }
 
+// The implicit schemes' identity (plastic_iteration.hpp): the plastic
+// strains' load is booked as any load's, so the budget closes as the elastic
+// scheme's does, to round-off, on budget_line.
+TEST(PlasticBudget, ClosesToRoundOffWithTheImplicitSchemes) {
+  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution"}) {
+    const std::string name = scheme;
+    const Case c = case_from(budget_line(scheme));
+    const RunResult r = run(c);
+    ASSERT_TRUE(r.summary.complete) << scheme;
+    double scale = 0.0;
+    for (const auto& row : r.history) scale = std::max(scale, row.E_kin + row.E_strain);
+    double largest = 0.0;
+    for (std::size_t n = 1; n < r.history.size(); ++n)
+      largest = std::max(largest, std::abs(r.history[n].total() - r.history.front().total()));
+    fmt::print("{}: budget {:.2g} of the scale, D_plastic {:.3g}\n", scheme, largest / scale,
+               r.history.back().D_plastic / scale);
+    // mass-redistribution's faces' imbalances cost it round-off elastic
+    // too (2.8e-12 of the scale on this line without plasticity); measured
+    // 2.9e-14, 7e-14 and 1.1e-11.
+    EXPECT_LT(largest, (name == "mass-redistribution" ? 5e-11 : 1e-12) * scale) << scheme;
+    EXPECT_GT(r.history.back().D_plastic, 0.05 * scale) << scheme;  // it yields
+    ASSERT_TRUE(r.summary.plastic.has_value());
+    EXPECT_NEAR(r.summary.plastic->work[0].second, r.history.back().D_plastic, 1e-15 * scale);
+  }
+}
+
 // A perfectly plastic bar (E_t = 0) hitting a rigid wall: the kinetic
 // energy it loses is the plastic work plus what the wall's impulses and the
 // elastic waves hold, to round-off; the plastic work is most of it and
-// converges with the mesh (to 1% from 200 to 400 elements).
+// converges with the mesh (to 1% from 200 to 400 elements), the same with
+// every scheme that runs a rigid wall and plasticity (0.1440, 0.1440, 0.1440).
 TEST(PlasticBudget, PerfectlyPlasticBarOnARigidWall) {
-  std::vector<double> work;
-  for (int m : {200, 400}) {
-    const RunResult r = run(case_from(fmt::format(R"toml([[body]]
+  for (const char* scheme : {"central-difference", "moreau-jean", "mass-redistribution"}) {
+    std::vector<double> work;
+    for (int m : {200, 400}) {
+      const RunResult r = run(case_from(fmt::format(R"toml([[body]]
 name = "bar"
 elements = {}
 material = "plastic"
@@ -409,18 +475,25 @@ velocity = "-1"
 law = "rigid"
 restitution = 0.0
 [time]
-scheme = "central-difference"
+scheme = "{}"
 step = {}
 end = 0.9
 )toml",
-                                                  m, 0.5 / m)));
-    const HistoryRow &first = r.history.front(), &last = r.history.back();
-    const double lost = first.E_kin - last.E_kin;
-    EXPECT_NEAR(lost, last.E_strain + last.D_plastic + last.D_contact - first.E_strain, 1e-12 * first.E_kin);
-    EXPECT_GT(last.D_plastic, 0.5 * lost);
-    work.push_back(last.D_plastic);
+                                                    m, scheme, 0.5 / m)));
+      const HistoryRow &first = r.history.front(), &last = r.history.back();
+      const double lost = first.E_kin - last.E_kin;
+      // The implicit schemes' W_ext is the loads' work they booked less the
+      // plastic strains' load's, summed by parts: equal to the round-off of
+      // sum |g_j du_j| per step (measured 5e-12 and 2.2e-11 of E_kin).
+      const bool implicit = std::string(scheme) != "central-difference";
+      EXPECT_NEAR(lost, last.E_strain + last.D_plastic + last.D_contact - first.E_strain - last.W_ext,
+                  (implicit ? 1e-10 : 1e-12) * first.E_kin);
+      EXPECT_GT(last.D_plastic, 0.5 * lost) << scheme;
+      work.push_back(last.D_plastic);
+    }
+    fmt::print("{}: plastic work {:.6f} -> {:.6f}\n", scheme, work[0], work[1]);
+    EXPECT_NEAR(work[0], work[1], 0.01 * work[1]) << scheme;
   }
-  EXPECT_NEAR(work[0], work[1], 0.01 * work[1]);
 }
 
 // Loaded past yield and released, quasi-statically (the load's time 1 is a
@@ -430,7 +503,11 @@ end = 0.9
 // point the residual displacement x eps_p, to 3e-3 (the load's rate times a
 // transit, 1.5e-3, is the waves' force; measured 2.0e-3).
 TEST(PlasticUnloading, KeepsThePlasticStrainTheReturnMapPredicts) {
-  const RunResult r = run(case_from(R"toml([[body]]
+  // The implicit schemes at a step 50 times the explicit limit (their
+  // iteration's hardest case: the whole bar flows at once).
+  for (const auto& [scheme, step] : {std::pair{"central-difference", "0.00001"}, std::pair{"newmark", "0.001"},
+                                     std::pair{"moreau-jean", "0.001"}, std::pair{"mass-redistribution", "0.001"}}) {
+    const RunResult r = run(case_from(fmt::format(R"toml([[body]]
 name = "bar"
 elements = 50
 density = 0.000001
@@ -443,21 +520,23 @@ law = "clamped"
 law = "force"
 value = "1.5 * (t < 1 ? t : (t < 2 ? 2 - t : 0))"
 [time]
-scheme = "central-difference"
-step = 0.00001
+scheme = "{}"
+step = {}
 end = 2.5
 [output]
-every = 10000
+every = 100
 fields_at = [2.5]
-)toml"));
-  ASSERT_TRUE(r.summary.complete);
-  const Fields& f = r.fields;
-  for (std::size_t j = 0; j < f.nodes(); ++j) {
-    EXPECT_NEAR(f.eps_p[j], 0.5, 3e-3) << j;
-    EXPECT_NEAR(f.u[j], 0.5 * f.x[j], 3e-3) << j;
+)toml",
+                                                  scheme, step)));
+    ASSERT_TRUE(r.summary.complete) << scheme;
+    const Fields& f = r.fields;
+    for (std::size_t j = 0; j < f.nodes(); ++j) {
+      EXPECT_NEAR(f.eps_p[j], 0.5, 3e-3) << scheme << " " << j;
+      EXPECT_NEAR(f.u[j], 0.5 * f.x[j], 3e-3) << scheme << " " << j;
+    }
+    ASSERT_TRUE(r.summary.plastic.has_value());
+    EXPECT_NEAR(r.summary.plastic->largest_strain, 0.5, 3e-3) << scheme;
   }
-  ASSERT_TRUE(r.summary.plastic.has_value());
-  EXPECT_NEAR(r.summary.plastic->largest_strain, 0.5, 3e-3);
 }
 
 // The elastic limit: a yield stress never reached gives the elastic run's
@@ -491,6 +570,38 @@ end = 3
     EXPECT_EQ(elastic.history[n].R, plastic.history[n].R) << n;
     EXPECT_EQ(elastic.history[n].total(), plastic.history[n].total()) << n;
     EXPECT_EQ(plastic.history[n].D_plastic, 0.0);
+  }
+  // The implicit schemes: nothing yields, so every level is one step with
+  // the elastic loads (plastic_iteration.hpp), bit for bit.
+  const std::string held = R"toml([[body]]
+name = "a"
+elements = 40
+{}
+[[body]]
+name = "b"
+elements = 40
+modulus = 2.0
+[near_end]
+law = "clamped"
+[far_end]
+law = "force"
+value = "-0.5 * sin(3 * t)"
+[time]
+scheme = "{}"
+step = 0.01
+end = 3
+)toml";
+  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution"}) {
+    const RunResult e = run(case_from(fmt::format(fmt::runtime(held), "", scheme)));
+    const RunResult p =
+        run(case_from(fmt::format(fmt::runtime(held), "material = \"plastic\"\nyield_stress = 1e6", scheme)));
+    ASSERT_EQ(e.history.size(), p.history.size());
+    for (std::size_t n = 0; n < e.history.size(); ++n) {
+      EXPECT_EQ(e.history[n].U, p.history[n].U) << scheme << " " << n;
+      EXPECT_EQ(e.history[n].R, p.history[n].R) << scheme << " " << n;
+      EXPECT_EQ(e.history[n].total(), p.history[n].total()) << scheme << " " << n;
+      EXPECT_EQ(p.history[n].D_plastic, 0.0);
+    }
   }
   const Case bar = testing::example("paper-example1.toml", {"time.scheme=central-difference", "time.step=0.005"});
   const Case yielding = testing::example("paper-example1.toml", {"time.scheme=central-difference", "time.step=0.005",
@@ -532,8 +643,8 @@ TEST(PlasticCase, RefusesBadMaterialKeysNamingThem) {
   EXPECT_NE(refusal("[bar]\nstiffness = 3.0\nmaterial = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = 3.0\n")
                 .find("bar.hardening_modulus must be below stiffness = 3"),
             std::string::npos);
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"newmark\"\n")
-                .find("time.scheme = \"newmark\" cannot run the elastic-plastic body \"b\""),
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"paper\"\n")
+                .find("time.scheme = \"paper\" cannot run the elastic-plastic body \"b\""),
             std::string::npos);
   // characteristic refuses the body before it would discuss the step.
   EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"characteristic\"\n"

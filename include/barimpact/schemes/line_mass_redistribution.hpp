@@ -33,6 +33,8 @@
 // last term, the work of the links across the step's status change, is
 // -D_contact; the budget closes to round-off. The supports' work S du is in
 // W_ext.
+// Elastic-plastic bodies: the plastic strains' load G p at t_{n+1}, found
+// by the Newton iteration of plastic_iteration.hpp around this step.
 #pragma once
 
 #include <vector>
@@ -54,6 +56,7 @@ class LineMassRedistribution final : public LineScheme {
   [[nodiscard]] bool finite() const override;
 
  private:
+  void advance_elastic();
   template <bool loaded>
   void free_step();
   /// A Crank-Nicolson row's right-hand side 2/dt^2 M~ (u + dt v) + Fbar - (K u)/2 at any node.

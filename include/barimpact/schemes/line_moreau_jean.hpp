@@ -24,6 +24,8 @@
 // (du . (F^n + F^{n+1}) / 2) and the supports' (S vbar) work, D_visc the
 // viscous term, D_contact -p_i (ydot_i^n + ydot_i^{n+1}) / 2 =
 // (1 - e_i) p_i |ydot_i^n| / 2 >= 0 at an impact. theta > 1/2 damps on top.
+// Elastic-plastic bodies: the plastic strains' load G p at t_{n+1}, found
+// by the Newton iteration of plastic_iteration.hpp around this step.
 #pragma once
 
 #include <vector>
@@ -45,6 +47,7 @@ class LineMoreauJean final : public LineScheme {
   [[nodiscard]] bool finite() const override;
 
  private:
+  void advance_elastic();
   /// The step without the rigid links: v^{n+1}, u^{n+1} in u_, v_.
   template <bool loaded>
   void free_step();
@@ -71,7 +74,7 @@ class LineMoreauJean final : public LineScheme {
   std::vector<double> u_, v_, u_old_, v_old_, y_, load_old_;
   std::vector<double> rate_old_, q_, p_;  // per rigid link
   std::vector<unsigned char> active_;
-  bool any_active_ = false, needs_old_ = false, viscous_ = false;
+  bool any_active_ = false, viscous_ = false;
   double near_impulse_ = 0.0, far_impulse_ = 0.0;  // force ends: dt (theta f(t_{n+1}) + (1 - theta) f(t_n))
   double near_u_old_ = 0.0, far_u_old_ = 0.0;
   double work_ = 0.0, dissipation_ = 0.0, contact_ = 0.0;

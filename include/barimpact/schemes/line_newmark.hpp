@@ -28,6 +28,8 @@
 // dW = (u^{n+1} - u^n) . (F^n + F^{n+1}) / 2 with the end forces and the
 // supports', dD = dt vbar^T C vbar plus the viscoelastic links' force beyond
 // their spring's, trapezoidal; a cushion's hysteresis is D_contact.
+// Elastic-plastic bodies: the plastic strains' load G p at t_{n+1}, found
+// by the Newton iteration of plastic_iteration.hpp around this step.
 #pragma once
 
 #include <vector>
@@ -49,6 +51,7 @@ class LineNewmark final : public LineScheme {
   [[nodiscard]] bool finite() const override;
 
  private:
+  void advance_elastic();
   /// r = F(t) + end forces - C v - K u at every free row; held rows get `held`.
   void residual(const std::vector<double>& u, const std::vector<double>& v, double t, std::vector<double>& r);
   void build_blocks();

@@ -9,6 +9,7 @@
 // motion; all are compressions (> 0 pushing along +x into the line).
 #pragma once
 
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,7 +18,9 @@
 #include "barimpact/case/case.hpp"
 #include "barimpact/model/expression.hpp"
 #include "barimpact/model/line.hpp"
+#include "barimpact/schemes/plastic_iteration.hpp"
 #include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/step_snapshot.hpp"
 
 namespace barimpact {
 
@@ -36,12 +39,82 @@ class LineScheme : public Scheme {
   /// The far end's force (compression > 0) at t_n.
   [[nodiscard]] double far_force() const override { return far_force_; }
   [[nodiscard]] const Line& line() const { return line_; }
+  /// A one-step implicit scheme's elastic-plastic elements (the explicit
+  /// schemes keep their own and override these).
+  [[nodiscard]] double plastic_strain(std::size_t bond) const override {
+    return plastic_iteration_.active() ? plastic_iteration_.strain()[bond] : 0.0;
+  }
+  [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_iteration_.body_work(body); }
+  [[nodiscard]] std::string failure() const override { return failure_; }
+  [[nodiscard]] const PlasticIteration& plastic_iteration() const { return plastic_iteration_; }
 
  protected:
   LineScheme(const Case& c, Line line);
 
-  /// F^n: body force and gravity at t (end forces are not in it).
+  /// F^n: body force and gravity at t (end forces are not in it), and the
+  /// plastic strains' load G p^k while an elastic-plastic iteration needs it.
   void load_at(double t);
+
+  /// A one-step implicit scheme's elastic-plastic elements: `a` its matrix
+  /// (rows `held` the identity) and u^{n+1} += c A^{-1} g for a load g at
+  /// t_{n+1}; `u` the vector it keeps u in (after its own sizing).
+  void set_plastic(const Tridiagonal& a, const std::vector<char>& held, double c, std::vector<double>& u);
+  /// Level 0's plastic strains from u0, before the start's loads.
+  void start_plastic(const double* u0);
+  /// One step of the elastic-plastic iteration (plastic_iteration.hpp):
+  /// `step()` is the scheme's elastic step, taken with the plastic strains
+  /// of level n; when an element yields, the step is taken again from level
+  /// n (snapshot_) until the plastic strains it loads with hold. Level n is
+  /// kept at every step while the line yields, and at intervals doubling to
+  /// 32 steps while it does not: reaching level n may then replay up to 31
+  /// steps that did not yield (the same numbers: nothing changed), once per
+  /// quiet stretch, so that a quiet step pays the yield check and 1/32 of a
+  /// copy of its state.
+  template <class Step>
+  void advance_plastic(Step&& step, const std::vector<double>& u) {
+    if (since_kept_ >= keep_interval_) {
+      if (!yielded_since_kept_) keep_interval_ = std::min(2 * keep_interval_, 32);
+      keep_level();
+    }
+    plastic_iteration_.begin_step();
+    plastic_loads();
+    step();
+    ++since_kept_;
+    if (plastic_iteration_.settled(u.data(), force_.data())) {
+      plastic_iteration_.count(1);
+      return;
+    }
+    // Back to level n, replaying the quiet steps since the level kept.
+    const long long n = n_ - 1;
+    snapshot_.restore();
+    n_ = kept_n_;
+    plastic_iteration_.use_level();
+    while (n_ < n) {
+      plastic_loads();
+      step();
+    }
+    keep_interval_ = 1;
+    if (kept_n_ != n) keep_level();
+    yielded_since_kept_ = true;
+    plastic_iteration_.use_iterate();
+    int k = 2;
+    for (;; ++k) {
+      plastic_loads();
+      step();
+      if (plastic_iteration_.settled(u.data(), force_.data())) break;
+      if (k == PlasticIteration::most_iterations) {
+        fail_plastic();
+        break;
+      }
+      snapshot_.restore();
+      n_ = n;
+    }
+    plastic_iteration_.count(k);
+    plastic_iteration_.accept(snapshot_.saved(0).data(), u.data());
+    since_kept_ = 1;
+  }
+  /// E_strain, W_ext and D_plastic of an elastic-plastic line at u = u^n.
+  void add_plastic(Energies& e, const double* u) const;
   /// The force end's value at t along +x (0 unless the end is a force end).
   [[nodiscard]] double near_value(double t) const { return near_value_ ? (*near_value_)(0.0, t) : 0.0; }
   [[nodiscard]] double far_value(double t) const { return far_value_ ? (*far_value_)(0.0, t) : 0.0; }
@@ -60,6 +133,9 @@ class LineScheme : public Scheme {
 
   Line line_;
   double dt_;
+  PlasticIteration plastic_iteration_;
+  StepSnapshot snapshot_;  // the level a plastic step starts from (u first)
+  std::string failure_;    // why the state is not to be trusted (finite() is then false)
   long long n_ = 0;
   std::vector<double> load_;  // F at the current load time
   bool load_zero_ = true, load_steady_ = true;
@@ -70,6 +146,15 @@ class LineScheme : public Scheme {
   double near_force_ = 0.0, far_force_ = 0.0;
   std::unique_ptr<Expression> body_force_, near_value_, far_value_;
   std::vector<double> u0_, v0_;
+
+ private:
+  void plastic_loads();
+  void fail_plastic();
+  void keep_level();
+  long long kept_n_ = 0;                    // the level snapshot_ holds
+  int since_kept_ = 1, keep_interval_ = 1;  // steps since it, and between two
+  bool yielded_since_kept_ = false;
+  bool body_zero_ = true, body_steady_ = true;  // the body force and gravity alone
 };
 
 /// The scheme `c.time.scheme` names for a line of bodies (c.single_bar false).

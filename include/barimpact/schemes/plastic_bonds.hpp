@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "barimpact/model/line.hpp"
+#include "barimpact/schemes/plastic_body.hpp"
 
 namespace barimpact {
 
@@ -65,12 +66,7 @@ class PlasticBonds {
   [[nodiscard]] double body_work(std::size_t body) const;
 
  private:
-  // The elements of one elastic-plastic body: bonds [first, last).
-  struct Range {
-    std::size_t first, last, body;
-    Plasticity law;
-    double inv_h, volume, k;  // 1 / h, A h, E A / h
-  };
+  using Range = PlasticBody;
   void rotate();
   [[nodiscard]] double hardening_energy(const Range& r) const;
   [[nodiscard]] double hardening_energy() const;

@@ -1,0 +1,43 @@
+// A scheme's state between steps, kept so that a step can be taken again
+// from the same level (the elastic-plastic iteration of a one-step implicit
+// scheme, plastic_iteration.hpp). The scheme names what its step changes;
+// the copies are allocated when named, so save and restore never allocate.
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+namespace barimpact {
+
+class StepSnapshot {
+ public:
+  /// Keeps `v` (at its present size, which it must not change) and `x`.
+  void keep(std::vector<double>& v) {
+    vectors_.push_back(&v);
+    vector_copies_.emplace_back(v.size(), 0.0);
+  }
+  void keep(double& x) {
+    scalars_.push_back(&x);
+    scalar_copies_.push_back(x);
+  }
+  void save() {
+    for (std::size_t i = 0; i < vectors_.size(); ++i)
+      std::copy(vectors_[i]->begin(), vectors_[i]->end(), vector_copies_[i].begin());
+    for (std::size_t i = 0; i < scalars_.size(); ++i) scalar_copies_[i] = *scalars_[i];
+  }
+  void restore() {
+    for (std::size_t i = 0; i < vectors_.size(); ++i)
+      std::copy(vector_copies_[i].begin(), vector_copies_[i].end(), vectors_[i]->begin());
+    for (std::size_t i = 0; i < scalars_.size(); ++i) *scalars_[i] = scalar_copies_[i];
+  }
+  /// The saved copy of the `i`-th vector kept.
+  [[nodiscard]] const std::vector<double>& saved(std::size_t i) const { return vector_copies_[i]; }
+
+ private:
+  std::vector<std::vector<double>*> vectors_;
+  std::vector<std::vector<double>> vector_copies_;
+  std::vector<double*> scalars_;
+  std::vector<double> scalar_copies_;
+};
+
+}  // namespace barimpact

@@ -1,0 +1,41 @@
+// The read-only yield checks the elastic-plastic elements' schemes share
+// (plastic_bonds.hpp, plastic_iteration.hpp): whether any element of bonds
+// [first, last) yields at a new level from the last one's state, in the
+// return map's own arithmetic (material.hpp), so that it yields exactly
+// where the map would. Loops without stores or branches: they vectorise.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "barimpact/model/material.hpp"
+
+namespace barimpact::detail {
+
+// From level m's plastic strains pm and accumulated strains am, at up.
+template <bool isotropic>
+inline bool yields(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
+                   const double* __restrict up, const double* __restrict pm, const double* __restrict am) {
+  const double e = law.modulus, hm = law.plastic_modulus, sy = law.yield_stress;
+  int any = 0;
+  for (std::size_t j = first; j < last; ++j) {
+    const double trial = e * ((up[j + 1] - up[j]) * inv_h - pm[j]);
+    const double over = isotropic ? trial : trial - hm * pm[j];
+    const double radius = isotropic ? sy + hm * am[j] : sy;
+    any |= std::abs(over) > radius ? 1 : 0;
+  }
+  return any != 0;
+}
+
+// The same while nothing has yielded (p = alpha = 0), in the return map's
+// own arithmetic (so that it yields exactly where the map would): |E (u_{j+1}
+// - u_j) / h| > sigma_y.
+inline bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
+                             const double* __restrict up) {
+  const double e = law.modulus, sy = law.yield_stress;
+  int any = 0;
+  for (std::size_t j = first; j < last; ++j) any |= std::abs(e * ((up[j + 1] - up[j]) * inv_h)) > sy ? 1 : 0;
+  return any != 0;
+}
+
+}  // namespace barimpact::detail
