@@ -231,7 +231,7 @@ Energies LineMassRedistribution::energies() const {
 
 bool LineMassRedistribution::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return failure_.empty() && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
+  return !failed_ && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
          std::isfinite(v_[last]) && std::isfinite(work_) && std::isfinite(contact_);
 }
 

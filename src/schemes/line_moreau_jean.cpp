@@ -215,7 +215,7 @@ Energies LineMoreauJean::energies() const {
 
 bool LineMoreauJean::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return failure_.empty() && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
+  return !failed_ && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
          std::isfinite(v_[last]) && std::isfinite(work_) && std::isfinite(dissipation_) && std::isfinite(contact_);
 }
 

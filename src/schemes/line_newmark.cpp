@@ -59,8 +59,11 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   }
   build_blocks();
   // The links' Delassus matrix from their responses A^{-1} h_i (none on held rows).
-  std::vector<std::vector<double>> response(links, std::vector<double>(n, 0.0));
+  // Sized row by row: GCC 12 misreads the nested fill constructor here
+  // (a false -Wfree-nonheap-object).
+  std::vector<std::vector<double>> response(links);
   for (std::size_t i = 0; i < links; ++i) {
+    response[i].assign(n, 0.0);
     const Link& l = line_.links[i];
     if (l.a != Link::ground && !held[l.a]) response[i][l.a] = -1.0;
     if (l.b != Link::ground && !held[l.b]) response[i][l.b] = 1.0;
@@ -80,6 +83,7 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   if (plastic_iteration_.active()) {
     for (auto* x : {&v_, &acc_, &load_old_, &p_old_, &c_old_}) snapshot_.keep(*x);
     for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_}) snapshot_.keep(*x);
+    snapshot_.keep(penalty_.branches());  // the active set the next solve starts from
   }
 }
 
@@ -150,6 +154,7 @@ void LineNewmark::start() {
   u_ = u0_;
   v_ = v0_;
   std::fill(c_max_.begin(), c_max_.end(), 0.0);
+  std::fill(penalty_.branches().begin(), penalty_.branches().end(), PenaltyLinks::Branch::off);
   start_plastic(u_.data());
   // a^0 = M^{-1} (F^0 - K u^0 - C v^0 + links), held rows at their ends' accelerations.
   load_at(0.0);
@@ -429,7 +434,7 @@ Energies LineNewmark::energies() const {
 
 bool LineNewmark::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return failure_.empty() && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
+  return !failed_ && std::isfinite(u_[0]) && std::isfinite(u_[last]) && std::isfinite(v_[0]) &&
          std::isfinite(v_[last]) && std::isfinite(ext_work_) && std::isfinite(dissipation_);
 }
 

@@ -28,7 +28,6 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
   body_zero_ = load_zero_ = body_force_->is_zero() && line_.gravity == 0.0;
   body_steady_ = load_steady_ = !body_force_->depends_on_t();
   plastic_iteration_ = PlasticIteration(line_);
-  if (plastic_iteration_.active()) load_steady_ = false;  // the plastic strains' load moves
   if (line_.near.kind == EndKind::force || line_.near.kind == EndKind::velocity)
     near_value_ = std::make_unique<Expression>(line_.near.value);
   if (line_.far.kind == EndKind::force || line_.far.kind == EndKind::velocity)
@@ -55,6 +54,7 @@ void LineScheme::load_at(double t) {
 
 void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<char>& held, double c, std::vector<double>& u) {
   if (!plastic_iteration_.active()) return;
+  load_steady_ = false;  // the plastic strains' load moves
   plastic_iteration_.set_matrix(a, held, c);
   snapshot_.keep(u);  // first: saved(0) is u^n
   snapshot_.keep(load_);
@@ -65,8 +65,9 @@ void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<char>& held
 }
 
 void LineScheme::start_plastic(const double* u0) {
-  failure_.clear();
+  failed_ = false;
   if (!plastic_iteration_.active()) return;
+  std::fill(load_.begin(), load_.end(), 0.0);  // no plastic load of an earlier run left in it
   plastic_iteration_.start(u0);
   plastic_loads();
   since_kept_ = keep_interval_ = 1;
@@ -85,11 +86,12 @@ void LineScheme::plastic_loads() {
   load_zero_ = body_zero_ && !plastic_iteration_.loading();
 }
 
-void LineScheme::fail_plastic() {
-  failure_ = fmt::format(
+std::string LineScheme::failure() const {
+  if (!failed_) return {};
+  return fmt::format(
       "the elastic-plastic iteration did not settle in {} steps (the plastic strains still move by {:.3g} times "
       "the tolerance 1e-10 sigma_y / E)",
-      PlasticIteration::most_iterations, plastic_iteration_.misfit());
+      PlasticIteration::most_iterations, failed_misfit_);
 }
 
 void LineScheme::add_plastic(Energies& e, const double* u) const {

@@ -45,7 +45,7 @@ class LineScheme : public Scheme {
     return plastic_iteration_.active() ? plastic_iteration_.strain()[bond] : 0.0;
   }
   [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_iteration_.body_work(body); }
-  [[nodiscard]] std::string failure() const override { return failure_; }
+  [[nodiscard]] std::string failure() const override;
   [[nodiscard]] const PlasticIteration& plastic_iteration() const { return plastic_iteration_; }
 
  protected:
@@ -102,9 +102,10 @@ class LineScheme : public Scheme {
       plastic_loads();
       step();
       if (plastic_iteration_.settled(u.data(), force_.data())) break;
-      if (k == PlasticIteration::most_iterations) {
-        fail_plastic();
-        break;
+      if (k == PlasticIteration::most_iterations) {  // the run stops: finite() turns false
+        failed_ = true;
+        failed_misfit_ = plastic_iteration_.misfit();
+        return;
       }
       snapshot_.restore();
       n_ = n;
@@ -135,7 +136,8 @@ class LineScheme : public Scheme {
   double dt_;
   PlasticIteration plastic_iteration_;
   StepSnapshot snapshot_;  // the level a plastic step starts from (u first)
-  std::string failure_;    // why the state is not to be trusted (finite() is then false)
+  bool failed_ = false;    // the plastic iteration did not settle (finite() is then false)
+  double failed_misfit_ = 0.0;
   long long n_ = 0;
   std::vector<double> load_;  // F at the current load time
   bool load_zero_ = true, load_steady_ = true;
@@ -149,7 +151,6 @@ class LineScheme : public Scheme {
 
  private:
   void plastic_loads();
-  void fail_plastic();
   void keep_level();
   long long kept_n_ = 0;                    // the level snapshot_ holds
   int since_kept_ = 1, keep_interval_ = 1;  // steps since it, and between two

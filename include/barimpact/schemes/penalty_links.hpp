@@ -65,6 +65,9 @@ class PenaltyLinks {
   int solve(const double* cbar, const double* rbar, const double* c_max, double* p);
   [[nodiscard]] std::size_t size() const { return laws_.size(); }
   [[nodiscard]] Branch branch(std::size_t i) const { return branch_[i]; }
+  /// Every link's branch, where the next solve starts from (a scheme that
+  /// takes a step again keeps them).
+  [[nodiscard]] std::vector<Branch>& branches() { return branch_; }
 
  private:
   /// The branch that (c, rate, p) lie on, or `now` while they lie on it within the tolerances.
