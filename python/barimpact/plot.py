@@ -104,6 +104,21 @@ def exact_parameters(case):
     return bar["length"], bar["modulus"] * bar["area"], bar["density"] * bar["area"], v0
 
 
+def _snapshots(data, field, title, ylabel, out, name, formats, written):
+    """A field over x at up to eight snapshot times, one colour per time across the bodies."""
+    fig, ax = _figure(title)
+    chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
+    for i in chosen:
+        for n, rows in enumerate(_body_rows(data)):
+            line, = ax.plot(data.x[rows], field[i, rows], lw=1.2,
+                            label=f"t = {data.field_t[i]:.3g}" if n == 0 else None,
+                            color=None if n == 0 else line.get_color())
+    ax.set_xlabel("x")
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=8, ncol=2)
+    _save(fig, out, name, formats, written)
+
+
 def _body_rows(data):
     """Index arrays of each bar body's rows in the field snapshots."""
     if data.body is None or len(data.body) == 0:
@@ -277,30 +292,11 @@ def plot(source, out=None, formats=("png", "svg")):
         ax.set_xlabel("x")
         ax.set_ylabel("t")
         _save(fig, out, "plastic_map", formats, written)
-        fig, ax = _figure("Plastic strain eps_p(x) at snapshot times")
-        chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
-        for i in chosen:
-            for n, rows in enumerate(_body_rows(data)):
-                line, = ax.plot(data.x[rows], eps_p[i, rows], lw=1.2,
-                                label=f"t = {data.field_t[i]:.3g}" if n == 0 else None,
-                                color=None if n == 0 else line.get_color())
-        ax.set_xlabel("x")
-        ax.set_ylabel("eps_p")
-        ax.legend(fontsize=8, ncol=2)
-        _save(fig, out, "plastic_snapshots", formats, written)
+        _snapshots(data, eps_p, "Plastic strain eps_p(x) at snapshot times", "eps_p", out, "plastic_snapshots",
+                   formats, written)
 
     if data.field_t.size >= 1:
-        fig, ax = _figure("Displacement u(x) at snapshot times")
-        chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
-        for i in chosen:
-            for n, rows in enumerate(_body_rows(data)):
-                line, = ax.plot(data.x[rows], data.u[i, rows], lw=1.2,
-                                label=f"t = {data.field_t[i]:.3g}" if n == 0 else None,
-                                color=None if n == 0 else line.get_color())
-        ax.set_xlabel("x")
-        ax.set_ylabel("u")
-        ax.legend(fontsize=8, ncol=2)
-        _save(fig, out, "snapshots", formats, written)
+        _snapshots(data, data.u, "Displacement u(x) at snapshot times", "u", out, "snapshots", formats, written)
 
     contacts = data.summary.get("contacts", [])
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=FIGSIZE, dpi=DPI, layout="constrained")

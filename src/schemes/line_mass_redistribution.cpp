@@ -28,8 +28,6 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
   Tridiagonal a = Tridiagonal::combine(2.0 / (dt_ * dt_), mass_, 0.5, k);
   held_ = hold_rows(line_, a);
   factor_ = FactoredTridiagonal(a, false);
-  std::vector<char> held(n, 0);
-  for (const auto& h : held_) held[h.node] = 1;
   for (const auto& b : line_.bonds) k_.push_back(b.stiffness);
   // The faces and their inner neighbours (M~ changed there) are special rows.
   face_.assign(n, 0);
@@ -50,7 +48,8 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
   q_.assign(rigid_.size(), 0.0);
   lambda_.assign(rigid_.size(), 0.0);
   all_.assign(rigid_.size(), 1);
-  set_plastic(a, held, 0.5, u_);  // a load at t_{n+1} enters Fbar (and a face's halved equilibrium) by half
+  set_plastic(a, held_nodes(held_), 0.5,
+              u_);  // a load at t_{n+1} enters Fbar (and a face's halved equilibrium) by half
   if (plastic_iteration_.active()) {
     for (auto* x : {&v_, &load_old_, &face_rho_}) snapshot_.keep(*x);
     for (double* x : {&work_, &contact_}) snapshot_.keep(*x);

@@ -13,8 +13,6 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
                                        th * th * dt * dt, line_.stiffness());
   held_ = hold_rows(line_, w);
   factor_ = FactoredTridiagonal(w, false);
-  std::vector<char> held(n, 0);
-  for (const auto& h : held_) held[h.node] = 1;
   // P = M - dt^2 theta (1 - theta) K - dt (1 - theta) C and Q = -dt K, bond by
   // bond: -(P - M) v - Q u = -(K (a v + dt u) + b C v), a bond's tension.
   for (const auto& b : line_.bonds) {
@@ -28,7 +26,7 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
   for (auto* v : {&u_, &v_, &u_old_, &v_old_, &y_, &load_old_}) v->assign(n, 0.0);
   for (auto* v : {&rate_old_, &q_, &p_}) v->assign(rigid_.size(), 0.0);
   active_.assign(rigid_.size(), 0);
-  set_plastic(w, held, th * th * dt * dt,
+  set_plastic(w, held_nodes(held_), th * th * dt * dt,
               u_);  // a load at t_{n+1}: v^{n+1} += theta dt W^{-1} g, u^{n+1} by theta dt that
   if (plastic_iteration_.active()) {
     for (auto* x : {&v_, &load_old_}) snapshot_.keep(*x);

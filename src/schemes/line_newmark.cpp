@@ -79,7 +79,7 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   penalty_ = PenaltyLinks(std::move(laws), std::move(delassus), beta_ * dt_ * dt_, gamma_ * dt_);
   for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
   for (auto* x : {&p_old_, &c_old_, &c_free_, &rate_free_, &a_free_last_}) x->assign(links, 0.0);
-  set_plastic(a, held, beta_ * dt_ * dt_, u_);  // a load at t_{n+1} moves u^{n+1} by beta dt^2 A^{-1}
+  set_plastic(a, held_, beta_ * dt_ * dt_, u_);  // a load at t_{n+1} moves u^{n+1} by beta dt^2 A^{-1}
   if (plastic_iteration_.active()) {
     for (auto* x : {&v_, &acc_, &load_old_, &p_old_, &c_old_}) snapshot_.keep(*x);
     for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_}) snapshot_.keep(*x);

@@ -52,7 +52,8 @@ void LineScheme::load_at(double t) {
   if (plastic_iteration_.loading()) plastic_iteration_.add_load(load_.data());
 }
 
-void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<char>& held, double c, std::vector<double>& u) {
+void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
+                             std::vector<double>& u) {
   if (!plastic_iteration_.active()) return;
   load_steady_ = false;  // the plastic strains' load moves
   plastic_iteration_.set_matrix(a, held, c);

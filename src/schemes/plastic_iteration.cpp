@@ -14,15 +14,12 @@ PlasticIteration::PlasticIteration(const Line& line) {
   flowing_.assign(bonds, 0);
   q_.assign(ranges_.size(), 0.0);
   start_.assign(ranges_.size(), Sums{});
-  u0_.assign(line.nodes(), 0.0);
   for (const Link& l : line.links) links_.push_back({l.a, l.b, l.law.rigid() ? 0.0 : l.law.stiffness});
 }
 
-void PlasticIteration::set_matrix(const Tridiagonal& a, const std::vector<char>& held, double c) {
+void PlasticIteration::set_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c) {
   a_ = a;
-  held_.clear();
-  for (std::size_t j = 0; j < held.size(); ++j)
-    if (held[j]) held_.push_back(j);
+  held_ = held;
   c_ = c;
   diag_.assign(a.size(), 0.0);
   off_.assign(a.off.size(), 0.0);
@@ -30,7 +27,6 @@ void PlasticIteration::set_matrix(const Tridiagonal& a, const std::vector<char>&
 }
 
 void PlasticIteration::start(const double* u0) {
-  std::copy(u0, u0 + u0_.size(), u0_.begin());
   std::fill(p_.begin(), p_.end(), 0.0);
   std::fill(alpha_.begin(), alpha_.end(), 0.0);
   // From a virgin state: u0 reached in one step from u = 0.
@@ -47,7 +43,6 @@ void PlasticIteration::start(const double* u0) {
 
 void PlasticIteration::begin_step() {
   iterate_p_ = p_.data();
-  iterate_alpha_ = alpha_.data();
   loading_ = !pristine_;
 }
 
@@ -188,10 +183,11 @@ PlasticIteration::Sums PlasticIteration::sums(const Range& r, const double* u) c
   Sums s;
   const double* a = r.law.isotropic ? alpha_.data() : p_.data();
   for (std::size_t j = r.first; j < r.last; ++j) {
-    s.p_eps += p_[j] * (u[j + 1] - u[j]) * r.inv_h;
     s.p_p += 0.5 * p_[j] * p_[j];
     s.hardening += 0.5 * a[j] * a[j];
   }
+  if (u != nullptr)
+    for (std::size_t j = r.first; j < r.last; ++j) s.p_eps += p_[j] * (u[j + 1] - u[j]) * r.inv_h;
   const double scale = r.volume * r.law.modulus;
   s.p_eps *= scale;
   s.p_p *= scale;
@@ -214,20 +210,20 @@ double PlasticIteration::load_work(const double* u) const {
   return w;
 }
 
-double PlasticIteration::body_work(std::size_t i, const double* u) const {
-  const Sums s = sums(ranges_[i], u);
+double PlasticIteration::range_work(std::size_t i) const {
+  const Sums s = sums(ranges_[i], nullptr);
   return q_[i] - (s.p_p - start_[i].p_p) - (s.hardening - start_[i].hardening);
 }
 
 double PlasticIteration::work() const {
   double w = 0.0;
-  for (std::size_t i = 0; i < ranges_.size(); ++i) w += body_work(i, u0_.data());
+  for (std::size_t i = 0; i < ranges_.size(); ++i) w += range_work(i);
   return w;
 }
 
 double PlasticIteration::body_work(std::size_t body) const {
   for (std::size_t i = 0; i < ranges_.size(); ++i)
-    if (ranges_[i].body == body) return body_work(i, u0_.data());
+    if (ranges_[i].body == body) return range_work(i);
   return 0.0;
 }
 

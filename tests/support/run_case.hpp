@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,15 @@ inline std::string refusal(const std::string& toml, const std::vector<std::strin
   ADD_FAILURE() << "accepted: " << toml << "\nwith " << fmt::format("{}", fmt::join(sets, " "));
   return "";
 }
+
+// The case is refused (case_from throws) with a message holding every part
+// (the key first).
+#define EXPECT_REFUSED(toml, ...)                                                    \
+  do {                                                                               \
+    const std::string msg_ = ::barimpact::testing::refusal(toml);                    \
+    for (const std::string& part_ : std::initializer_list<std::string>{__VA_ARGS__}) \
+      EXPECT_NE(msg_.find(part_), std::string::npos) << msg_;                        \
+  } while (0)
 
 inline Case example(const std::string& name, const std::vector<std::string>& sets = {}) {
   std::vector<Case::Override> overrides;

@@ -14,12 +14,6 @@ namespace {
 using testing::case_from;
 using testing::refusal;
 
-#define EXPECT_REFUSED(toml, ...)                                                               \
-  do {                                                                                          \
-    const std::string msg = refusal(toml);                                                      \
-    for (const char* part : {__VA_ARGS__}) EXPECT_NE(msg.find(part), std::string::npos) << msg; \
-  } while (0)
-
 TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
   const Case c = case_from("");
   EXPECT_EQ(c.bar.length, 1.0);

@@ -365,17 +365,12 @@ TEST(LineRigid, MomentumIsConservedThroughRigidJoints) {
     }
     auto s = make_scheme(c);
     s->start();
-    auto momentum = [&] {
-      double p = 0.0;
-      for (std::size_t j = 0; j < line.nodes(); ++j) p += m[j] * s->velocity_at(j);
-      return p;
-    };
-    const double p0 = momentum();
+    const double p0 = testing::momentum(m, *s);
     double largest = 0.0;
     for (long long n = 1; n <= c.step_count(); ++n) {
       s->advance();
       for (std::size_t i = 0; i < line.links.size(); ++i) largest = std::max(largest, s->link_force(i));
-      ASSERT_NEAR(momentum(), p0, 1e-13) << scheme << " step " << n;
+      ASSERT_NEAR(testing::momentum(m, *s), p0, 1e-13) << scheme << " step " << n;
     }
     EXPECT_GT(largest, 0.0) << scheme;  // the joints did push
   }

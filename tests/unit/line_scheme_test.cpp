@@ -19,6 +19,7 @@ namespace {
 
 using testing::bar;
 using testing::joint;
+using testing::law_joint;
 using testing::mass;
 
 // A case run through the line engine: single_bar off.
@@ -99,9 +100,7 @@ TEST(LineCentralDifference, RigidJointConservesMomentumAndClosesTheBudget) {
 // budget closes with the cushion's hysteresis in D_contact (to O(dt^2) for
 // the penalty laws: tolerance 1% of the scale at dt = 1e-3).
 TEST(LineCentralDifference, CushionAndGravityBudgetCloses) {
-  JointData cushion = joint("pile", "ram", JointLaw::cushion);
-  cushion.law.stiffness = 200.0;
-  cushion.law.restitution = 0.6;
+  JointData cushion = law_joint("pile", "ram", JointLaw::cushion, 200.0, 0.6);
   Case c = line_case({bar("pile", 1.0, 100), mass("ram", 2.0, -1.0)}, {cushion}, 0.001, 4.0);
   c.near_end.law = JointLaw::elastic;
   c.near_end.stiffness = 1000.0;
@@ -185,9 +184,7 @@ TEST(LineCentralDifference, ConvergesToTheDropMass) {
 // in D_visc (central differences' identity: 1e-10 of the scale, round-off
 // over 4000 steps).
 TEST(LineCentralDifference, SpringsDashpotsAndDrivenEndsBudgetCloses) {
-  JointData spring = joint("b", "m1", JointLaw::spring);
-  spring.law.stiffness = 50.0;
-  spring.law.viscosity = 0.3;
+  JointData spring = law_joint("b", "m1", JointLaw::spring, 50.0, 0.3);
   BodyData visco = bar("b", 1.0, 40, "0.2 * x");
   visco.viscosity = 0.01;
   Case c = line_case({bar("a", 1.0, 40), visco, mass("m1", 0.5, 0.0), mass("m2", 0.25, 0.0)}, {spring}, 0.002, 8.0);
@@ -240,9 +237,7 @@ TEST(LineNewmark, MatchesTheSingleBarSchemeOnOneBar) {
 // round-off (springs, welded masses, a force and a velocity end, gravity,
 // viscosity in D_visc): 1e-10 of the scale over 4000 steps.
 TEST(LineNewmark, BudgetClosesWithSpringsMassesAndDrivenEnds) {
-  JointData spring = joint("b", "m1", JointLaw::spring);
-  spring.law.stiffness = 50.0;
-  spring.law.viscosity = 0.3;
+  JointData spring = law_joint("b", "m1", JointLaw::spring, 50.0, 0.3);
   BodyData visco = bar("b", 1.0, 40, "0.2 * x");
   visco.viscosity = 0.01;
   Case c = line_case({bar("a", 1.0, 40), visco, mass("m1", 0.5, 0.0), mass("m2", 0.25, 0.0)}, {spring}, 0.002, 8.0,
@@ -265,9 +260,7 @@ TEST(LineNewmark, BudgetClosesWithSpringsMassesAndDrivenEnds) {
 // error across their kinks (1% of the scale at dt = 1e-3, as the single
 // bar's Newmark at impacts).
 TEST(LineNewmark, CushionBudgetCloses) {
-  JointData cushion = joint("pile", "ram", JointLaw::cushion);
-  cushion.law.stiffness = 200.0;
-  cushion.law.restitution = 0.6;
+  JointData cushion = law_joint("pile", "ram", JointLaw::cushion, 200.0, 0.6);
   Case c = line_case({bar("pile", 1.0, 100), mass("ram", 2.0, -1.0)}, {cushion}, 0.001, 4.0, "newmark");
   c.near_end.law = JointLaw::elastic;
   c.near_end.stiffness = 1000.0;
@@ -288,14 +281,9 @@ TEST(LineNewmark, CushionBudgetCloses) {
 // viscoelastic law's face, c = 0 with 0 <= p <= l dc/dt), to 1e-10 of the
 // largest force.
 TEST(LineNewmark, CoupledLinksHoldTheirLawsAtTheNewLevel) {
-  JointData elastic = joint("a", "m1", JointLaw::elastic);
-  elastic.law.stiffness = 400.0;
-  JointData visco = joint("m1", "m2", JointLaw::viscoelastic);
-  visco.law.stiffness = 300.0;
-  visco.law.viscosity = 5.0;
-  JointData cushion = joint("m2", "m3", JointLaw::cushion);
-  cushion.law.stiffness = 500.0;
-  cushion.law.restitution = 0.5;
+  JointData elastic = law_joint("a", "m1", JointLaw::elastic, 400.0);
+  JointData visco = law_joint("m1", "m2", JointLaw::viscoelastic, 300.0, 5.0);
+  JointData cushion = law_joint("m2", "m3", JointLaw::cushion, 500.0, 0.5);
   Case c = line_case({bar("a", 1.0, 20, "1"), mass("m1", 0.05, 0.0), mass("m2", 0.05, 0.0), mass("m3", 0.05, 0.0)},
                      {elastic, visco, cushion}, 0.02, 3.0, "newmark");
   c.far_end.law = JointLaw::elastic;
@@ -413,9 +401,7 @@ TEST(LinePaper, MatchesTheSingleBarSchemeOnOneBar) {
 // start's O(dt^2) (1.8e-7).
 TEST(LinePaper, BudgetClosesWithSpringsMassesAndDrivenEnds) {
   for (double alpha : {0.25, 0.4}) {
-    JointData spring = joint("b", "m1", JointLaw::spring);
-    spring.law.stiffness = 50.0;
-    spring.law.viscosity = 0.3;
+    JointData spring = law_joint("b", "m1", JointLaw::spring, 50.0, 0.3);
     BodyData visco = bar("b", 1.0, 40, "0.2 * x");
     visco.viscosity = 0.01;
     Case c = line_case({bar("a", 1.0, 40), visco, mass("m1", 0.5, 0.0), mass("m2", 0.25, 0.0)}, {spring}, 0.002, 8.0,
@@ -450,13 +436,9 @@ TEST(LinePaper, BudgetClosesWithSpringsMassesAndDrivenEnds) {
 // over the three halvings it is 1.9, asserted above 1.6, the finest below 3e-5.
 TEST(LinePaper, PenaltyLinksBudgetClosesAtSecondOrder) {
   auto drift = [](double dt) {
-    JointData visco = joint("a", "b", JointLaw::viscoelastic);
-    visco.law.stiffness = 400.0;
-    visco.law.viscosity = 1.0;
+    JointData visco = law_joint("a", "b", JointLaw::viscoelastic, 400.0, 1.0);
     visco.law.gap = 0.01;
-    JointData cushion = joint("b", "ram", JointLaw::cushion);
-    cushion.law.stiffness = 300.0;
-    cushion.law.restitution = 0.6;
+    JointData cushion = law_joint("b", "ram", JointLaw::cushion, 300.0, 0.6);
     Case c = line_case({bar("a", 1.0, 40, "-0.5"), bar("b", 1.0, 40), mass("ram", 1.0, -2.0)}, {visco, cushion}, dt,
                        3.0, "paper");
     c.near_end.law = JointLaw::elastic;
@@ -482,31 +464,21 @@ TEST(LinePaper, PenaltyLinksBudgetClosesAtSecondOrder) {
 // viscoelastic and cushion joints to round-off: the levels' rounding over
 // 2 dt, 9.2e-12 of a momentum of 1.5 after 800 steps; asserted at 5e-11.
 TEST(LinePaper, JointsConserveMomentum) {
-  JointData elastic = joint("a", "b", JointLaw::elastic);
-  elastic.law.stiffness = 500.0;
-  JointData visco = joint("b", "m", JointLaw::viscoelastic);
-  visco.law.stiffness = 300.0;
-  visco.law.viscosity = 2.0;
-  JointData cushion = joint("m", "c", JointLaw::cushion);
-  cushion.law.stiffness = 400.0;
-  cushion.law.restitution = 0.5;
+  JointData elastic = law_joint("a", "b", JointLaw::elastic, 500.0);
+  JointData visco = law_joint("b", "m", JointLaw::viscoelastic, 300.0, 2.0);
+  JointData cushion = law_joint("m", "c", JointLaw::cushion, 400.0, 0.5);
   Case c = line_case({bar("a", 1.0, 30, "2"), bar("b", 1.0, 30), mass("m", 0.5, 0.0), bar("c", 0.5, 20, "-1")},
                      {elastic, visco, cushion}, 0.005, 4.0, "paper");
   const Line line = build_line(c);
   const std::vector<double> m = line.lumped_mass();
   auto s = make_scheme(c);
   s->start();
-  auto momentum = [&] {
-    double p = 0.0;
-    for (std::size_t j = 0; j < line.nodes(); ++j) p += m[j] * s->velocity_at(j);
-    return p;
-  };
-  const double p0 = momentum();
+  const double p0 = testing::momentum(m, *s);
   double largest[3] = {0, 0, 0};
   for (long long n = 1; n <= c.step_count(); ++n) {
     s->advance();
     for (std::size_t i = 0; i < 3; ++i) largest[i] = std::max(largest[i], s->link_force(i));
-    ASSERT_NEAR(momentum(), p0, 5e-11) << "step " << n;
+    ASSERT_NEAR(testing::momentum(m, *s), p0, 5e-11) << "step " << n;
   }
   for (double f : largest) EXPECT_GT(f, 0.0);  // every joint pushed
 }
@@ -531,8 +503,7 @@ TEST(LinePaper, ConvergesToTheWeldedJunction) {
 // 0.009, what k = 1e5 leaves) dominates.
 TEST(LinePaper, ElasticJointApproachesSaintVenantsRigidRods) {
   auto error = [](double k) {
-    JointData j = joint("a", "b", JointLaw::elastic);
-    j.law.stiffness = k;
+    JointData j = law_joint("a", "b", JointLaw::elastic, k);
     Case c = line_case({bar("a", 1.0, 100, "1"), bar("b", 2.0, 200)}, {j}, 0.0005, 6.0, "paper");
     Case rigid = c;
     rigid.joints[0].law.law = JointLaw::rigid;

@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "../support/line_parts.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/run/observer.hpp"
@@ -36,6 +37,11 @@ void operator delete(void* p, std::size_t) noexcept {
 
 namespace barimpact {
 namespace {
+
+using testing::bar;
+using testing::joint;
+using testing::law_joint;
+using testing::mass;
 
 // What stepping a case through a run's observers left: the allocations
 // counted from step 0 on, the rows and snapshots recorded, the contact
@@ -109,28 +115,9 @@ TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
     Case c;
     c.single_bar = false;
     const bool redistribution = std::string(scheme) == "mass-redistribution";
-    for (auto [name, velocity] : {std::pair{"a", "-1"}, std::pair{"b", "-2"}, std::pair{"m", "-1"}}) {
-      BodyData b;
-      b.name = name;
-      b.elements = 30;
-      b.velocity = velocity;
-      if (std::string(name) == "m") {
-        b.kind = BodyKind::mass;
-        b.mass = 0.5;
-      }
-      c.bodies.push_back(b);
-    }
-    JointData ab, bm;
-    ab.name = std::string("a-b");
-    ab.lower = std::string("a");
-    ab.upper = std::string("b");
-    ab.law.law = JointLaw::rigid;
-    ab.law.gap = 0.01;
-    bm.name = std::string("b-m");
-    bm.lower = std::string("b");
-    bm.upper = std::string("m");
-    bm.law.law = redistribution ? JointLaw::spring : JointLaw::rigid;
-    c.joints = {ab, bm};
+    c.bodies = {bar("a", 1.0, 30, "-1"), bar("b", 1.0, 30, "-2"), mass("m", 0.5, -1.0)};
+    c.joints = {joint("a", "b", JointLaw::rigid, 0.01),
+                joint("b", "m", redistribution ? JointLaw::spring : JointLaw::rigid)};
     c.near_end.law = JointLaw::rigid;
     c.far_end.law = JointLaw::velocity;
     c.far_end.value = "-0.1 * t";
@@ -157,38 +144,10 @@ TEST(TimeLoop, ImplicitPenaltyLineSchemesNeverAllocate) {
   for (const char* scheme : {"paper", "newmark"}) {
     Case c;
     c.single_bar = false;
-    for (auto [name, velocity] :
-         {std::pair{"a", "-1"}, std::pair{"b", "-2"}, std::pair{"m", "-3"}, std::pair{"n", "-3"}}) {
-      BodyData b;
-      b.name = name;
-      b.elements = 30;
-      b.velocity = velocity;
-      if (std::string(name) == "m" || std::string(name) == "n") {
-        b.kind = BodyKind::mass;
-        b.mass = 0.5;
-      }
-      c.bodies.push_back(b);
-    }
-    JointData ab, bm, mn;
-    ab.name = std::string("a-b");
-    ab.lower = std::string("a");
-    ab.upper = std::string("b");
-    ab.law.law = JointLaw::viscoelastic;
-    ab.law.stiffness = 300.0;
-    ab.law.viscosity = 3.0;
+    c.bodies = {bar("a", 1.0, 30, "-1"), bar("b", 1.0, 30, "-2"), mass("m", 0.5, -3.0), mass("n", 0.5, -3.0)};
+    JointData ab = law_joint("a", "b", JointLaw::viscoelastic, 300.0, 3.0);
     ab.law.gap = 0.01;
-    bm.name = std::string("b-m");
-    bm.lower = std::string("b");
-    bm.upper = std::string("m");
-    bm.law.law = JointLaw::cushion;
-    bm.law.stiffness = 200.0;
-    bm.law.restitution = 0.5;
-    mn.name = std::string("m-n");
-    mn.lower = std::string("m");
-    mn.upper = std::string("n");
-    mn.law.law = JointLaw::spring;
-    mn.law.stiffness = 50.0;
-    c.joints = {ab, bm, mn};
+    c.joints = {ab, law_joint("b", "m", JointLaw::cushion, 200.0, 0.5), law_joint("m", "n", JointLaw::spring, 50.0)};
     c.near_end.law = JointLaw::elastic;
     c.near_end.stiffness = 500.0;
     c.far_end.law = JointLaw::velocity;

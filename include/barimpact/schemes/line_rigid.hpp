@@ -64,6 +64,12 @@ struct HeldRow {
 
 /// The held ends of `line`, their rows of `a` made the identity.
 [[nodiscard]] std::vector<HeldRow> hold_rows(const Line& line, Tridiagonal& a);
+/// Their nodes.
+[[nodiscard]] inline std::vector<std::size_t> held_nodes(const std::vector<HeldRow>& rows) {
+  std::vector<std::size_t> nodes;
+  for (const HeldRow& h : rows) nodes.push_back(h.node);
+  return nodes;
+}
 
 /// The near and far forces history reports (compressions > 0, line_scheme.hpp):
 /// an end's link force, else its force end's value, else its support's

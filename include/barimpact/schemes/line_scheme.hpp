@@ -56,9 +56,9 @@ class LineScheme : public Scheme {
   void load_at(double t);
 
   /// A one-step implicit scheme's elastic-plastic elements: `a` its matrix
-  /// (rows `held` the identity) and u^{n+1} += c A^{-1} g for a load g at
+  /// (the rows of the nodes `held` the identity) and u^{n+1} += c A^{-1} g for a load g at
   /// t_{n+1}; `u` the vector it keeps u in (after its own sizing).
-  void set_plastic(const Tridiagonal& a, const std::vector<char>& held, double c, std::vector<double>& u);
+  void set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, std::vector<double>& u);
   /// Level 0's plastic strains from u0, before the start's loads.
   void start_plastic(const double* u0);
   /// One step of the elastic-plastic iteration (plastic_iteration.hpp):
@@ -80,15 +80,12 @@ class LineScheme : public Scheme {
     plastic_loads();
     step();
     ++since_kept_;
-    if (plastic_iteration_.settled(u.data(), force_.data())) {
-      plastic_iteration_.count(1);
-      return;
-    }
+    if (plastic_iteration_.settled(u.data(), force_.data())) return;
     // Back to level n, replaying the quiet steps since the level kept.
     const long long n = n_ - 1;
     snapshot_.restore();
     n_ = kept_n_;
-    plastic_iteration_.use_level();
+    plastic_iteration_.begin_step();
     while (n_ < n) {
       plastic_loads();
       step();

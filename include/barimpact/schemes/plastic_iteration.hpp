@@ -52,20 +52,19 @@ class PlasticIteration {
   explicit PlasticIteration(const Line& line);
 
   [[nodiscard]] bool active() const { return !ranges_.empty(); }
-  /// The scheme's matrix A (rows `held` become the identity) and weight c:
+  /// The scheme's matrix A (the rows of the nodes `held` become the
+  /// identity) and weight c:
   /// u^{n+1} answers a load g at t_{n+1} by c A^{-1} g.
-  void set_matrix(const Tridiagonal& a, const std::vector<char>& held, double c);
+  void set_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c);
 
   /// Level 0 from a virgin material at u0.
   void start(const double* u0);
   /// The iteration's first iterate p^0 = p^n.
   void begin_step();
-  /// Steps load with level n's plastic strains (replaying quiet steps), or
-  /// again with the iterate Newton's update gave.
-  void use_level() { begin_step(); }
+  /// Steps load again with the iterate Newton's update gave (begin_step():
+  /// with level n's plastic strains).
   void use_iterate() {
     iterate_p_ = pk_.data();
-    iterate_alpha_ = alphak_.data();
     loading_ = true;
   }
   /// Whether g = G p^k may be nonzero (the scheme's loads must carry it).
@@ -80,15 +79,14 @@ class PlasticIteration {
   void accept(const double* u_old, const double* u);
   /// The largest |p^ - p^k| / tolerance of the last check.
   [[nodiscard]] double misfit() const { return misfit_; }
-  /// How hard the iteration worked: the levels stepped to, those where
-  /// something yielded, the steps taken for them (at least 2 each, besides
-  /// replays), the most for one level.
+  /// How hard the iteration worked: the levels where something yielded,
+  /// the steps taken for them (at least 2 each, besides replays), the most
+  /// for one level.
   struct Effort {
-    long long levels = 0, yielding_levels = 0, steps = 0;
+    long long yielding_levels = 0, steps = 0;
     int most = 0;
   };
   void count(int steps) {
-    ++effort_.levels;
     if (steps < 2) return;
     ++effort_.yielding_levels;
     effort_.steps += steps;
@@ -108,13 +106,14 @@ class PlasticIteration {
 
  private:
   using Range = PlasticBody;
-  // Per body (index into ranges_): the sums the budget's terms are made of.
+  // Per body (index into ranges_): the sums the budget's terms are made of,
+  // sum h A E p eps (u: nullptr leaves it 0), sum h A E p^2 / 2 and the
+  // hardening's energy.
   struct Sums {
-    double q = 0.0;  // sum over steps of h A E epsbar dp
     double p_eps = 0.0, p_p = 0.0, hardening = 0.0;
   };
   [[nodiscard]] Sums sums(const Range& r, const double* u) const;
-  [[nodiscard]] double body_work(std::size_t i, const double* u) const;
+  [[nodiscard]] double range_work(std::size_t i) const;
   /// p^ at u into trial_, flowing_; returns max |p^ - p^k| / tolerance.
   double trial(const double* u);
   /// p^{k+1} from u by the tangent solve.
@@ -130,8 +129,7 @@ class PlasticIteration {
   std::vector<double> pk_, alphak_;  // the iterate (k >= 1)
   std::vector<double> trial_p_, trial_alpha_;
   std::vector<unsigned char> flowing_;
-  const double* iterate_p_ = nullptr;  // p^k: p_ (k = 0) or pk_
-  const double* iterate_alpha_ = nullptr;
+  const double* iterate_p_ = nullptr;       // p^k: p_ (k = 0) or pk_
   bool loading_ = false, pristine_ = true;  // pristine: p^n = 0 everywhere
   double misfit_ = 0.0;
   Effort effort_;
@@ -139,7 +137,6 @@ class PlasticIteration {
   std::vector<std::size_t> held_;  // rows of A that are the identity
   double c_ = 0.0;
   std::vector<double> diag_, off_, du_;  // the tangent's solve
-  std::vector<double> u0_;               // level 0's u, for the budget's sums
   struct LinkTangent {
     std::size_t a, b;
     double stiffness;  // k; 0 for a rigid link
