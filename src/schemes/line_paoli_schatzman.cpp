@@ -164,7 +164,9 @@ void LinePaoliSchatzman::start() {
   for (std::size_t i = 0; i < line_.links.size(); ++i) {
     const Link& l = line_.links[i];
     const double rate = -line_.opening(i, v0_.data()) + l.gap;  // dc/dt
-    if (l.law.rigid()) contact += force_[i] * rate;
+    // A rigid link's impulse against the mean of the rates at t = 0 and over
+    // (0, dt), as central differences' start (the Taylor step's identity).
+    if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
     if (l.law.kind == LawKind::viscoelastic)
       viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, cur_))) * rate;
   }

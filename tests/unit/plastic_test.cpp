@@ -445,9 +445,11 @@ TEST(PlasticBudget, ClosesToRoundOffWithTheImplicitSchemes) {
 // energy it loses is the plastic work plus what the wall's impulses and the
 // elastic waves hold, to round-off; the plastic work is most of it and
 // converges with the mesh (to 1% from 200 to 400 elements), the same with
-// every scheme that runs a rigid wall and plasticity (0.1440, 0.1440, 0.1440).
+// every scheme that runs a rigid wall and plasticity to 1% (0.1440 to
+// 0.1450 at M = 400). The bar starts on the wall, so the budget checks the
+// start's impulse too.
 TEST(PlasticBudget, PerfectlyPlasticBarOnARigidWall) {
-  for (const char* scheme : {"central-difference", "moreau-jean", "mass-redistribution"}) {
+  for (const char* scheme : {"central-difference", "paoli-schatzman", "moreau-jean", "mass-redistribution"}) {
     std::vector<double> work;
     for (int m : {200, 400}) {
       const RunResult r = run(case_from(fmt::format(R"toml([[body]]
@@ -470,7 +472,7 @@ end = 0.9
       // The implicit schemes' W_ext is the loads' work they booked less the
       // plastic strains' load's, summed by parts: equal to the round-off of
       // sum |g_j du_j| per step (measured 5e-12 and 2.2e-11 of E_kin).
-      const bool implicit = std::string(scheme) != "central-difference";
+      const bool implicit = std::string(scheme) != "central-difference" && std::string(scheme) != "paoli-schatzman";
       EXPECT_NEAR(lost, last.E_strain + last.D_plastic + last.D_contact - first.E_strain - last.W_ext,
                   (implicit ? 1e-10 : 1e-12) * first.E_kin);
       EXPECT_GT(last.D_plastic, 0.5 * lost) << scheme;
