@@ -42,6 +42,8 @@ LinePaper::LinePaper(const Case& c, Line line)
   b0_ = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
   held_ = hold_rows(line_, A);
   factor_ = TwistedTridiagonal(A);
+  // A load at t_{m+1} enters with weight alpha / exp(lambda t_{m+1}): u^{m+1} moves by alpha A^{-1} g.
+  set_plastic_levels(A, held_nodes(held_), alpha_);
 
   // Link faces and force ends take forces besides the bonds': general rows.
   std::vector<unsigned char> special(n, 0);
@@ -101,8 +103,24 @@ LinePaper::LinePaper(const Case& c, Line line)
   }
   for (auto& l : levels_) l.assign(n, 0.0);
   load_mode_ = load_zero_ ? LoadMode::zero : load_steady_ ? LoadMode::steady : LoadMode::unsteady;
-  if (load_mode_ != LoadMode::zero)
+  step_mode_ = load_mode_;
+  if (load_mode_ != LoadMode::zero || plastic_iteration_.active())
     for (auto& f : loads_) f.assign(n, 0.0);
+  if (plastic_iteration_.active()) {
+    plastic_ = PlasticBonds(line_, alpha_);
+    if (lambda_ != 0.0)
+      for (auto& u : scaled_) u.assign(n, 0.0);
+    keep_levels();
+  }
+}
+
+void LinePaper::keep_levels() {
+  for (auto& z : levels_) snapshot_.keep(z);
+  for (auto& f : loads_) snapshot_.keep(f);  // a kept level's loads are overwritten three steps on
+  for (double** z : {&prev_, &cur_, &next_}) snapshot_.keep_object(*z);
+  snapshot_.keep_object(near_f_);
+  snapshot_.keep_object(far_f_);
+  for (double* x : {&work_half_, &dissipation_half_, &work_last_, &dissipation_last_}) snapshot_.keep(*x);
 }
 
 double LinePaper::scale(long long m) const {
@@ -120,8 +138,13 @@ void LinePaper::start() {
   next_ = levels_[1].data();
   n_ = 0;
   cached_ = {};
+  for (auto& f : loads_) std::fill(f.begin(), f.end(), 0.0);  // no plastic load of an earlier run
+  start_plastic(u0_.data());                                  // p^0 from u0
   if (load_mode_ != LoadMode::zero) line_.load(*body_force_, 0.0, loads_[0]);
   if (load_mode_ == LoadMode::unsteady) line_.load(*body_force_, dt_, loads_[1]);
+  if (plastic_iteration_.active() && load_mode_ == LoadMode::steady)
+    loads_[1] = loads_[2] = loads_[0];  // the levels the first yielding step reads (unsteady from then on)
+  if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[0].data());
   near_f_ = {near_value(0.0), near_value(dt_), 0.0};
   far_f_ = {far_value(0.0), far_value(dt_), 0.0};
 
@@ -167,6 +190,22 @@ void LinePaper::start() {
   for (const auto& h : rows)  // a held node moves as every step will move it, exactly
     next_[h.node] =
         h.driven ? (u0_[h.node] + dt_ * (h.near ? near_value(0.5 * dt_) : far_value(0.5 * dt_))) / scale(1) : 0.0;
+  if (plastic_iteration_.active()) {
+    // p^1 from the return map at u^1, its load in F(t_1); the start's share
+    // of the plastic work and load work at level "-1" = u^1 - dt v0.
+    plastic_iteration_.take(next_, scale(1));
+    plastic_loads();
+    if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[1].data());  // F(t_1) + G p^1
+    plastic_.start(u0_.data());
+    std::vector<double> u1(n), before(n);
+    for (std::size_t j = 0; j < n; ++j) {
+      u1[j] = scale(1) * next_[j];
+      before[j] = u1[j] - dt_ * v0_[j];
+    }
+    plastic_.record(plastic_iteration_.strain(), plastic_iteration_.accumulated(),
+                    plastic_iteration_.yielded_levels() > 0, before.data(), u0_.data(), u1.data(), {0.0, 1.0, 0.0},
+                    true);
+  }
 
   // The first half step's share of the budget: dt/2 times the rates at t = 0.
   double power = 0.0;
@@ -184,9 +223,45 @@ void LinePaper::start() {
 }
 
 void LinePaper::advance() {
+  if (!plastic_iteration_.active()) {
+    advance_elastic();
+    return;
+  }
+  const long long m = n_ + 1, yielded_before = plastic_iteration_.yielded_levels();
+  advance_plastic_levels([this] { advance_elastic(); },
+                         [this] {
+                           return std::pair<const double*, double>{next_, scale(n_ + 1)};
+                         });
+  if (!failed_) record_plastic(m, plastic_iteration_.yielded_levels() != yielded_before);
+}
+
+void LinePaper::displacements(long long first, const double* (&u)[3]) const {
+  u[0] = prev_;
+  u[1] = cur_;
+  u[2] = next_;
+  if (lambda_ == 0.0) return;
+  const std::size_t n = line_.nodes();
+  for (std::size_t k = 0; k < 3; ++k) {
+    const double s = scale(first + static_cast<long long>(k));
+    for (std::size_t j = 0; j < n; ++j) scaled_[k][j] = s * u[k][j];
+    u[k] = scaled_[k].data();
+  }
+}
+
+void LinePaper::record_plastic(long long m, bool yielded) {
+  const double* u[3] = {prev_, cur_, next_};
+  if (yielded || !plastic_.pristine()) displacements(m - 1, u);  // else record reads no u
+  std::array<double, 3> w = load_weights(m);                     // the weights W_ext's booking gives G p (book_level)
+  for (double& x : w) x *= scale(m);
+  plastic_.record(plastic_iteration_.strain(), plastic_iteration_.accumulated(), yielded, u[0], u[1], u[2], w);
+}
+
+void LinePaper::advance_elastic() {
   const long long m = n_ + 1;
+  // The plastic strains' load makes F move (their arrays hold G p, and F if any).
+  step_mode_ = load_zero_ ? LoadMode::zero : plastic_iteration_.loading() ? LoadMode::unsteady : load_mode_;
   prepare(m);
-  switch (load_mode_) {
+  switch (step_mode_) {
     case LoadMode::zero:
       sweeps<LoadMode::zero>(m);
       break;
@@ -311,7 +386,11 @@ void LinePaper::sweeps(long long m) {
     f0 = loads_[0].data();
   } else if constexpr (mode == LoadMode::unsteady) {
     auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
-    line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    if (body_zero())
+      std::fill(newest.begin(), newest.end(), 0.0);
+    else
+      line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    if (plastic_iteration_.loading()) plastic_iteration_.add_load(newest.data());
     fp = newest.data();
     f0 = loads_[static_cast<std::size_t>(m % 3)].data();
     fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
@@ -401,10 +480,10 @@ void LinePaper::book_level(long long m) {
   auto moved = [&](std::size_t j) { return 0.5 * (sp * next_[j] - sm * prev_[j]); };
   const std::array<double, 3> w = load_weights(m);
   double dw = 0.0;
-  if (load_mode_ == LoadMode::steady) {
+  if (step_mode_ == LoadMode::steady) {
     const double c = s0 * (w[0] + w[1] + w[2]);
     for (std::size_t j = 0; j < n; ++j) dw += c * loads_[0][j] * moved(j);
-  } else if (load_mode_ == LoadMode::unsteady) {
+  } else if (step_mode_ == LoadMode::unsteady) {
     const auto& fp = loads_[static_cast<std::size_t>((m + 1) % 3)];
     const auto& f0 = loads_[static_cast<std::size_t>(m % 3)];
     const auto& fm = loads_[static_cast<std::size_t>((m - 1) % 3)];
@@ -493,6 +572,7 @@ Energies LinePaper::energies() const {
     e.kinetic = 0.5 * mass_.quadratic_form(v0_);
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
     e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
+    if (plastic_.active()) e.strain += plastic_.strain_energy(u0_.data());
     return e;
   }
   double before[3], after[3];
@@ -509,13 +589,21 @@ Energies LinePaper::energies() const {
   e.obstacle += 0.5 * (before[2] + after[2]);
   e.work = work_half_ - 0.5 * work_last_;
   e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  if (plastic_.active()) {
+    const double* u[3];
+    displacements(n_ - 1, u);
+    e.strain += plastic_.strain_energy(u[0], u[1], u[2]);
+    e.work -= plastic_.load_work();
+    e.plastic = plastic_.work();
+  }
   return e;
 }
 
 bool LinePaper::finite() const {
   const std::size_t last = line_.nodes() - 1;
-  return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
-         std::isfinite(work_half_) && std::isfinite(dissipation_half_) && std::isfinite(scale(n_ + 1));
+  return !failed_ && std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) &&
+         std::isfinite(next_[last]) && std::isfinite(work_half_) && std::isfinite(dissipation_half_) &&
+         std::isfinite(scale(n_ + 1));
 }
 
 }  // namespace barimpact

@@ -65,6 +65,16 @@ void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<std::size_t
   snapshot_.keep(far_force_);
 }
 
+void LineScheme::set_plastic_levels(const Tridiagonal& a, const std::vector<std::size_t>& held, double c) {
+  if (!plastic_iteration_.active()) return;
+  one_step_plastic_ = false;  // the scheme keeps three load levels: a steady F stays steady until p loads
+  plastic_iteration_.set_matrix(a, held, c, true);
+  snapshot_.keep(force_);
+  snapshot_.keep(c_max_);
+  snapshot_.keep(near_force_);
+  snapshot_.keep(far_force_);
+}
+
 void LineScheme::start_plastic(const double* u0) {
   failed_ = false;
   if (!plastic_iteration_.active()) return;
@@ -200,11 +210,11 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
-  if (name == "paper" || name == "characteristic")
+  if (name == "characteristic")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])
         return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the elastic-plastic body \"{}\" (schemes "
-                                                "that can: central-difference, paoli-schatzman, newmark, "
+                                                "that can: central-difference, paoli-schatzman, paper, newmark, "
                                                 "moreau-jean, mass-redistribution)",
                                                 name, line.bodies[b].name)};
   if (name == "paper" || name == "newmark") {

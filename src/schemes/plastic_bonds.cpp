@@ -40,7 +40,7 @@ double return_map(std::size_t first, std::size_t last, const Plasticity& law, do
 
 }  // namespace
 
-PlasticBonds::PlasticBonds(const Line& line) {
+PlasticBonds::PlasticBonds(const Line& line, double alpha) : alpha_(alpha) {
   ranges_ = plastic_bodies(line);
   for (auto* levels : {&p_, &accumulated_})
     for (auto& level : *levels) level.assign(line.bonds.size(), 0.0);
@@ -67,7 +67,49 @@ void PlasticBonds::start(const double* u0) {
   pristine_ = std::all_of(p_[cur_].begin(), p_[cur_].end(), [](double x) { return x == 0.0; });
   std::fill(half_.begin(), half_.end(), 0.0);
   std::fill(last_.begin(), last_.end(), 0.0);
+  load_half_ = load_last_ = 0.0;
   for (const Range& r : ranges_) hardening0_[r.body] = hardening_energy(r);
+}
+
+void PlasticBonds::record(const double* p, const double* a, bool yielded, const double* um, const double* u,
+                          const double* up, const std::array<double, 3>& w, bool first) {
+  if (yielded) {
+    fresh_ = 0;
+    while (fresh_ == cur_ || fresh_ == next_) ++fresh_;
+    std::copy(p, p + p_[fresh_].size(), p_[fresh_].begin());
+    std::copy(a, a + accumulated_[fresh_].size(), accumulated_[fresh_].begin());
+  } else {
+    fresh_ = next_;  // p^{m+1} = p^m: the same array
+  }
+  const bool moved = yielded || !quiet_;  // p^{m+1} != p^{m-1}
+  quiet_ = !yielded;
+  pristine_ = pristine_ && !yielded;     // then every p is 0: no work, and u is not read
+  const double* pp = p_[fresh_].data();  // levels m + 1, m, m - 1
+  const double* p0 = p_[next_].data();
+  const double* pm = p_[cur_].data();
+  double load = 0.0;
+  for (const Range& r : ranges_) {
+    double plastic = 0.0, loading = 0.0;
+    const double e = r.law.modulus, inv_h = r.inv_h;
+    for (std::size_t j = r.first; moved && !pristine_ && j < r.last; ++j) {
+      const double sp = e * ((up[j + 1] - up[j]) * inv_h - pp[j]), s0 = e * ((u[j + 1] - u[j]) * inv_h - p0[j]);
+      const double sm = e * ((um[j + 1] - um[j]) * inv_h - pm[j]);
+      plastic += (w[0] * sp + w[1] * s0 + w[2] * sm) * (pp[j] - pm[j]);
+    }
+    for (std::size_t j = r.first; !pristine_ && j < r.last; ++j)
+      loading += (w[0] * pp[j] + w[1] * p0[j] + w[2] * pm[j]) * ((up[j + 1] - up[j]) - (um[j + 1] - um[j]));
+    const double wp = 0.5 * r.volume * plastic;
+    half_[r.body] += wp;
+    last_[r.body] = first ? 0.0 : wp;
+    load += 0.5 * r.axial * loading;  // h A E p (deps) = E A p (d du)
+  }
+  load_half_ += load;
+  load_last_ = first ? 0.0 : load;
+  rotate();
+}
+
+double PlasticBonds::load_work() const {
+  return load_half_ - 0.5 * load_last_;
 }
 
 void PlasticBonds::advance(const double* u, const double* up, bool first) {
@@ -113,6 +155,14 @@ double PlasticBonds::energy_correction(const double* a, const double* pa, const 
     double s = 0.0;
     for (std::size_t j = r.first; j < r.last; ++j)
       s += h * (pa[j] * pb[j] * h - pa[j] * (b[j + 1] - b[j]) - pb[j] * (a[j + 1] - a[j]));
+    if (alpha_ != 0.0) {  // alpha ((d - h dp)^2 - d^2), d the elongation's change
+      double t = 0.0;
+      for (std::size_t j = r.first; j < r.last; ++j) {
+        const double dp = pb[j] - pa[j], d = (b[j + 1] - b[j]) - (a[j + 1] - a[j]);
+        t += h * dp * (h * dp - 2.0 * d);
+      }
+      s += alpha_ * t;
+    }
     sum += 0.5 * r.k * s;
   }
   return sum;

@@ -17,8 +17,10 @@ PlasticIteration::PlasticIteration(const Line& line) {
   for (const Link& l : line.links) links_.push_back({l.a, l.b, l.law.rigid() ? 0.0 : l.law.stiffness});
 }
 
-void PlasticIteration::set_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c) {
+void PlasticIteration::set_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
+                                  bool links_in_matrix) {
   a_ = a;
+  links_in_matrix_ = links_in_matrix;
   held_ = held;
   c_ = c;
   diag_.assign(a.size(), 0.0);
@@ -31,12 +33,13 @@ void PlasticIteration::start(const double* u0) {
   std::fill(alpha_.begin(), alpha_.end(), 0.0);
   // From a virgin state: u0 reached in one step from u = 0.
   iterate_p_ = p_.data();
-  (void)trial(u0);
+  (void)trial(u0, 1.0);
   p_ = trial_p_;
   alpha_ = trial_alpha_;
   pristine_ = std::all_of(p_.begin(), p_.end(), [](double x) { return x == 0.0; });
   std::fill(q_.begin(), q_.end(), 0.0);
   effort_ = Effort{};
+  yielded_levels_ = 0;
   for (std::size_t i = 0; i < ranges_.size(); ++i) start_[i] = sums(ranges_[i], u0);
   begin_step();
 }
@@ -55,16 +58,16 @@ void PlasticIteration::add_load(double* f) const {
     }
 }
 
-double PlasticIteration::trial(const double* u) {
+double PlasticIteration::trial(const double* u, double scale) {
   double worst = 0.0;
   for (const Range& r : ranges_) {
-    const double e = r.law.modulus, hm = r.law.plastic_modulus, sy = r.law.yield_stress;
+    const double e = r.law.modulus, hm = r.law.plastic_modulus, sy = r.law.yield_stress, inv_h = r.inv_h * scale;
     // 1e-10 of the yield strain: far above the return map's round-off (a few
     // ulps of the strain), far below any strain a user reads.
     const double inv = 1.0 / (e + hm), inv_tol = 1.0 / (1e-10 * r.yield_strain());
     for (std::size_t j = r.first; j < r.last; ++j) {
       double p = p_[j], a = alpha_[j];
-      const double trial = e * ((u[j + 1] - u[j]) * r.inv_h - p);
+      const double trial = e * ((u[j + 1] - u[j]) * inv_h - p);
       const double dgamma = r.law.isotropic ? Plasticity::return_map<true>(trial, hm, sy, inv, p, a)
                                             : Plasticity::return_map<false>(trial, hm, sy, inv, p, a);
       trial_p_[j] = p;
@@ -76,24 +79,38 @@ double PlasticIteration::trial(const double* u) {
   return worst;
 }
 
-bool PlasticIteration::settled(const double* u, const double* force) {
+bool PlasticIteration::settled(const double* u, const double* force, double scale) {
   if (iterate_p_ == p_.data()) {  // k = 0: a read-only check first, the common answer
     bool yielding = false;
-    for (const Range& r : ranges_)
+    for (const Range& r : ranges_) {
+      const double inv_h = r.inv_h * scale;  // exact for scale 1
       yielding =
           yielding ||
-          (pristine_ ? detail::yields_from_rest(r.first, r.last, r.law, r.inv_h, u)
-                     : (r.law.isotropic ? detail::yields<true> : detail::yields<false>)(r.first, r.last, r.law, r.inv_h,
+          (pristine_ ? detail::yields_from_rest(r.first, r.last, r.law, inv_h, u)
+                     : (r.law.isotropic ? detail::yields<true> : detail::yields<false>)(r.first, r.last, r.law, inv_h,
                                                                                         u, p_.data(), alpha_.data()));
+    }
     if (!yielding) {
       misfit_ = 0.0;
       return true;
     }
   }
-  misfit_ = trial(u);
+  misfit_ = trial(u, scale);
   if (misfit_ <= 1.0) return true;
-  newton(u, force);
+  newton(u, force, scale);
   return false;
+}
+
+void PlasticIteration::take(const double* u, double scale) {
+  begin_step();
+  (void)trial(u, scale);
+  if (std::equal(trial_p_.begin(), trial_p_.end(), p_.begin()) &&
+      std::equal(trial_alpha_.begin(), trial_alpha_.end(), alpha_.begin()))
+    return;
+  pk_ = trial_p_;
+  alphak_ = trial_alpha_;
+  use_iterate();
+  accept(nullptr, u);
 }
 
 // T du = c G (p^ - p^k), T = A - c K_loss over the flowing elements (held
@@ -112,7 +129,7 @@ void PlasticIteration::add_links(const double* force) {
   }
 }
 
-void PlasticIteration::newton(const double* u, const double* force) {
+void PlasticIteration::newton(const double* u, const double* force, double scale) {
   const std::size_t n = a_.size();
   std::copy(a_.diag.begin(), a_.diag.end(), diag_.begin());
   std::copy(a_.off.begin(), a_.off.end(), off_.begin());
@@ -122,7 +139,7 @@ void PlasticIteration::newton(const double* u, const double* force) {
     // plastic elements (mass-redistribution's faces) keeps a pivot.
     const double loss = c_ * r.k * std::min(r.law.modulus / (r.law.modulus + r.law.plastic_modulus), 1.0 - 1e-6);
     for (std::size_t j = r.first; j < r.last; ++j) {
-      const double g = c_ * r.axial * (trial_p_[j] - iterate_p_[j]);
+      const double g = c_ / scale * r.axial * (trial_p_[j] - iterate_p_[j]);  // z's units (u / scale)
       du_[j] -= g;
       du_[j + 1] += g;
       if (!flowing_[j]) continue;
@@ -131,7 +148,7 @@ void PlasticIteration::newton(const double* u, const double* force) {
       off_[j] += loss;
     }
   }
-  add_links(force);
+  if (!links_in_matrix_) add_links(force);
   for (std::size_t j : held_) {
     diag_[j] = 1.0;
     du_[j] = 0.0;
@@ -150,10 +167,10 @@ void PlasticIteration::newton(const double* u, const double* force) {
   for (std::size_t j = n - 1; j-- > 0;) du_[j] = (du_[j] - off_[j] * du_[j + 1]) * diag_[j];
   for (const Range& r : ranges_) {
     const double e = r.law.modulus, hm = r.law.plastic_modulus, sy = r.law.yield_stress;
-    const double inv = 1.0 / (e + hm);
+    const double inv = 1.0 / (e + hm), inv_h = r.inv_h * scale;
     for (std::size_t j = r.first; j < r.last; ++j) {
       double p = p_[j], a = alpha_[j];
-      const double eps = ((u[j + 1] + du_[j + 1]) - (u[j] + du_[j])) * r.inv_h;
+      const double eps = ((u[j + 1] + du_[j + 1]) - (u[j] + du_[j])) * inv_h;
       (void)(r.law.isotropic ? Plasticity::return_map<true>(e * (eps - p), hm, sy, inv, p, a)
                              : Plasticity::return_map<false>(e * (eps - p), hm, sy, inv, p, a));
       pk_[j] = p;
@@ -165,7 +182,8 @@ void PlasticIteration::newton(const double* u, const double* force) {
 
 void PlasticIteration::accept(const double* u_old, const double* u) {
   if (iterate_p_ == p_.data()) return;  // nothing yielded: level n + 1 is level n
-  for (std::size_t i = 0; i < ranges_.size(); ++i) {
+  ++yielded_levels_;
+  for (std::size_t i = 0; u_old != nullptr && i < ranges_.size(); ++i) {
     const Range& r = ranges_[i];
     const double scale = r.volume * r.law.modulus * 0.5 * r.inv_h;
     double s = 0.0;

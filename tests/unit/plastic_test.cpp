@@ -243,16 +243,41 @@ INSTANTIATE_TEST_SUITE_P(
                       // The trapezoidal rule three ways (the same numbers here: no rigid link, theta = 1/2).
                       VonKarmanCase{"newmark", 0.5, 0.5, 0.002, "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"},
                       VonKarmanCase{"moreau-jean", 0.5, 0.5, 0.002, "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"},
-                      VonKarmanCase{"mass-redistribution", 0.5, 0.5, 0.002,
-                                    "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"}));
+                      VonKarmanCase{"mass-redistribution", 0.5, 0.5, 0.002, "0.60 0.57 0.56 0.56; 0.66 0.57 0.59 0.58"},
+                      VonKarmanCase{"paper", 0.5, 0.5, 0.002, "0.61 0.56 0.56 0.56; 0.66 0.59 0.58 0.58"}));
+
+// paper's exponential shift (z = exp(-lambda t) u) with an elastic-plastic
+// bar: the plastic strains load z as exp(-lambda t) G p and the return map
+// reads u = exp(lambda t) z. On von Karman's problem at M = 400 the shifted
+// scheme's profile error is the unshifted one's to 5% (lambda = 2 changes
+// the scheme at O(dt^2): measured 3.6% and 3.4% more for the stress and the
+// velocity) and so is the plastic work (to 1e-3, measured 1e-4).
+TEST(PaperPlastic, TheExponentialShiftKeepsTheSolution) {
+  const exact::VonKarman exact({1.0, 1.0, 1.0, 1.0}, 0.1, 0.25, 0.3);
+  std::vector<ProfileError> errors;
+  std::vector<double> work;
+  for (const char* lambda : {"0", "2"}) {
+    std::string text = von_karman_case(400, 0.5, "kinematic", "paper");
+    text.insert(text.find("end = 0.8"), std::string("lambda = ") + lambda + "\n");
+    const RunResult r = run(case_from(text));
+    ASSERT_TRUE(r.summary.complete);
+    errors.push_back(profile_error(r, exact));
+    work.push_back(r.history.back().D_plastic);
+  }
+  fmt::print("paper, lambda 0 and 2: L1 stress {:.4g} {:.4g}, velocity {:.4g} {:.4g}; D_plastic {:.6g} {:.6g}\n",
+             errors[0].sigma, errors[1].sigma, errors[0].v, errors[1].v, work[0], work[1]);
+  EXPECT_NEAR(errors[1].sigma, errors[0].sigma, 0.05 * errors[0].sigma);
+  EXPECT_NEAR(errors[1].v, errors[0].v, 0.05 * errors[0].v);
+  EXPECT_NEAR(work[1], work[0], 1e-3 * work[0]);
+}
 
 // The implicit schemes' Newton iteration (plastic_iteration.hpp) on von
 // Karman's problem: at dt = h/2 and at four times the explicit limit, a
 // level that yields takes two to four steps (one more each time the
 // plastic front reaches a new element within the step; measured means 2.53
-// and 3.15, at most 3 and 4).
+// and 3.15, at most 3 and 4; paper's three-level step 2.55 and 3.33).
 TEST(PlasticIteration, SettlesInAFewStepsPerLevel) {
-  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution"})
+  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution", "paper"})
     for (double courant : {0.5, 4.0}) {
       const Case c = case_from(von_karman_case(200, courant, "isotropic", scheme));
       auto s = make_scheme(c);
@@ -264,7 +289,8 @@ TEST(PlasticIteration, SettlesInAFewStepsPerLevel) {
       const double mean = static_cast<double>(effort.steps) / static_cast<double>(effort.yielding_levels);
       fmt::print("{} at Courant {}: {} yielding levels, {:.2f} steps each, at most {}\n", scheme, courant,
                  effort.yielding_levels, mean, effort.most);
-      EXPECT_LE(mean, courant < 1.0 ? 2.7 : 3.3) << scheme << " " << courant;
+      const bool paper = std::string(scheme) == "paper";  // measured 2.55 and 3.33
+      EXPECT_LE(mean, courant < 1.0 ? 2.7 : (paper ? 3.4 : 3.3)) << scheme << " " << courant;
       EXPECT_LE(effort.most, 4) << scheme << " " << courant;
     }
 }
@@ -344,7 +370,8 @@ TEST(VonKarman, TheWallIsTheSameProblemSeenFromTheBar) {
 
 // A yielding line for the budget tests: a plastic pile under a welded bar,
 // a spring and a mass, gravity, falling onto the near end: a rigid wall, or
-// for newmark an end held still (its penalty links close at O(dt^2) only);
+// for newmark and paper (which run penalty links only, closing at O(dt^2)) an
+// end held still;
 // viscous but under mass-redistribution (which refuses viscosity).
 std::string budget_line(const std::string& scheme) {
   return fmt::format(R"toml([[body]]
@@ -382,7 +409,8 @@ step = 0.005
 end = 15.0
 )toml",
                      scheme == "mass-redistribution" ? "" : "viscosity = 0.002",
-                     scheme == "newmark" ? "law = \"velocity\"\nvalue = \"0\"" : "law = \"rigid\"", scheme);
+                     scheme == "newmark" || scheme == "paper" ? "law = \"velocity\"\nvalue = \"0\"" : "law = \"rigid\"",
+                     scheme);
 }
 
 // The explicit schemes' identity with D_plastic (plastic_bonds.hpp; for
@@ -417,9 +445,11 @@ TEST(PlasticBudget, ClosesToRoundOffWithTheExplicitSchemes) {
 
 // The implicit schemes' identity (plastic_iteration.hpp): the plastic
 // strains' load is booked as any load's, so the budget closes as the elastic
-// scheme's does, to round-off, on budget_line.
+// scheme's does, to round-off, on budget_line. paper's (plastic_bonds.hpp's
+// record) closes from row 1: its start books the held end's jump in
+// velocity at t = 0 at O(dt) (6e-5 of the scale, elastic or not).
 TEST(PlasticBudget, ClosesToRoundOffWithTheImplicitSchemes) {
-  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution"}) {
+  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution", "paper"}) {
     const std::string name = scheme;
     const Case c = case_from(budget_line(scheme));
     const RunResult r = run(c);
@@ -427,18 +457,62 @@ TEST(PlasticBudget, ClosesToRoundOffWithTheImplicitSchemes) {
     double scale = 0.0;
     for (const auto& row : r.history) scale = std::max(scale, row.E_kin + row.E_strain);
     double largest = 0.0;
+    const double reference = r.history[name == "paper" ? 1 : 0].total();
     for (std::size_t n = 1; n < r.history.size(); ++n)
-      largest = std::max(largest, std::abs(r.history[n].total() - r.history.front().total()));
+      largest = std::max(largest, std::abs(r.history[n].total() - reference));
     fmt::print("{}: budget {:.2g} of the scale, D_plastic {:.3g}\n", scheme, largest / scale,
                r.history.back().D_plastic / scale);
     // mass-redistribution's faces' imbalances cost it round-off elastic
-    // too (2.8e-12 of the scale on this line without plasticity); measured
-    // 2.9e-14, 7e-14 and 1.1e-11.
-    EXPECT_LT(largest, (name == "mass-redistribution" ? 5e-11 : 1e-12) * scale) << scheme;
+    // too (2.8e-12 of the scale on this line without plasticity); paper
+    // subtracts the plastic load's work from the loads' (gravity's too):
+    // measured 2.9e-14, 7e-14, 1.1e-11 and 5.3e-12.
+    EXPECT_LT(largest, (name == "mass-redistribution" || name == "paper" ? 5e-11 : 1e-12) * scale) << scheme;
     EXPECT_GT(r.history.back().D_plastic, 0.05 * scale) << scheme;  // it yields
     ASSERT_TRUE(r.summary.plastic.has_value());
     EXPECT_NEAR(r.summary.plastic->work[0].second, r.history.back().D_plastic, 1e-15 * scale);
   }
+}
+
+// paper's budget on a free bar without links or held ends, under gravity
+// and a far-end force that yields it and lets go: round-off at lambda = 0
+// from row 1 (measured 1.7e-11 of W_ext over 1200 steps, the elastic bar's
+// 2.2e-11; the start books a load applied at t = 0 at O(dt), elastic or
+// not: 6.6e-5 here), O(dt^2) with the exponential shift, as the elastic
+// shifted scheme's (lambda = 1: measured 1.1e-5, and 2.9e-6 at half the
+// step).
+TEST(PlasticBudget, PaperClosesWithTheExponentialShiftToo) {
+  const std::string text = R"toml([[body]]
+name = "bar"
+elements = 60
+viscosity = 0.001
+material = "plastic"
+yield_stress = 0.1
+hardening_modulus = 0.2
+[far_end]
+law = "force"
+value = "-0.3 * (t < 2 ? 1 : 0)"
+[load]
+gravity = 0.1
+[time]
+scheme = "paper"
+step = {}
+lambda = {}
+end = 6
+)toml";
+  std::vector<double> drift;
+  for (const auto& [step, lambda] : {std::pair{0.005, 0.0}, std::pair{0.005, 1.0}, std::pair{0.0025, 1.0}}) {
+    const RunResult r = run(case_from(fmt::format(fmt::runtime(text), step, lambda)));
+    ASSERT_TRUE(r.summary.complete);
+    double largest = 0.0;
+    for (std::size_t n = 1; n < r.history.size(); ++n)
+      largest = std::max(largest, std::abs(r.history[n].total() - r.history[1].total()));
+    drift.push_back(largest / r.history.back().W_ext);
+    EXPECT_GT(r.history.back().D_plastic, 0.1 * r.history.back().W_ext);  // it yields
+  }
+  fmt::print("paper's budget from row 1: {:.2g} (lambda 0), {:.2g} and {:.2g} (lambda 1, dt and dt/2) of W_ext\n",
+             drift[0], drift[1], drift[2]);
+  EXPECT_LT(drift[0], 1e-10);
+  EXPECT_GT(std::log2(drift[1] / drift[2]), 1.8);  // second order (measured 1.93)
 }
 
 // A perfectly plastic bar (E_t = 0) hitting a rigid wall: the kinetic
@@ -491,9 +565,14 @@ end = 0.9
 // transit, 1.5e-3, is the waves' force; measured 2.0e-3).
 TEST(PlasticUnloading, KeepsThePlasticStrainTheReturnMapPredicts) {
   // The implicit schemes at a step 50 times the explicit limit (their
-  // iteration's hardest case: the whole bar flows at once).
-  for (const auto& [scheme, step] : {std::pair{"central-difference", "0.00001"}, std::pair{"newmark", "0.001"},
-                                     std::pair{"moreau-jean", "0.001"}, std::pair{"mass-redistribution", "0.001"}}) {
+  // iteration's hardest case: the whole bar flows at once). paper at
+  // alpha = 0.3: its default 1/4 leaves undamped the mode z^{n+1} = -z^n
+  // that a nearly massless bar keeps (a double root of alpha z^2 + (1 - 2
+  // alpha) z + alpha), which overshoots eps_p by 5e-3 here; 0.3 damps it
+  // (1.4e-3).
+  for (const auto& [scheme, step] :
+       {std::pair{"central-difference", "0.00001"}, std::pair{"newmark", "0.001"}, std::pair{"moreau-jean", "0.001"},
+        std::pair{"mass-redistribution", "0.001"}, std::pair{"paper", "0.001\nalpha = 0.3"}}) {
     const RunResult r = run(case_from(fmt::format(R"toml([[body]]
 name = "bar"
 elements = 50
@@ -578,10 +657,14 @@ scheme = "{}"
 step = 0.01
 end = 3
 )toml";
-  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution"}) {
-    const RunResult e = run(case_from(fmt::format(fmt::runtime(held), "", scheme)));
+  // paper again under gravity, a steady load its plastic path keeps steady until something yields.
+  const std::string heavy = std::string(held).insert(held.find("[time]"), "[load]\ngravity = 0.3\n");
+  for (const auto& [scheme, text] :
+       {std::pair{"newmark", held}, std::pair{"moreau-jean", held}, std::pair{"mass-redistribution", held},
+        std::pair{"paper", held}, std::pair{"paper", heavy}}) {
+    const RunResult e = run(case_from(fmt::format(fmt::runtime(text), "", scheme)));
     const RunResult p =
-        run(case_from(fmt::format(fmt::runtime(held), "material = \"plastic\"\nyield_stress = 1e6", scheme)));
+        run(case_from(fmt::format(fmt::runtime(text), "material = \"plastic\"\nyield_stress = 1e6", scheme)));
     ASSERT_EQ(e.history.size(), p.history.size());
     for (std::size_t n = 0; n < e.history.size(); ++n) {
       EXPECT_EQ(e.history[n].U, p.history[n].U) << scheme << " " << n;
@@ -629,9 +712,6 @@ TEST(PlasticCase, RefusesBadMaterialKeysNamingThem) {
             std::string::npos);
   EXPECT_NE(refusal("[bar]\nstiffness = 3.0\nmaterial = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = 3.0\n")
                 .find("bar.hardening_modulus must be below stiffness = 3"),
-            std::string::npos);
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"paper\"\n")
-                .find("time.scheme = \"paper\" cannot run the elastic-plastic body \"b\""),
             std::string::npos);
   // characteristic refuses the body before it would discuss the step.
   EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"characteristic\"\n"

@@ -54,6 +54,16 @@
 // link clips the spring's energy released); E_obstacle holds each law's
 // energy at u^n and D_contact the cushions' hysteresis. Without links and
 // lambda = 0 it closes to round-off; the explicit halves close at O(dt^2).
+//
+// Elastic-plastic bodies: sigma = E (eps - p) makes the internal force
+// K u - G p, so the plastic strains are a load G p, alpha-averaged over the
+// three levels as F is. p^{m+1} depends on z^{m+1} through the return map:
+// the step is taken again from level m with Newton's update of p^{m+1}
+// (plastic_iteration.hpp, weight alpha, tangent A - alpha K_loss) until it
+// holds. The budget (plastic_bonds.hpp's record): E_strain the half-step
+// energies of the elastic strains, D_plastic the centred plastic work,
+// W_ext without the plastic load's work. The Taylor start takes p^1 from
+// the return map at u^1.
 #pragma once
 
 #include <array>
@@ -63,6 +73,7 @@
 
 #include "barimpact/schemes/line_rigid.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/plastic_bonds.hpp"
 
 namespace barimpact {
 
@@ -76,6 +87,10 @@ class LinePaper final : public LineScheme {
   [[nodiscard]] double velocity_at(std::size_t j) const override;
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double plastic_strain(std::size_t bond) const override {
+    return plastic_.active() ? plastic_.current()[bond] : 0.0;
+  }
+  [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_.body_work(body); }
 
  private:
   enum class LoadMode { zero, steady, unsteady };
@@ -89,6 +104,15 @@ class LinePaper final : public LineScheme {
   /// Each link's status, explicit forces and sigma at level m; the force ends'
   /// values; the held rows' known z^{m+1}.
   void prepare(long long m);
+  /// The elastic step: z^{m+1} from levels m and m - 1 (m = n + 1), loads
+  /// with the plastic strains' iterate.
+  void advance_elastic();
+  /// Keeps the level a plastic step starts again from.
+  void keep_levels();
+  /// Level m + 1's plastic strains into plastic_, level m's plastic work booked.
+  void record_plastic(long long m, bool yielded);
+  /// u at levels first, first + 1, first + 2 (z scaled into scaled_ when lambda != 0).
+  void displacements(long long first, const double* (&u)[3]) const;
   template <LoadMode mode>
   void sweeps(long long m);
   /// A row outside the stretches: B1 z^m + B0 z^{m-1} + F + extra, the held rows.
@@ -104,10 +128,11 @@ class LinePaper final : public LineScheme {
   void half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const;
 
   double alpha_, lambda_;
-  LoadMode load_mode_ = LoadMode::zero;
-  Tridiagonal mass_, stiff_, visc_;  // M, K, C of the line
-  Tridiagonal b1_, b0_;              // B1 = 2M/dt^2 - (1 - 2 alpha) S, B0 = -M/dt^2 - alpha S + D/(2 dt)
-  TwistedTridiagonal factor_;        // A, held rows the identity
+  LoadMode load_mode_ = LoadMode::zero;  // F's own: zero, steady or unsteady
+  LoadMode step_mode_ = LoadMode::zero;  // this step's: unsteady while the plastic strains load
+  Tridiagonal mass_, stiff_, visc_;      // M, K, C of the line
+  Tridiagonal b1_, b0_;                  // B1 = 2M/dt^2 - (1 - 2 alpha) S, B0 = -M/dt^2 - alpha S + D/(2 dt)
+  TwistedTridiagonal factor_;            // A, held rows the identity
   std::vector<HeldRow> held_;
   // Each row's stencil: an index into stencils_ (a uniform stretch's
   // constant coefficients of B1 and B0), or `general` (special_row).
@@ -140,10 +165,11 @@ class LinePaper final : public LineScheme {
   std::vector<double> link_c_;        // per link: c^m
 
   std::array<std::vector<double>, 3> levels_;
-  double* prev_ = nullptr;                    // z^{n-1}
-  double* cur_ = nullptr;                     // z^n
-  double* next_ = nullptr;                    // z^{n+1}
-  std::array<std::vector<double>, 3> loads_;  // F(t_m) at [m % 3] (unscaled; [0] only when steady)
+  double* prev_ = nullptr;  // z^{n-1}
+  double* cur_ = nullptr;   // z^n
+  double* next_ = nullptr;  // z^{n+1}
+  // F(t_m) + G p^m at [m % 3] (unscaled; [0] only while a step is steady)
+  std::array<std::vector<double>, 3> loads_;
   std::array<double, 3> near_f_{}, far_f_{};  // the force ends' values at t_m, [m % 3]
 
   // The half-step energies at n + 1/2, kept for the row at n + 1.
@@ -154,6 +180,9 @@ class LinePaper final : public LineScheme {
   mutable HalfStep cached_;
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // level n's increments
+
+  PlasticBonds plastic_;                               // levels n - 1, n, n + 1 of the plastic strains, their work
+  mutable std::array<std::vector<double>, 3> scaled_;  // u = exp(lambda t) z, when lambda != 0
 };
 
 }  // namespace barimpact

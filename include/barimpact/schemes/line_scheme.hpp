@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
@@ -59,6 +60,10 @@ class LineScheme : public Scheme {
   /// (the rows of the nodes `held` the identity) and u^{n+1} += c A^{-1} g for a load g at
   /// t_{n+1}; `u` the vector it keeps u in (after its own sizing).
   void set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, std::vector<double>& u);
+  /// The same for a three-level scheme that books its plastic work itself
+  /// (plastic_bonds.hpp's record) and whose matrix holds its links; it
+  /// keeps its own levels in snapshot_.
+  void set_plastic_levels(const Tridiagonal& a, const std::vector<std::size_t>& held, double c);
   /// Level 0's plastic strains from u0, before the start's loads.
   void start_plastic(const double* u0);
   /// One step of the elastic-plastic iteration (plastic_iteration.hpp):
@@ -72,6 +77,12 @@ class LineScheme : public Scheme {
   /// copy of its state.
   template <class Step>
   void advance_plastic(Step&& step, const std::vector<double>& u) {
+    advance_plastic_levels(step, [&u] { return std::pair<const double*, double>{u.data(), 1.0}; });
+  }
+  /// The same for a scheme whose newest level is `newest()`: where it keeps
+  /// u^{n+1} and the factor it is kept at (paper's exp(lambda t_{n+1})).
+  template <class Step, class Newest>
+  void advance_plastic_levels(Step&& step, Newest&& newest) {
     if (since_kept_ >= keep_interval_) {
       if (!yielded_since_kept_) keep_interval_ = std::min(2 * keep_interval_, 32);
       keep_level();
@@ -80,7 +91,8 @@ class LineScheme : public Scheme {
     plastic_loads();
     step();
     ++since_kept_;
-    if (plastic_iteration_.settled(u.data(), force_.data())) return;
+    std::pair<const double*, double> level = newest();  // u^{n+1} as kept, and its factor
+    if (plastic_iteration_.settled(level.first, force_.data(), level.second)) return;
     // Back to level n, replaying the quiet steps since the level kept.
     const long long n = n_ - 1;
     snapshot_.restore();
@@ -98,7 +110,8 @@ class LineScheme : public Scheme {
     for (;; ++k) {
       plastic_loads();
       step();
-      if (plastic_iteration_.settled(u.data(), force_.data())) break;
+      level = newest();
+      if (plastic_iteration_.settled(level.first, force_.data(), level.second)) break;
       if (k == PlasticIteration::most_iterations) {  // the run stops: finite() turns false
         failed_ = true;
         failed_misfit_ = plastic_iteration_.misfit();
@@ -108,9 +121,13 @@ class LineScheme : public Scheme {
       n_ = n;
     }
     plastic_iteration_.count(k);
-    plastic_iteration_.accept(snapshot_.saved(0).data(), u.data());
+    plastic_iteration_.accept(one_step_plastic_ ? snapshot_.saved(0).data() : nullptr, level.first);
     since_kept_ = 1;
   }
+  /// The schemes' loads carry G p^k while it may be nonzero (load_zero_).
+  void plastic_loads();
+  /// No body force and no gravity: F is the plastic strains' load alone.
+  [[nodiscard]] bool body_zero() const { return body_zero_; }
   /// E_strain, W_ext and D_plastic of an elastic-plastic line at u = u^n.
   void add_plastic(Energies& e, const double* u) const;
   /// The force end's value at t along +x (0 unless the end is a force end).
@@ -147,11 +164,11 @@ class LineScheme : public Scheme {
   std::vector<double> u0_, v0_;
 
  private:
-  void plastic_loads();
   void keep_level();
   long long kept_n_ = 0;                    // the level snapshot_ holds
   int since_kept_ = 1, keep_interval_ = 1;  // steps since it, and between two
   bool yielded_since_kept_ = false;
+  bool one_step_plastic_ = true;                // accept() books Q from snapshot_'s u^n
   bool body_zero_ = true, body_steady_ = true;  // the body force and gravity alone
 };
 

@@ -17,6 +17,19 @@
 // budget then closes as the elastic scheme's does. The centred term tends to
 // sigma_y |dp| (plus the hardening's share) as dt -> 0; along a monotone
 // plastic flow at constant stress it is that exactly.
+//
+// The paper's alpha-scheme averages its stiffness over three levels, so its
+// element force is A sigma~^m, sigma~^m = alpha sigma^{m+1} + (1 - 2 alpha)
+// sigma^m + alpha sigma^{m-1}, and with e = eps - p the same algebra gives
+//
+//   h A sigma~^m (eps^{m+1} - eps^{m-1}) / 2 = psi^{m+1/2} - psi^{m-1/2}
+//       + h A sigma~^m (p^{m+1} - p^{m-1}) / 2,
+//   psi^{m+1/2} = h A E (e^m e^{m+1} + alpha (e^{m+1} - e^m)^2) / 2,
+//
+// the paper's half-step energy (7.1) of the elastic strains. Its plastic
+// strains come from an iteration (plastic_iteration.hpp) and act as a load
+// G p~^m, whose work the scheme books in W_ext: record() books that work
+// too, so that W_ext can leave it out.
 #pragma once
 
 #include <array>
@@ -31,7 +44,9 @@ namespace barimpact {
 class PlasticBonds {
  public:
   PlasticBonds() = default;
-  explicit PlasticBonds(const Line& line);
+  /// `alpha`: the weight of levels m -/+ 1 in level m's stress (paper's
+  /// alpha; 0 for the explicit schemes).
+  explicit PlasticBonds(const Line& line, double alpha = 0.0);
 
   [[nodiscard]] bool active() const { return !ranges_.empty(); }
 
@@ -44,6 +59,20 @@ class PlasticBonds {
   /// the scheme's. `first`: the start's step, whose level -1 is level 0
   /// (half its share, as the start's other terms).
   void advance(const double* u, const double* up, bool first = false);
+  /// Level m + 1 given by an implicit iteration instead of the return map:
+  /// `p`, `a` its plastic and accumulated strains, `yielded` whether they
+  /// differ from level m's. Books level m's plastic work h A sigma~^m
+  /// (p^{m+1} - p^{m-1}) / 2 and the plastic strains' load's work h A E p~^m
+  /// (eps^{m+1} - eps^{m-1}) / 2, both means with the weights `w` of levels
+  /// m + 1, m, m - 1 (the scheme's, which the exponential shift tilts),
+  /// at displacements um, u, up; then moves on as advance. `first`: the
+  /// start's step (w = {0, 1, 0}, um the level that makes (up - um) / 2 the
+  /// start's dt v0 / 2).
+  void record(const double* p, const double* a, bool yielded, const double* um, const double* u, const double* up,
+              const std::array<double, 3>& w, bool first = false);
+  /// The work of the plastic strains' load booked by record() up to level n
+  /// (its half-step sum, as W_ext's).
+  [[nodiscard]] double load_work() const;
   /// No element has yielded yet: every plastic strain is 0 (the schemes'
   /// elastic stencils then hold).
   [[nodiscard]] bool pristine() const { return pristine_; }
@@ -84,6 +113,8 @@ class PlasticBonds {
   bool quiet_ = false;                            // p^{n+1} = p^n: nothing yielded at the last step
   bool pristine_ = true;                          // nothing has ever yielded
   std::vector<double> half_, last_, hardening0_;  // per body: the centred work's sums, the hardening at level 0
+  double load_half_ = 0.0, load_last_ = 0.0;      // record()'s load work
+  double alpha_ = 0.0;
 };
 
 }  // namespace barimpact

@@ -54,8 +54,10 @@ class PlasticIteration {
   [[nodiscard]] bool active() const { return !ranges_.empty(); }
   /// The scheme's matrix A (the rows of the nodes `held` become the
   /// identity) and weight c:
-  /// u^{n+1} answers a load g at t_{n+1} by c A^{-1} g.
-  void set_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c);
+  /// u^{n+1} answers a load g at t_{n+1} by c A^{-1} g. `links_in_matrix`:
+  /// A already holds the links' share of the step's tangent (paper's
+  /// implicit halves), so that pushing links are not added again.
+  void set_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, bool links_in_matrix = false);
 
   /// Level 0 from a virgin material at u0.
   void start(const double* u0);
@@ -71,12 +73,20 @@ class PlasticIteration {
   [[nodiscard]] bool loading() const { return loading_; }
   /// f += G p^k.
   void add_load(double* f) const;
-  /// After the step with p^k reached u^{n+1} = `u` with link forces
-  /// `force`: true when p^k holds; otherwise p^{k+1} by Newton's update,
-  /// and false.
-  [[nodiscard]] bool settled(const double* u, const double* force);
-  /// Level n + 1 = p^k, its share of Q booked (u_old: u^n).
+  /// After the step with p^k reached u^{n+1} = `scale` times `u` with link
+  /// forces `force`: true when p^k holds; otherwise p^{k+1} by Newton's
+  /// update, and false. (`scale`: paper's exp(lambda t), u kept as z.)
+  [[nodiscard]] bool settled(const double* u, const double* force, double scale = 1.0);
+  /// Level n + 1 = p^k, its share of Q booked (u_old: u^n; nullptr: a
+  /// scheme that books its plastic work itself).
   void accept(const double* u_old, const double* u);
+  /// Level n + 1 straight from the return map at u^{n+1} = `scale` times
+  /// `u` (a step that does not depend on it: paper's Taylor start).
+  void take(const double* u, double scale = 1.0);
+  /// The levels accepted that changed a plastic strain.
+  [[nodiscard]] long long yielded_levels() const { return yielded_levels_; }
+  /// Accumulated plastic strain per bond at t_n (isotropic hardening's alpha).
+  [[nodiscard]] const double* accumulated() const { return alpha_.data(); }
   /// The largest |p^ - p^k| / tolerance of the last check.
   [[nodiscard]] double misfit() const { return misfit_; }
   /// How hard the iteration worked: the levels where something yielded,
@@ -115,9 +125,9 @@ class PlasticIteration {
   [[nodiscard]] Sums sums(const Range& r, const double* u) const;
   [[nodiscard]] double range_work(std::size_t i) const;
   /// p^ at u into trial_, flowing_; returns max |p^ - p^k| / tolerance.
-  double trial(const double* u);
+  double trial(const double* u, double scale);
   /// p^{k+1} from u by the tangent solve.
-  void newton(const double* u, const double* force);
+  void newton(const double* u, const double* force, double scale);
   /// The links that push (force > 0) in the tangent: a penalty law's c k,
   /// a rigid link as a spring 1e8 times stiffer than its rows (a hold).
   void add_links(const double* force);
@@ -131,6 +141,8 @@ class PlasticIteration {
   std::vector<unsigned char> flowing_;
   const double* iterate_p_ = nullptr;       // p^k: p_ (k = 0) or pk_
   bool loading_ = false, pristine_ = true;  // pristine: p^n = 0 everywhere
+  bool links_in_matrix_ = false;
+  long long yielded_levels_ = 0;
   double misfit_ = 0.0;
   Effort effort_;
   Tridiagonal a_;

@@ -25,6 +25,13 @@ class StepSnapshot {
     bytes_.push_back({reinterpret_cast<unsigned char*>(v.data()), v.size() * sizeof(T)});
     byte_copies_.emplace_back(v.size() * sizeof(T), 0);
   }
+  /// Any trivially copyable object (a scheme's level pointers), by bytes.
+  template <class T>
+  void keep_object(T& x) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.push_back({reinterpret_cast<unsigned char*>(&x), sizeof(T)});
+    byte_copies_.emplace_back(sizeof(T), 0);
+  }
   void keep(double& x) {
     scalars_.push_back(&x);
     scalar_copies_.push_back(x);
