@@ -65,7 +65,7 @@ TEST(PaperScheme, FirstStepsOfTwoElementsMatchTheHandComputation) {
   EXPECT_NEAR(s.reaction(), 4.0 * 42.0 / 89.0, 1e-14);  // R^2 = k (z^2_0)^-
 }
 
-// A dense, independent transcription of THE-PAPER.md's matrix form: full
+// A dense, independent transcription of the scheme's matrix form (docs/methods.md): full
 // matrices assembled element by element, Gaussian elimination every step.
 struct DenseReference {
   using Matrix = testing::DenseMatrix;

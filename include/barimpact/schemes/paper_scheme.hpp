@@ -1,5 +1,6 @@
-// The alpha-scheme of Do, Raupp & Feijoo, eq. (6.3), in the matrix form of
-// THE-PAPER.md (errata fixed). With z = exp(-lambda t) u and the split
+// The alpha-scheme of Do, Raupp & Feijoo (1979), eq. (6.3), in matrix form
+// (docs/methods.md states it and the two misprints it corrects). With
+// z = exp(-lambda t) u and the split
 // k U^- = (k/2)|U| - (k/2) U (linear half implicit, |.| explicit):
 //
 //   M (z^{n+1} - 2 z^n + z^{n-1}) / dt^2 + S z^{n,alpha} + D (z^{n+1} - z^{n-1}) / (2 dt)
