@@ -94,6 +94,17 @@ namespace {
 // with a marker owns what it lists (a listed directory must be owned in
 // turn); a directory without one (a study's runs/) owns only directories
 // that are owned. Links are entries, never followed.
+// A file barimpact stages before renaming it onto a listed entry of its
+// directory (replace_text's ".sweep.csv.partial-<pid>"): ours while it is
+// written, and left behind only when that process was killed.
+bool staged_entry(const std::string& name, const std::set<std::string>& ours) {
+  const auto at = name.rfind(".partial-");
+  if (name.size() < 2 || name[0] != '.' || at == std::string::npos || at < 2) return false;
+  const std::string digits = name.substr(at + 9);
+  return !digits.empty() && digits.size() <= 9 && digits.find_first_not_of("0123456789") == std::string::npos &&
+         ours.count(name.substr(1, at - 1)) > 0;
+}
+
 std::vector<std::string> foreign_entries(const fs::path& dir) {
   const auto listed = marker_entries(dir);
   const std::set<std::string> ours(listed.begin(), listed.end());
@@ -103,6 +114,7 @@ std::vector<std::string> foreign_entries(const fs::path& dir) {
     const bool is_dir = fs::symlink_status(dir / name, ec).type() == fs::file_type::directory;
     if (!listed.empty() && name == output_marker) continue;
     if (is_dir && fs::exists(dir / name / staging_flag, ec)) continue;  // a run of barimpact's being written
+    if (!is_dir && staged_entry(name, ours)) continue;                  // a listed file being replaced
     if (!listed.empty() && !ours.count(name)) {
       foreign.push_back(name);
     } else if (is_dir) {
@@ -198,7 +210,13 @@ void remove_stale_staging(const fs::path& parent, const std::string& name) {
       // old results directory is barimpact's whole.
       std::error_code ec;
       const fs::path path = parent / entry;
-      if (fs::symlink_status(path, ec).type() != fs::file_type::directory) continue;
+      const auto type = fs::symlink_status(path, ec).type();
+      if (type == fs::file_type::regular) {  // a listed file's staged copy its killed writer left
+        const auto listed = marker_entries(parent);
+        if (staged_entry(entry, std::set<std::string>(listed.begin(), listed.end()))) fs::remove(path, ec);
+        continue;
+      }
+      if (type != fs::file_type::directory) continue;
       if (fs::exists(path / staging_flag, ec) || written_by_barimpact(path)) fs::remove_all(path, ec);
     }
   }

@@ -235,6 +235,15 @@ for signal in INT TERM KILL; do
     ok || bad "sweep after SIG$signal differs from the uninterrupted one"
   find "$work/sweep-$signal" -name '*partial*' | grep -q . && bad "sweep SIG$signal: leftovers" || ok
 done
+# A sweep killed while it replaced sweep.csv leaves its staged copy: the rerun takes it as its own (a live
+# writer's stays; a dead one's goes), never as someone else's file to refuse.
+sleep 0 & wait $!; dead=$!
+printf 'x\n' > "$work/sweep-whole/.sweep.csv.partial-$dead"
+printf 'x\n' > "$work/sweep-whole/.sweep.csv.partial-$$"
+"$bin" sweep "$work/slow-sweep.toml" --out "$work/sweep-whole" --jobs 2 > /dev/null 2>&1 && ok || bad "sweep rerun beside a staged sweep.csv"
+[ ! -e "$work/sweep-whole/.sweep.csv.partial-$dead" ] && ok || bad "a killed writer's staged sweep.csv stays"
+[ -e "$work/sweep-whole/.sweep.csv.partial-$$" ] && ok || bad "a live writer's staged sweep.csv was removed"
+rm -f "$work/sweep-whole/.sweep.csv.partial-$$"
 study=(converge "$ex1" --levels 3 --refine both --set time.end=4 --set bar.elements=1000 --set time.step=5e-4 --jobs 2)
 "$bin" "${study[@]}" --out "$work/conv-whole" > /dev/null 2>&1 || bad "whole converge"
 for signal in INT KILL; do

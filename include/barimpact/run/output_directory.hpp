@@ -53,9 +53,10 @@ void write_output_marker(const std::filesystem::path& dir, std::string_view comm
 [[nodiscard]] std::vector<std::string> directory_entries(const std::filesystem::path& dir);
 
 /// Removes the staging directories (`.<name>.partial-<pid>`, flagged by
-/// staging_flag) and old results directories (`.<name>.old-<pid>`, barimpact's
-/// whole) that a killed barimpact process left in `parent` for `name` (for
-/// any name when `name` is empty); those of live processes, and anything
+/// staging_flag), old results directories (`.<name>.old-<pid>`, barimpact's
+/// whole) and staged copies of a listed file (`.sweep.csv.partial-<pid>`)
+/// that a killed barimpact process left in `parent` for `name` (for any
+/// name when `name` is empty); those of live processes, and anything
 /// barimpact did not make, stay.
 void remove_stale_staging(const std::filesystem::path& parent, const std::string& name);
 
