@@ -193,7 +193,7 @@ void LinePaper::start() {
   if (plastic_iteration_.active()) {
     // p^1 from the return map at u^1, its load in F(t_1); the start's share
     // of the plastic work and load work at level "-1" = u^1 - dt v0.
-    plastic_iteration_.take(next_, scale(1));
+    const bool yielded = plastic_iteration_.take(next_, scale(1));
     plastic_loads();
     if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[1].data());  // F(t_1) + G p^1
     plastic_.start(u0_.data());
@@ -202,9 +202,8 @@ void LinePaper::start() {
       u1[j] = scale(1) * next_[j];
       before[j] = u1[j] - dt_ * v0_[j];
     }
-    plastic_.record(plastic_iteration_.strain(), plastic_iteration_.accumulated(),
-                    plastic_iteration_.yielded_levels() > 0, before.data(), u0_.data(), u1.data(), {0.0, 1.0, 0.0},
-                    true);
+    plastic_.record(plastic_iteration_.strain(), plastic_iteration_.accumulated(), yielded, before.data(), u0_.data(),
+                    u1.data(), {0.0, 1.0, 0.0}, true);
   }
 
   // The first half step's share of the budget: dt/2 times the rates at t = 0.
@@ -227,12 +226,12 @@ void LinePaper::advance() {
     advance_elastic();
     return;
   }
-  const long long m = n_ + 1, yielded_before = plastic_iteration_.yielded_levels();
-  advance_plastic_levels([this] { advance_elastic(); },
-                         [this] {
-                           return std::pair<const double*, double>{next_, scale(n_ + 1)};
-                         });
-  if (!failed_) record_plastic(m, plastic_iteration_.yielded_levels() != yielded_before);
+  const long long m = n_ + 1;
+  const bool yielded = advance_plastic_levels([this] { advance_elastic(); },
+                                              [this] {
+                                                return std::pair<const double*, double>{next_, scale(n_ + 1)};
+                                              });
+  if (!failed_) record_plastic(m, yielded);
 }
 
 void LinePaper::displacements(long long first, const double* (&u)[3]) const {
@@ -386,11 +385,7 @@ void LinePaper::sweeps(long long m) {
     f0 = loads_[0].data();
   } else if constexpr (mode == LoadMode::unsteady) {
     auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
-    if (body_zero())
-      std::fill(newest.begin(), newest.end(), 0.0);
-    else
-      line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
-    if (plastic_iteration_.loading()) plastic_iteration_.add_load(newest.data());
+    load_into(static_cast<double>(m + 1) * dt_, newest);
     fp = newest.data();
     f0 = loads_[static_cast<std::size_t>(m % 3)].data();
     fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();

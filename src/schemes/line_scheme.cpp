@@ -26,7 +26,7 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
   }
   body_force_ = std::make_unique<Expression>(line_.body_force);
   body_zero_ = load_zero_ = body_force_->is_zero() && line_.gravity == 0.0;
-  body_steady_ = load_steady_ = !body_force_->depends_on_t();
+  load_steady_ = !body_force_->depends_on_t();
   plastic_iteration_ = PlasticIteration(line_);
   if (line_.near.kind == EndKind::force || line_.near.kind == EndKind::velocity)
     near_value_ = std::make_unique<Expression>(line_.near.value);
@@ -45,34 +45,46 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
 
 void LineScheme::load_at(double t) {
   if (load_zero_ || (load_steady_ && t > 0.0)) return;  // zero, or computed at t = 0
+  load_into(t, load_);
+}
+
+void LineScheme::load_into(double t, std::vector<double>& f) {
   if (body_zero_)
-    std::fill(load_.begin(), load_.end(), 0.0);
+    std::fill(f.begin(), f.end(), 0.0);
+  else if (!steady_body_.empty())
+    std::copy(steady_body_.begin(), steady_body_.end(), f.begin());
   else
-    line_.load(*body_force_, t, load_);
-  if (plastic_iteration_.loading()) plastic_iteration_.add_load(load_.data());
+    line_.load(*body_force_, t, f);
+  if (plastic_iteration_.loading()) plastic_iteration_.add_load(f.data());
 }
 
 void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
                              std::vector<double>& u) {
   if (!plastic_iteration_.active()) return;
   load_steady_ = false;  // the plastic strains' load moves
-  plastic_iteration_.set_matrix(a, held, c);
-  snapshot_.keep(u);  // first: saved(0) is u^n
+  snapshot_.keep(u);     // first: saved(0) is u^n
   snapshot_.keep(load_);
-  snapshot_.keep(force_);
-  snapshot_.keep(c_max_);
-  snapshot_.keep(near_force_);
-  snapshot_.keep(far_force_);
+  keep_plastic_state(a, held, c, false);
 }
 
 void LineScheme::set_plastic_levels(const Tridiagonal& a, const std::vector<std::size_t>& held, double c) {
   if (!plastic_iteration_.active()) return;
   one_step_plastic_ = false;  // the scheme keeps three load levels: a steady F stays steady until p loads
-  plastic_iteration_.set_matrix(a, held, c, true);
+  keep_plastic_state(a, held, c, true);
+}
+
+void LineScheme::keep_plastic_state(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
+                                    bool links_in_matrix) {
+  plastic_iteration_.set_matrix(a, held, c, links_in_matrix);
   snapshot_.keep(force_);
   snapshot_.keep(c_max_);
   snapshot_.keep(near_force_);
   snapshot_.keep(far_force_);
+  // A steady body force, once: the plastic strains' load makes the loads move, not it.
+  if (!body_zero_ && !body_force_->depends_on_t()) {
+    steady_body_.assign(line_.nodes(), 0.0);
+    line_.load(*body_force_, 0.0, steady_body_);
+  }
 }
 
 void LineScheme::start_plastic(const double* u0) {

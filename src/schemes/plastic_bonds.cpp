@@ -113,13 +113,7 @@ double PlasticBonds::load_work() const {
 }
 
 void PlasticBonds::advance(const double* u, const double* up, bool first) {
-  bool yielding = false;
-  for (const Range& r : ranges_)
-    yielding = yielding ||
-               (pristine_ ? detail::yields_from_rest(r.first, r.last, r.law, r.inv_h, up)
-                          : (r.law.isotropic ? detail::yields<true>
-                                             : detail::yields<false>)(r.first, r.last, r.law, r.inv_h, up,
-                                                                      p_[next_].data(), accumulated_[next_].data()));
+  const bool yielding = detail::any_yields(ranges_, pristine_, 1.0, up, p_[next_].data(), accumulated_[next_].data());
   if (!yielding && quiet_) {  // p^{m+1} = p^m = p^{m-1}: level m + 1 is level m's arrays, its work 0
     fresh_ = next_;
     for (const Range& r : ranges_) last_[r.body] = 0.0;

@@ -39,7 +39,6 @@ void PlasticIteration::start(const double* u0) {
   pristine_ = std::all_of(p_.begin(), p_.end(), [](double x) { return x == 0.0; });
   std::fill(q_.begin(), q_.end(), 0.0);
   effort_ = Effort{};
-  yielded_levels_ = 0;
   for (std::size_t i = 0; i < ranges_.size(); ++i) start_[i] = sums(ranges_[i], u0);
   begin_step();
 }
@@ -80,20 +79,10 @@ double PlasticIteration::trial(const double* u, double scale) {
 }
 
 bool PlasticIteration::settled(const double* u, const double* force, double scale) {
-  if (iterate_p_ == p_.data()) {  // k = 0: a read-only check first, the common answer
-    bool yielding = false;
-    for (const Range& r : ranges_) {
-      const double inv_h = r.inv_h * scale;  // exact for scale 1
-      yielding =
-          yielding ||
-          (pristine_ ? detail::yields_from_rest(r.first, r.last, r.law, inv_h, u)
-                     : (r.law.isotropic ? detail::yields<true> : detail::yields<false>)(r.first, r.last, r.law, inv_h,
-                                                                                        u, p_.data(), alpha_.data()));
-    }
-    if (!yielding) {
-      misfit_ = 0.0;
-      return true;
-    }
+  // k = 0: a read-only check first, the common answer
+  if (iterate_p_ == p_.data() && !detail::any_yields(ranges_, pristine_, scale, u, p_.data(), alpha_.data())) {
+    misfit_ = 0.0;
+    return true;
   }
   misfit_ = trial(u, scale);
   if (misfit_ <= 1.0) return true;
@@ -101,16 +90,17 @@ bool PlasticIteration::settled(const double* u, const double* force, double scal
   return false;
 }
 
-void PlasticIteration::take(const double* u, double scale) {
+bool PlasticIteration::take(const double* u, double scale) {
   begin_step();
   (void)trial(u, scale);
   if (std::equal(trial_p_.begin(), trial_p_.end(), p_.begin()) &&
       std::equal(trial_alpha_.begin(), trial_alpha_.end(), alpha_.begin()))
-    return;
+    return false;
   pk_ = trial_p_;
   alphak_ = trial_alpha_;
   use_iterate();
   accept(nullptr, u);
+  return true;
 }
 
 // T du = c G (p^ - p^k), T = A - c K_loss over the flowing elements (held
@@ -165,24 +155,14 @@ void PlasticIteration::newton(const double* u, const double* force, double scale
   }
   du_[n - 1] *= diag_[n - 1];
   for (std::size_t j = n - 1; j-- > 0;) du_[j] = (du_[j] - off_[j] * du_[j + 1]) * diag_[j];
-  for (const Range& r : ranges_) {
-    const double e = r.law.modulus, hm = r.law.plastic_modulus, sy = r.law.yield_stress;
-    const double inv = 1.0 / (e + hm), inv_h = r.inv_h * scale;
-    for (std::size_t j = r.first; j < r.last; ++j) {
-      double p = p_[j], a = alpha_[j];
-      const double eps = ((u[j + 1] + du_[j + 1]) - (u[j] + du_[j])) * inv_h;
-      (void)(r.law.isotropic ? Plasticity::return_map<true>(e * (eps - p), hm, sy, inv, p, a)
-                             : Plasticity::return_map<false>(e * (eps - p), hm, sy, inv, p, a));
-      pk_[j] = p;
-      alphak_[j] = a;
-    }
-  }
+  for (std::size_t j = 0; j < n; ++j) du_[j] += u[j];  // u^{n+1} + du
+  (void)trial(du_.data(), scale);
+  std::swap(pk_, trial_p_);
+  std::swap(alphak_, trial_alpha_);
   use_iterate();
 }
 
 void PlasticIteration::accept(const double* u_old, const double* u) {
-  if (iterate_p_ == p_.data()) return;  // nothing yielded: level n + 1 is level n
-  ++yielded_levels_;
   for (std::size_t i = 0; u_old != nullptr && i < ranges_.size(); ++i) {
     const Range& r = ranges_[i];
     const double scale = r.volume * r.law.modulus * 0.5 * r.inv_h;

@@ -38,4 +38,19 @@ inline bool yields_from_rest(std::size_t first, std::size_t last, const Plastici
   return any != 0;
 }
 
+// Whether any element of the bodies `ranges` (plastic_body.hpp) yields at
+// up = `scale` times the array (scale 1 is exact), from the state p, a
+// (every p and a 0 while `pristine`).
+template <class Ranges>
+inline bool any_yields(const Ranges& ranges, bool pristine, double scale, const double* up, const double* p,
+                       const double* a) {
+  for (const auto& r : ranges) {
+    const double inv_h = r.inv_h * scale;
+    if (pristine ? yields_from_rest(r.first, r.last, r.law, inv_h, up)
+                 : (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law, inv_h, up, p, a))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace barimpact::detail

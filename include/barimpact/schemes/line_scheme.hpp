@@ -77,12 +77,13 @@ class LineScheme : public Scheme {
   /// copy of its state.
   template <class Step>
   void advance_plastic(Step&& step, const std::vector<double>& u) {
-    advance_plastic_levels(step, [&u] { return std::pair<const double*, double>{u.data(), 1.0}; });
+    (void)advance_plastic_levels(step, [&u] { return std::pair<const double*, double>{u.data(), 1.0}; });
   }
   /// The same for a scheme whose newest level is `newest()`: where it keeps
   /// u^{n+1} and the factor it is kept at (paper's exp(lambda t_{n+1})).
+  /// True when the level yielded (its plastic strains are not level n's).
   template <class Step, class Newest>
-  void advance_plastic_levels(Step&& step, Newest&& newest) {
+  bool advance_plastic_levels(Step&& step, Newest&& newest) {
     if (since_kept_ >= keep_interval_) {
       if (!yielded_since_kept_) keep_interval_ = std::min(2 * keep_interval_, 32);
       keep_level();
@@ -92,7 +93,7 @@ class LineScheme : public Scheme {
     step();
     ++since_kept_;
     std::pair<const double*, double> level = newest();  // u^{n+1} as kept, and its factor
-    if (plastic_iteration_.settled(level.first, force_.data(), level.second)) return;
+    if (plastic_iteration_.settled(level.first, force_.data(), level.second)) return false;
     // Back to level n, replaying the quiet steps since the level kept.
     const long long n = n_ - 1;
     snapshot_.restore();
@@ -115,7 +116,7 @@ class LineScheme : public Scheme {
       if (k == PlasticIteration::most_iterations) {  // the run stops: finite() turns false
         failed_ = true;
         failed_misfit_ = plastic_iteration_.misfit();
-        return;
+        return false;
       }
       snapshot_.restore();
       n_ = n;
@@ -123,11 +124,12 @@ class LineScheme : public Scheme {
     plastic_iteration_.count(k);
     plastic_iteration_.accept(one_step_plastic_ ? snapshot_.saved(0).data() : nullptr, level.first);
     since_kept_ = 1;
+    return true;
   }
   /// The schemes' loads carry G p^k while it may be nonzero (load_zero_).
   void plastic_loads();
-  /// No body force and no gravity: F is the plastic strains' load alone.
-  [[nodiscard]] bool body_zero() const { return body_zero_; }
+  /// f = the body force and gravity at t, and G p^k while the plastic strains load.
+  void load_into(double t, std::vector<double>& f);
   /// E_strain, W_ext and D_plastic of an elastic-plastic line at u = u^n.
   void add_plastic(Energies& e, const double* u) const;
   /// The force end's value at t along +x (0 unless the end is a force end).
@@ -165,11 +167,13 @@ class LineScheme : public Scheme {
 
  private:
   void keep_level();
+  void keep_plastic_state(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, bool links_in_matrix);
   long long kept_n_ = 0;                    // the level snapshot_ holds
   int since_kept_ = 1, keep_interval_ = 1;  // steps since it, and between two
   bool yielded_since_kept_ = false;
-  bool one_step_plastic_ = true;                // accept() books Q from snapshot_'s u^n
-  bool body_zero_ = true, body_steady_ = true;  // the body force and gravity alone
+  bool one_step_plastic_ = true;     // accept() books Q from snapshot_'s u^n
+  bool body_zero_ = true;            // no body force and no gravity
+  std::vector<double> steady_body_;  // a steady body force and gravity on a plastic line (else empty)
 };
 
 /// The scheme `c.time.scheme` names for a line of bodies (c.single_bar false).

@@ -77,14 +77,13 @@ class PlasticIteration {
   /// forces `force`: true when p^k holds; otherwise p^{k+1} by Newton's
   /// update, and false. (`scale`: paper's exp(lambda t), u kept as z.)
   [[nodiscard]] bool settled(const double* u, const double* force, double scale = 1.0);
-  /// Level n + 1 = p^k, its share of Q booked (u_old: u^n; nullptr: a
-  /// scheme that books its plastic work itself).
+  /// Level n + 1 = p^k (k >= 1), its share of Q booked (u_old: u^n;
+  /// nullptr: a scheme that books its plastic work itself).
   void accept(const double* u_old, const double* u);
   /// Level n + 1 straight from the return map at u^{n+1} = `scale` times
-  /// `u` (a step that does not depend on it: paper's Taylor start).
-  void take(const double* u, double scale = 1.0);
-  /// The levels accepted that changed a plastic strain.
-  [[nodiscard]] long long yielded_levels() const { return yielded_levels_; }
+  /// `u` (a step that does not depend on it: paper's Taylor start); true
+  /// when it differs from level n.
+  bool take(const double* u, double scale = 1.0);
   /// Accumulated plastic strain per bond at t_n (isotropic hardening's alpha).
   [[nodiscard]] const double* accumulated() const { return alpha_.data(); }
   /// The largest |p^ - p^k| / tolerance of the last check.
@@ -142,7 +141,6 @@ class PlasticIteration {
   const double* iterate_p_ = nullptr;       // p^k: p_ (k = 0) or pk_
   bool loading_ = false, pristine_ = true;  // pristine: p^n = 0 everywhere
   bool links_in_matrix_ = false;
-  long long yielded_levels_ = 0;
   double misfit_ = 0.0;
   Effort effort_;
   Tridiagonal a_;

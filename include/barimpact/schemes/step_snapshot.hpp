@@ -13,7 +13,7 @@ namespace barimpact {
 
 class StepSnapshot {
  public:
-  /// Keeps `v` (at its present size and place, which must not change) and `x`.
+  /// Keeps `v` (at its present size and place, which must not change).
   void keep(std::vector<double>& v) {
     vectors_.push_back(&v);
     vector_copies_.emplace_back(v.size(), 0.0);
