@@ -36,16 +36,19 @@ struct SectionKeys {
 };
 
 // The case-file contract: sections and keys, in file order.
-const std::array<SectionKeys, 8>& contract() {
-  static const std::array<SectionKeys, 8> c{{
+const std::array<SectionKeys, 9>& contract() {
+  static const std::array<SectionKeys, 9> c{{
       {"bar",
        {"length", "density", "stiffness", "viscosity", "elements", "far_end", "material", "yield_stress",
         "hardening_modulus", "hardening"}},
       {"load", {"body_force", "gravity"}},
       {"initial", {"displacement", "velocity"}},
       {"obstacle", {"kind", "stiffness", "gap", "viscosity"}},
-      {"near_end", {"law", "stiffness", "viscosity", "restitution", "gap", "value"}},
-      {"far_end", {"law", "stiffness", "viscosity", "restitution", "gap", "value"}},
+      {"near_end",
+       {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
+      {"far_end",
+       {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
+      {"blow", {"gauge", "ram", "pile"}},
       {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution"}},
       {"output", {"every", "fields_at"}},
   }};
@@ -57,7 +60,7 @@ const std::array<SectionKeys, 3>& array_contract() {
   static const std::array<SectionKeys, 3> c{{
       {"body",
        {"name", "kind", "length", "elements", "area", "modulus", "density", "viscosity", "mass", "displacement",
-        "velocity", "material", "yield_stress", "hardening_modulus", "hardening"}},
+        "velocity", "material", "yield_stress", "hardening_modulus", "hardening", "shaft"}},
       {"joint", {"name", "between", "law", "stiffness", "viscosity", "restitution", "gap"}},
       {"gauge", {"name", "body", "at"}},
   }};
@@ -303,9 +306,13 @@ std::string apply_override(toml::table& root, const std::string& text) {
     at = dot + 1;
   }
   const bool named = parts.size() == 3 && find_array(parts[0]) != nullptr;
-  if (!(parts.size() == 2 || named) || std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
+  const bool shaft = parts.size() == 4 && parts[0] == "body" && parts[2] == "shaft";  // body.<name>.shaft.key
+  if (!(parts.size() == 2 || named || shaft) ||
+      std::any_of(parts.begin(), parts.end(), [](auto& p) { return p.empty(); }))
     throw InputError(
-        fmt::format("{}: expected section.key=value, or body.<name>.key=value (joint, gauge likewise)", where));
+        fmt::format("{}: expected section.key=value, or body.<name>.key=value (joint, gauge likewise), or "
+                    "body.<name>.shaft.key=value",
+                    where));
   if (value.empty()) throw InputError(fmt::format("{}: the value is empty", where));
 
   toml::table holder;
@@ -319,12 +326,17 @@ std::string apply_override(toml::table& root, const std::string& text) {
   if (parts.size() == 2) parts = legacy_alias(root, where, parts, v);
 
   toml::table* target = nullptr;
-  if (parts.size() == 3) {
+  if (parts.size() >= 3) {
     auto* array = root.get_as<toml::array>(parts[0]);
     for (std::size_t i = 0; array != nullptr && i < array->size(); ++i)
       if (auto* t = (*array)[i].as_table(); t != nullptr && element_name(parts[0], *t, i) == parts[1]) target = t;
     if (target == nullptr)
       throw InputError(fmt::format("{}: no {} named \"{}\" in the case", where, parts[0], parts[1]));
+    if (shaft) {
+      if (!target->contains("shaft")) target->insert("shaft", toml::table{});
+      target = target->get_as<toml::table>("shaft");
+      if (target == nullptr) throw InputError(fmt::format("{}: body.{}.shaft is not a table", where, parts[1]));
+    }
   } else {
     auto* sec = root.get(parts[0]);
     if (sec == nullptr) {
@@ -445,13 +457,15 @@ void read_bar(const Reader& r, Case& c) {
 void read_time(const Reader& r, Case& c) {
   TimeData& time = c.time;
   time.end = r.number("time", "end", time.end);
-  time.step = r.number("time", "step", time.step);
+  const auto* step = r.node("time", "step");
+  time.step_auto = step != nullptr && step->is_string();
+  if (time.step_auto && step->as_string()->get() != "auto")
+    r.fail("time", "step", fmt::format("must be a number or \"auto\" (got \"{}\")", step->as_string()->get()));
+  if (!time.step_auto) time.step = r.number("time", "step", time.step);
   time.scheme = r.word("time", "scheme", time.scheme);
   time.alpha = r.number("time", "alpha", time.alpha);
   time.lambda = r.number("time", "lambda", time.lambda);
   if (time.step <= 0) r.fail("time", "step", fmt::format("must be > 0 (got {})", time.step));
-  if (time.end / time.step > 1e10)
-    r.fail("time", "step", fmt::format("gives {:.3g} steps to time.end; at most 1e10", time.end / time.step));
   if (time.alpha < 0 || time.alpha > 0.5)
     r.fail("time", "alpha", fmt::format("must be in [0, 1/2] (got {})", time.alpha));
   if (time.lambda < 0) r.fail("time", "lambda", fmt::format("must be >= 0 (got {})", time.lambda));
@@ -469,8 +483,10 @@ void read_time(const Reader& r, Case& c) {
   const auto names = scheme_names();
   if (std::find(names.begin(), names.end(), time.scheme) == names.end())
     r.fail("time", "scheme", fmt::format("must be one of {} (got \"{}\")", fmt::join(names, ", "), time.scheme));
-  if (const auto misfit = scheme_misfit(c, r.node("time", "step") != nullptr))
+  if (const auto misfit = scheme_misfit(c, step != nullptr && !time.step_auto))
     r.fail("time", misfit->key, misfit->rule);
+  if (time.end / time.step > 1e10)
+    r.fail("time", "step", fmt::format("gives {:.3g} steps to time.end; at most 1e10", time.end / time.step));
   if (time.end < time.step)
     r.fail("time", "end", fmt::format("must be >= time.step = {} (got {})", time.step, time.end));
 }
@@ -517,10 +533,10 @@ bool valid_name(const std::string& name) {
 
 const std::vector<std::pair<std::string_view, JointLaw>>& law_names() {
   static const std::vector<std::pair<std::string_view, JointLaw>> names{
-      {"free", JointLaw::free},        {"clamped", JointLaw::clamped}, {"welded", JointLaw::welded},
-      {"spring", JointLaw::spring},    {"elastic", JointLaw::elastic}, {"viscoelastic", JointLaw::viscoelastic},
-      {"rigid", JointLaw::rigid},      {"cushion", JointLaw::cushion}, {"force", JointLaw::force},
-      {"velocity", JointLaw::velocity}};
+      {"free", JointLaw::free},         {"clamped", JointLaw::clamped}, {"welded", JointLaw::welded},
+      {"spring", JointLaw::spring},     {"elastic", JointLaw::elastic}, {"viscoelastic", JointLaw::viscoelastic},
+      {"rigid", JointLaw::rigid},       {"cushion", JointLaw::cushion}, {"force", JointLaw::force},
+      {"velocity", JointLaw::velocity}, {"smith", JointLaw::smith}};
   return names;
 }
 
@@ -540,24 +556,75 @@ std::vector<std::string_view> law_keys(JointLaw law) {
     case JointLaw::force:
     case JointLaw::velocity:
       return {"value"};
+    case JointLaw::smith:
+      return {"ultimate", "quake", "damping", "damping_law"};
     default:
       return {};
   }
 }
 
+// Smith's soil keys of `section`: ultimate, quake, damping, damping_law.
+SoilSpring read_soil(const Reader& r, const std::string& section, SoilSpring soil) {
+  soil.ultimate = r.number(section, "ultimate", soil.ultimate);
+  soil.quake = r.number(section, "quake", soil.quake);
+  soil.damping = r.number(section, "damping", soil.damping);
+  if (!(soil.ultimate >= 0)) r.fail(section, "ultimate", fmt::format("must be >= 0 (got {})", soil.ultimate));
+  if (!(soil.quake > 0)) r.fail(section, "quake", fmt::format("must be > 0 (got {})", soil.quake));
+  if (!(soil.damping >= 0)) r.fail(section, "damping", fmt::format("must be >= 0 (got {})", soil.damping));
+  const std::string law = r.word(section, "damping_law", "smith");
+  if (law != "smith" && law != "viscous")
+    r.fail(section, "damping_law", fmt::format("must be smith or viscous (got \"{}\")", law));
+  soil.damping_law = law == "smith" ? DampingLaw::smith : DampingLaw::viscous;
+  return soil;
+}
+
+// [body.<name>.shaft]: Smith's side springs along a bar.
+ShaftData read_shaft(Reader& r, const std::string& body, const toml::node& node, double length) {
+  const std::string s = body + ".shaft";
+  const auto* t = node.as_table();
+  if (t == nullptr) r.fail(body, "shaft", "must be a table [body.shaft] (ultimate, embedded, distribution, ...)");
+  r.view(s, t);
+  constexpr std::array<std::string_view, 6> known{"ultimate", "embedded", "distribution",
+                                                  "quake",    "damping",  "damping_law"};
+  for (auto&& [key, v] : *t)
+    if (std::find(known.begin(), known.end(), key.str()) == known.end())
+      r.fail(s, key.str(), fmt::format("is not a shaft key (known: {})", fmt::join(known, ", ")));
+  if (r.node(s, "ultimate") == nullptr) r.fail(s, "ultimate", "is required: the total static shaft capacity, in N");
+  ShaftData d;
+  SoilSpring soil{0.0, d.quake, d.damping, d.damping_law};
+  soil = read_soil(r, s, soil);
+  d.ultimate = soil.ultimate;
+  d.quake = soil.quake;
+  d.damping = soil.damping;
+  d.damping_law = soil.damping_law;
+  d.embedded = r.number(s, "embedded", length);
+  if (!(d.embedded > 0 && d.embedded <= length))
+    r.fail(s, "embedded", fmt::format("must lie in (0, {}], the body's length (got {})", length, d.embedded));
+  const std::string dist = r.word(s, "distribution", "uniform");
+  if (dist != "uniform" && dist != "triangular")
+    r.fail(s, "distribution", fmt::format("must be uniform or triangular (got \"{}\")", dist));
+  d.distribution = dist == "uniform" ? ShaftDistribution::uniform : ShaftDistribution::triangular;
+  return d;
+}
+
 LawData read_law(const Reader& r, const std::string& section, bool end) {
   LawData d;
   const std::vector<std::string_view> allowed =
-      end ? std::vector<std::string_view>{"free",  "clamped", "elastic", "viscoelastic",
-                                          "rigid", "cushion", "force",   "velocity"}
+      end ? std::vector<std::string_view>{"free",    "clamped", "elastic",  "viscoelastic", "rigid",
+                                          "cushion", "force",   "velocity", "smith"}
           : std::vector<std::string_view>{"welded", "spring", "elastic", "viscoelastic", "rigid", "cushion"};
   const std::string law = r.word(section, "law", end ? "free" : "welded");
+  if (law == "smith" && section != "near_end")
+    r.fail(section, "law",
+           "= \"smith\" is a near-end law only: Smith's toe resistance acts at the pile's toe, x = 0 (put the "
+           "pile's toe at the near end; shaft resistance is [body.shaft])");
   if (std::find(allowed.begin(), allowed.end(), law) == allowed.end())
     r.fail(section, "law", fmt::format("must be one of {} (got \"{}\")", fmt::join(allowed, ", "), law));
   for (const auto& [name, value] : law_names())
     if (name == law) d.law = value;
   const auto keys = law_keys(d.law);
-  for (std::string_view key : {"stiffness", "viscosity", "restitution", "gap", "value"})
+  for (std::string_view key :
+       {"stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"})
     if (r.node(section, key) != nullptr && std::find(keys.begin(), keys.end(), key) == keys.end())
       r.fail(section, key,
              fmt::format("is not used by law \"{}\" ({})", law,
@@ -576,6 +643,11 @@ LawData read_law(const Reader& r, const std::string& section, bool end) {
     r.fail(section, "restitution", fmt::format("must be in (0, 1] for a cushion (got {})", d.restitution));
   if (d.law == JointLaw::rigid && !(d.restitution >= 0 && d.restitution <= 1))
     r.fail(section, "restitution", fmt::format("must be in [0, 1] for a rigid law (got {})", d.restitution));
+  if (d.law == JointLaw::smith) {
+    if (r.node(section, "ultimate") == nullptr)
+      r.fail(section, "ultimate", "is required by law = \"smith\": the toe's static capacity R_u, in N");
+    d.soil = read_soil(r, section, d.soil);
+  }
   return d;
 }
 
@@ -602,8 +674,8 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   if (kind != "bar" && kind != "mass") r.fail(s, "kind", fmt::format("must be bar or mass (got \"{}\")", kind));
   b.kind = kind == "bar" ? BodyKind::bar : BodyKind::mass;
   const std::vector<std::string_view> bar_only{
-      "length",    "elements", "area",         "modulus",           "density",
-      "viscosity", "material", "yield_stress", "hardening_modulus", "hardening"};
+      "length",       "elements",          "area",      "modulus", "density", "viscosity", "material",
+      "yield_stress", "hardening_modulus", "hardening", "shaft"};
   for (std::string_view key : b.kind == BodyKind::mass ? bar_only : std::vector<std::string_view>{"mass"})
     if (r.node(s, key) != nullptr)
       r.fail(s, key,
@@ -632,6 +704,7 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   b.displacement = r.expression(s, "displacement", b.displacement);
   b.velocity = r.expression(s, "velocity", b.velocity);
   b.material = read_material(r, s, b.modulus, "modulus");
+  if (const auto* shaft = t.get("shaft")) b.shaft = read_shaft(r, s, *shaft, b.length);
   return b;
 }
 
@@ -710,6 +783,24 @@ void read_gauges(Reader& r, Case& c) {
   }
 }
 
+// [blow]: the gauge, ram and pile a blow's results read, each named in the line.
+void read_blow(const Reader& r, Case& c) {
+  BlowData& b = c.blow;
+  b.gauge = r.word("blow", "gauge", "");
+  b.ram = r.word("blow", "ram", "");
+  b.pile = r.word("blow", "pile", "");
+  if (!b.gauge.empty() &&
+      std::none_of(c.gauges.begin(), c.gauges.end(), [&](const GaugeData& g) { return g.name == b.gauge; }))
+    r.fail("blow", "gauge", fmt::format("names no [[gauge]] of the case (got \"{}\")", b.gauge));
+  for (const auto& [key, name] : {std::pair{"ram", b.ram}, std::pair{"pile", b.pile}})
+    if (!name.empty() && body_index(c, name) == c.bodies.size())
+      r.fail("blow", key, fmt::format("names no body of the line (got \"{}\")", name));
+  if (!b.pile.empty() && c.bodies[body_index(c, b.pile)].kind != BodyKind::bar)
+    r.fail("blow", "pile", fmt::format("must be a bar (\"{}\" is a mass)", b.pile));
+  if (!b.pile.empty() && !b.ram.empty() && b.pile == b.ram)
+    r.fail("blow", "ram", fmt::format("must differ from blow.pile (both \"{}\")", b.pile));
+}
+
 void read_line(Reader& r, Case& c) {
   const auto* bodies = r.root().get_as<toml::array>("body");
   for (std::size_t i = 0; i < bodies->size(); ++i) {
@@ -762,7 +853,7 @@ void decide_single_bar(Case& c) {
   const BodyData& b = c.bodies.front();
   const JointLaw near = c.near_end.law, far = c.far_end.law;
   c.single_bar = c.bodies.size() == 1 && b.kind == BodyKind::bar && b.material.kind == MaterialKind::elastic &&
-                 c.joints.empty() && c.load.gravity == 0.0 &&
+                 c.joints.empty() && c.load.gravity == 0.0 && !b.shaft &&
                  (near == JointLaw::free || near == JointLaw::elastic || near == JointLaw::viscoelastic ||
                   near == JointLaw::rigid) &&
                  (far == JointLaw::free || far == JointLaw::clamped);
@@ -849,6 +940,7 @@ Case read_case(Reader& r) {
     bar_as_line(c);
     read_gauges(r, c);
   }
+  read_blow(r, c);
   c.load.body_force = r.expression("load", "body_force", c.load.body_force);
   c.load.gravity = r.number("load", "gravity", 0.0);
   decide_single_bar(c);
@@ -944,6 +1036,8 @@ std::string_view to_string(JointLaw law) {
       return "force";
     case JointLaw::velocity:
       return "velocity";
+    case JointLaw::smith:
+      return "smith";
   }
   return "?";
 }
@@ -982,6 +1076,10 @@ void write_law(std::string& out, const LawData& d) {
     if (key == "gap") out += fmt::format("gap = {}\n", toml_float(d.gap));
     if (key == "value") out += fmt::format("value = {}\n", toml_string(d.value));
   }
+  if (d.law == JointLaw::smith)
+    out += fmt::format("ultimate = {}\nquake = {}\ndamping = {}\ndamping_law = {}\n", toml_float(d.soil.ultimate),
+                       toml_float(d.soil.quake), toml_float(d.soil.damping),
+                       d.soil.damping_law == DampingLaw::smith ? "\"smith\"" : "\"viscous\"");
 }
 
 void write_material(std::string& out, const MaterialData& m) {
@@ -1009,6 +1107,13 @@ void write_body(std::string& out, const BodyData& b) {
       toml_float(b.viscosity), toml_string(b.displacement), toml_string(b.velocity));
   write_material(out, b.material);
   out += "\n";
+  if (const auto& s = b.shaft)
+    out += fmt::format(
+        "[body.shaft]\nultimate = {}\nembedded = {}\ndistribution = {}\nquake = {}\ndamping = {}\n"
+        "damping_law = {}\n\n",
+        toml_float(s->ultimate), toml_float(s->embedded),
+        s->distribution == ShaftDistribution::uniform ? "\"uniform\"" : "\"triangular\"", toml_float(s->quake),
+        toml_float(s->damping), s->damping_law == DampingLaw::smith ? "\"smith\"" : "\"viscous\"");
 }
 
 }  // namespace
@@ -1091,14 +1196,21 @@ std::string Case::to_toml() const {
     if (!bar_spelling)
       out += fmt::format("[[gauge]]\nname = {}\nbody = {}\nat = {}\n\n", toml_string(g.name), toml_string(g.body),
                          toml_float(g.at));
+  if (!blow.gauge.empty() || !blow.ram.empty() || !blow.pile.empty()) {
+    out += "[blow]\n";
+    for (const auto& [key, name] :
+         {std::pair{"gauge", blow.gauge}, std::pair{"ram", blow.ram}, std::pair{"pile", blow.pile}})
+      if (!name.empty()) out += fmt::format("{} = {}\n", key, toml_string(name));
+    out += "\n";
+  }
   out +=
       fmt::format("[load]\nbody_force = {}\ngravity = {}\n\n", toml_string(load.body_force), toml_float(load.gravity));
   out += fmt::format(
       "[time]\nend = {}\nstep = {}\nscheme = {}\nalpha = {}\nlambda = {}\nbeta = {}\ngamma = {}\ntheta = {}\n"
       "restitution = {}\n\n",
-      toml_float(time.end), toml_float(time.step), toml_string(time.scheme), toml_float(time.alpha),
-      toml_float(time.lambda), toml_float(time.beta), toml_float(time.gamma), toml_float(time.theta),
-      toml_float(time.restitution));
+      toml_float(time.end), time.step_auto ? std::string("\"auto\"") : toml_float(time.step), toml_string(time.scheme),
+      toml_float(time.alpha), toml_float(time.lambda), toml_float(time.beta), toml_float(time.gamma),
+      toml_float(time.theta), toml_float(time.restitution));
   std::string times;
   for (double t : output.fields_at) times += (times.empty() ? "" : ", ") + toml_float(t);
   out += fmt::format("[output]\nevery = {}\nfields_at = [{}]\n", output.every, times);

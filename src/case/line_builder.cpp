@@ -1,5 +1,6 @@
 #include "barimpact/case/line_builder.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,7 +10,7 @@ namespace {
 
 bool unilateral(JointLaw law) {
   return law == JointLaw::elastic || law == JointLaw::viscoelastic || law == JointLaw::rigid ||
-         law == JointLaw::cushion;
+         law == JointLaw::cushion || law == JointLaw::smith;
 }
 
 ContactLaw contact_law(const Case& c, const LawData& d) {
@@ -28,6 +29,13 @@ ContactLaw contact_law(const Case& c, const LawData& d) {
     case JointLaw::cushion:
       l.kind = LawKind::cushion;
       l.viscosity = 0.0;
+      break;
+    case JointLaw::smith:
+      l.kind = LawKind::smith;
+      l.soil = d.soil;
+      l.stiffness = d.soil.stiffness();
+      l.viscosity = 0.0;
+      l.restitution = 1.0;
       break;
     default:
       l.kind = LawKind::rigid;
@@ -92,6 +100,38 @@ void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, con
                                 : std::nullopt);
 }
 
+// [body.shaft] of body `b` (nodes r.first..r.last): the distribution's
+// consistent nodal shares R_j = int r(xi) phi_j(xi) dxi over the embedded
+// length (2-point Gauss per element piece, exact: r and phi_j are linear),
+// which add up to R_u.
+void add_shaft(Line& line, const BodyRange& r, const ShaftData& d) {
+  const std::size_t n = line.nodes();
+  Shaft& s = line.shaft;
+  for (auto* v : {&s.ultimate, &s.stiffness, &s.smith, &s.viscous}) v->resize(n, 0.0);  // the bodies so far
+  const double x0 = line.x[r.first], le = d.embedded;
+  auto density = [&](double xi) {
+    return d.distribution == ShaftDistribution::uniform ? d.ultimate / le : 2.0 * d.ultimate / le * (1.0 - xi / le);
+  };
+  const double g = 0.5 / std::sqrt(3.0);
+  for (std::size_t j = r.first; j < r.last; ++j) {
+    const double xa = line.x[j] - x0, xb = line.x[j + 1] - x0;
+    const double a = std::max(0.0, xa), b = std::min(le, xb);
+    if (b <= a) continue;
+    for (const double w : {0.5 - g, 0.5 + g}) {
+      const double xi = a + w * (b - a), f = 0.5 * (b - a) * density(xi);
+      const double phi_b = (xi - xa) / (xb - xa);  // node j + 1's hat function
+      s.ultimate[j] += f * (1.0 - phi_b);
+      s.ultimate[j + 1] += f * phi_b;
+    }
+  }
+  for (std::size_t j = r.first; j <= r.last; ++j) {
+    if (s.ultimate[j] <= 0.0) continue;
+    s.stiffness[j] = s.ultimate[j] / d.quake;
+    (d.damping_law == DampingLaw::smith ? s.smith[j] : s.viscous[j]) =
+        d.damping_law == DampingLaw::smith ? d.damping : d.damping * s.ultimate[j];
+  }
+}
+
 GaugePoint gauge_point(const Line& line, const Case& c, const GaugeData& g) {
   std::size_t i = 0;
   while (c.bodies[i].name != g.body) ++i;
@@ -145,6 +185,7 @@ Line build(const Case& c) {
     const std::size_t lower_last = line.x.empty() ? 0 : line.x.size() - 1;
     if (j != nullptr && unilateral(j->law.law)) x += j->law.gap;
     add_body(line, b, i, welded, join, x);
+    if (b.shaft && b.shaft->ultimate > 0.0) add_shaft(line, line.bodies.back(), *b.shaft);
     if (b.kind == BodyKind::bar) x += b.length;
     if (j != nullptr && unilateral(j->law.law))
       line.links.push_back(
@@ -159,6 +200,11 @@ Line build(const Case& c) {
   line.near = end_of(c.near_end, 0);
   line.far = end_of(c.far_end, last);
   for (const auto& g : c.gauges) line.gauges.push_back(gauge_point(line, c, g));
+  if (!line.shaft.ultimate.empty())
+    for (auto* v : {&line.shaft.ultimate, &line.shaft.stiffness, &line.shaft.smith, &line.shaft.viscous})
+      v->resize(line.nodes(), 0.0);
+  for (std::size_t j = 0; j < line.shaft.ultimate.size(); ++j)
+    if (line.shaft.ultimate[j] > 0.0) line.shaft.nodes.push_back(j);
   line.body_force = c.load.body_force;
   line.gravity = c.load.gravity;
   return line;

@@ -17,6 +17,8 @@ std::string_view to_string(LawKind kind) {
       return "cushion";
     case LawKind::rigid:
       return "rigid";
+    case LawKind::smith:
+      return "smith";
   }
   return "?";
 }

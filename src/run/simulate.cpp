@@ -72,10 +72,10 @@ ObstacleData near_obstacle(const Case& c) {
   if (c.single_bar) return c.obstacle;
   ObstacleData o;
   const JointLaw law = c.near_end.law;
-  o.kind = law == JointLaw::rigid                                 ? ObstacleKind::rigid
-           : law == JointLaw::elastic || law == JointLaw::cushion ? ObstacleKind::elastic
-           : law == JointLaw::viscoelastic                        ? ObstacleKind::viscoelastic
-                                                                  : ObstacleKind::none;
+  o.kind = law == JointLaw::rigid                                                           ? ObstacleKind::rigid
+           : law == JointLaw::elastic || law == JointLaw::cushion || law == JointLaw::smith ? ObstacleKind::elastic
+           : law == JointLaw::viscoelastic                                                  ? ObstacleKind::viscoelastic
+                                                                                            : ObstacleKind::none;
   o.stiffness = c.near_end.stiffness;
   o.gap = c.near_end.gap;
   o.viscosity = c.near_end.viscosity;

@@ -26,19 +26,40 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
            a.viscosity == b.viscosity && a.mass == b.mass && a.body == b.body;
   };
   auto plastic = [&](const Bond& b) { return b.body < line_.plasticity.size() && line_.plasticity[b.body]; };
+  const Shaft& shaft = line_.shaft;
+  auto soil = [&](std::size_t j) { return !shaft.empty() && shaft.ultimate[j] > 0.0; };
   for (std::size_t j = 0; j < n; ++j) {
     if (!uniform(j)) {
       special_.push_back(j);
+      if (soil(j)) special_soil_.push_back(j);
       continue;
     }
     const Bond& b = line_.bonds[j];
     if (!stretches_.empty() && stretches_.back().last == j && stretches_.back().k == b.stiffness &&
         stretches_.back().c == b.viscosity && stretches_.back().inv_m == inv_m_[j] &&
-        stretches_.back().plastic == plastic(b))
+        stretches_.back().plastic == plastic(b) && stretches_.back().soil == soil(j))
       ++stretches_.back().last;
     else
-      stretches_.push_back({j, j + 1, b.stiffness, b.viscosity, inv_m_[j], b.axial, plastic(b)});
+      stretches_.push_back({j, j + 1, b.stiffness, b.viscosity, inv_m_[j], b.axial, plastic(b), soil(j)});
   }
+  if (!shaft.empty()) {
+    quake_.assign(n, 0.0);
+    for (std::size_t j : shaft.nodes) quake_[j] = shaft.ultimate[j] / shaft.stiffness[j];
+    slip_.assign(n, 0.0);
+    soil_damping_.assign(n, 0.0);
+  }
+}
+
+double LineCentralDifference::shaft_force(std::size_t j, const double* um, const double* u) {
+  const Shaft& s = line_.shaft;
+  const double w = -u[j];
+  const double slip = smith_slip(slip_[j], w, quake_[j]);
+  slip_work_ += s.ultimate[j] * std::abs(slip - slip_[j]);
+  slip_[j] = slip;
+  const double rs = s.stiffness[j] * (w - slip);
+  const double rd = (s.smith[j] * std::abs(rs) + s.viscous[j]) * (um[j] - u[j]) / dt_;
+  soil_damping_[j] = rd;
+  return rs + rd;
 }
 
 double LineCentralDifference::row_force(const double* um, const double* u, std::size_t j) const {
@@ -58,32 +79,62 @@ double LineCentralDifference::row_force(const double* um, const double* u, std::
 }
 
 template <bool viscous, bool loaded>
-void LineCentralDifference::uniform_rows(const double* um, const double* u, double* up) const {
+void LineCentralDifference::uniform_rows(const double* um, const double* u, double* up) {
   const bool yielded = !plastic_.pristine();  // before the first yield every p is 0: the elastic stencil
-  for (const Stretch& s : stretches_)
-    s.plastic&& yielded ? stretch_rows<viscous, loaded, true>(s, um, u, up)
-                        : stretch_rows<viscous, loaded, false>(s, um, u, up);
+  for (const Stretch& s : stretches_) {
+    if (s.soil)
+      s.plastic&& yielded ? stretch_rows<viscous, loaded, true, true>(s, um, u, up)
+                          : stretch_rows<viscous, loaded, false, true>(s, um, u, up);
+    else
+      s.plastic&& yielded ? stretch_rows<viscous, loaded, true, false>(s, um, u, up)
+                          : stretch_rows<viscous, loaded, false, false>(s, um, u, up);
+  }
 }
 
-template <bool viscous, bool loaded, bool plastic>
+template <bool viscous, bool loaded, bool plastic, bool soil>
 void LineCentralDifference::stretch_rows(const Stretch& s, const double* __restrict um, const double* __restrict u,
-                                         double* __restrict up) const {
+                                         double* __restrict up) {
   const double dt2 = dt_ * dt_, inv_dt = 1.0 / dt_;
   const double* __restrict f = load_.data();
   const double* __restrict p = plastic ? plastic_.next() : nullptr;
   const double k = s.k, c = s.c * inv_dt, scale = dt2 * s.inv_m, axial = s.axial;
+  // Smith's shaft, as shaft_force() (fused: the node's u^{n+1} is final here).
+  double* __restrict slip = soil ? slip_.data() : nullptr;
+  const double* __restrict quake = soil ? quake_.data() : nullptr;
+  const double* __restrict ru = soil ? line_.shaft.ultimate.data() : nullptr;
+  const double* __restrict ks = soil ? line_.shaft.stiffness.data() : nullptr;
+  const double* __restrict js = soil ? line_.shaft.smith.data() : nullptr;
+  const double* __restrict jv = soil ? line_.shaft.viscous.data() : nullptr;
+  double slip_work = 0.0, damping_work = 0.0;
   for (std::size_t j = s.first; j < s.last; ++j) {
     double r = -k * (2.0 * u[j] - u[j - 1] - u[j + 1]);
     if constexpr (loaded) r += f[j];
     if constexpr (viscous) r -= c * (2.0 * (u[j] - um[j]) - (u[j - 1] - um[j - 1]) - (u[j + 1] - um[j + 1]));
     if constexpr (plastic) r += axial * (p[j - 1] - p[j]);
+    double rd = 0.0;
+    if constexpr (soil) {
+      const double w = -u[j];
+      const double sj = smith_slip(slip[j], w, quake[j]);
+      slip_work += ru[j] * std::abs(sj - slip[j]);
+      slip[j] = sj;
+      const double rs = ks[j] * (w - sj);
+      rd = (js[j] * std::abs(rs) + jv[j]) * (um[j] - u[j]) * inv_dt;
+      r += rs + rd;
+    }
     up[j] = 2.0 * u[j] - um[j] + scale * r;
+    if constexpr (soil) damping_work += rd * 0.5 * (um[j] - up[j]);  // R_d^n (w^{n+1} - w^{n-1}) / 2
+  }
+  if constexpr (soil) {
+    slip_work_ += slip_work;
+    soil_damping_work_ += damping_work;
   }
 }
 
 void LineCentralDifference::advance_levels(const double* um, const double* u, double* up, double t) {
   load_at(t);
   for (std::size_t j : special_) r_[j] = row_force(um, u, j);
+  for (std::size_t j : special_soil_) r_[j] += shaft_force(j, um, u);
+  soil_damping_work_ = 0.0;                            // the stretches' share of this level, added as they go
   if (has_penalty_) penalty_forces(u, um, r_.data());  // links join special nodes only
   if (line_.near.kind == EndKind::force) r_[line_.near.node] += near_value(t);
   if (line_.far.kind == EndKind::force) r_[line_.far.node] += far_value(t);
@@ -110,6 +161,7 @@ void LineCentralDifference::predict(const double* um, const double* u, double* u
     r[j + 1] -= tension;
   }
   if (has_penalty_) penalty_forces(u, um, r);
+  for (std::size_t j : line_.shaft.nodes) r[j] += shaft_force(j, um, u);
   if (line_.near.kind == EndKind::force) r[line_.near.node] += near_value(t);
   if (line_.far.kind == EndKind::force) r[line_.far.node] += far_value(t);
   const double dt2 = dt_ * dt_;
@@ -179,6 +231,8 @@ void LineCentralDifference::start() {
   next_ = levels_[1].data();
   n_ = 0;
   std::fill(c_max_.begin(), c_max_.end(), 0.0);
+  std::fill(slip_.begin(), slip_.end(), 0.0);
+  slip_work_ = soil_damping_work_ = 0.0;
   // u^1 = u^0 + dt v^0 + dt^2/2 a^0 (second order, exact for a rigid motion);
   // rates at t = 0 from v^0 through a level u^0 - dt v^0.
   std::vector<double> before(n);
@@ -208,7 +262,10 @@ void LineCentralDifference::start() {
     if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
     if (l.law.kind == LawKind::viscoelastic)
       viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, cur_))) * rate;
+    if (l.law.kind == LawKind::smith)
+      contact += (force_[i] - l.law.static_force(-line_.opening(i, cur_), c_max_[i])) * rate;
   }
+  for (std::size_t j : line_.shaft.nodes) contact -= soil_damping_[j] * v0_[j];  // R_d dw/dt, w = -u
   work_half_ = 0.5 * dt_ * power;
   dissipation_half_ = 0.5 * dt_ * viscous;
   contact_half_ = 0.5 * dt_ * contact;
@@ -230,7 +287,7 @@ void LineCentralDifference::advance() {
   cur_ = next_;
   next_ = up;
   n_ = m;
-  double dw = 0.0, dd = 0.0, dc = 0.0;
+  double dw = 0.0, dd = 0.0, dc = soil_damping_work_;
   book_budget(prev_, cur_, next_, dw, dd, dc);
   work_last_ = dw;
   dissipation_last_ = dd;
@@ -258,6 +315,7 @@ void LineCentralDifference::book_budget(const double* um, const double* u, const
             ((up[j + 1] - up[j]) - (um[j + 1] - um[j]));
   }
   book_link_work(um, u, up, dd, dc);
+  for (std::size_t j : special_soil_) dc += soil_damping_[j] * 0.5 * (um[j] - up[j]);
 }
 
 double LineCentralDifference::half_step(const double* a, const double* b, BondKind kind, double& kinetic) const {
@@ -272,7 +330,12 @@ double LineCentralDifference::half_step(const double* a, const double* b, BondKi
 Energies LineCentralDifference::energies() const {
   Energies e;
   e.obstacle = link_energy(cur_);
+  for (std::size_t j : line_.shaft.nodes) {  // Smith's shaft springs at u^n and s^n
+    const double e_j = -cur_[j] - slip_[j];
+    e.obstacle += 0.5 * line_.shaft.stiffness[j] * e_j * e_j;
+  }
   if (n_ == 0) {
+    e.contact = slip_work_;  // what level 0 slipped (the soil penetrated past its quake at t = 0)
     for (std::size_t j = 0; j < line_.nodes(); ++j) e.kinetic += 0.5 * m_[j] * v0_[j] * v0_[j];
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
     if (plastic_.active()) e.strain += plastic_.strain_energy(u0_.data());
@@ -291,7 +354,7 @@ Energies LineCentralDifference::energies() const {
                         line_.bond_form(BondKind::spring, false, cur_, next_));
   e.work = work_half_ - 0.5 * work_last_;
   e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
-  e.contact = contact_half_ - 0.5 * contact_last_ + link_hysteresis();
+  e.contact = contact_half_ - 0.5 * contact_last_ + link_hysteresis() + slip_work_;
   return e;
 }
 

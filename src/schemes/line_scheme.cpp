@@ -174,6 +174,8 @@ void LineScheme::book_link_work(const double* um, const double* u, const double*
     if (l.law.rigid()) contact += force_[i] * dcomp;
     if (l.law.kind == LawKind::viscoelastic)
       viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, u))) * dcomp;
+    if (l.law.kind == LawKind::smith)  // Smith's damping is the soil's: D_contact
+      contact += (force_[i] - l.law.static_force(-line_.opening(i, u), c_max_[i])) * dcomp;
   }
 }
 
@@ -194,14 +196,17 @@ double line_stable_step(const Line& line, bool consistent_mass) {
   }
   for (const auto& l : line.links) {
     if (l.law.rigid()) continue;
-    // A cushion unloads along k / e^2.
-    const double k =
-        l.law.kind == LawKind::cushion ? l.law.stiffness / (l.law.restitution * l.law.restitution) : l.law.stiffness;
+    // A cushion unloads along k / e^2; Smith's damping J |R_s| is at most J R_u.
+    const double k = l.law.largest_stiffness(), eta = l.law.largest_viscosity();
     for (std::size_t i : {l.a, l.b})
       if (i != Link::ground) {
         stiff[i] += (l.a != Link::ground && l.b != Link::ground ? 2.0 : 1.0) * k;
-        damp[i] += (l.a != Link::ground && l.b != Link::ground ? 2.0 : 1.0) * l.law.viscosity;
+        damp[i] += (l.a != Link::ground && l.b != Link::ground ? 2.0 : 1.0) * eta;
       }
+  }
+  for (std::size_t j : line.shaft.nodes) {
+    stiff[j] += line.shaft.stiffness[j];
+    damp[j] += line.shaft.smith[j] * line.shaft.ultimate[j] + line.shaft.viscous[j];
   }
   const std::vector<double> m = line.lumped_mass();
   double omega2 = 0.0, eta = 0.0;
@@ -222,6 +227,18 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
+  // Smith's soil: central differences step it (its slip and damping explicit).
+  if (name != "central-difference") {
+    for (const auto& l : line.links)
+      if (l.law.kind == LawKind::smith)
+        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil at \"{}\" yet (scheme that can: "
+                                                "central-difference)",
+                                                name, l.name)};
+    if (!line.shaft.empty())
+      return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's shaft resistance ([body.shaft]) yet "
+                                              "(scheme that can: central-difference)",
+                                              name)};
+  }
   if (name == "characteristic")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])

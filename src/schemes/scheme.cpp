@@ -79,9 +79,33 @@ double stable_step(const Case& c, bool consistent_mass) {
   return (-eta + std::sqrt(eta * eta + 4.0 * omega2)) / omega2;
 }
 
+namespace {
+
+// time.step = "auto": 0.9 of the explicit scheme's stable limit (its
+// Gershgorin bound, already below the true limit, with a margin for the
+// soil's damping, which grows with its static force).
+std::optional<SchemeMisfit> choose_step(Case& c, const Line* line) {
+  const std::string& name = c.time.scheme;
+  if (name == "characteristic") return std::nullopt;  // it sets dt = h/c itself
+  if (name != "central-difference" && name != "paoli-schatzman")
+    return SchemeMisfit{"step", fmt::format("= \"auto\" chooses a stable step for the explicit schemes "
+                                            "(central-difference, paoli-schatzman, characteristic); \"{}\" needs a "
+                                            "number",
+                                            name)};
+  const bool consistent = name == "paoli-schatzman";
+  c.time.step = auto_step_fraction * (line ? line_stable_step(*line, consistent) : stable_step(c, consistent));
+  if (!(c.time.step > 0) || !std::isfinite(c.time.step))
+    return SchemeMisfit{"step", "= \"auto\" finds no stable limit for this line (nothing stiff in it): give a number"};
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
   if (!c.single_bar) {
     const Line line = build_line(c);
+    if (c.time.step_auto)
+      if (auto m = choose_step(c, &line)) return m;
     // The characteristic scheme steps at the bars' common transit time h/c
     // (an elastic-plastic line it refuses first, below, whatever the step).
     if (c.time.scheme == "characteristic" && !line.plastic())
@@ -96,6 +120,8 @@ std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
     return std::nullopt;
   }
   const SchemeSpec& s = spec(c.time.scheme);
+  if (c.time.step_auto)
+    if (auto m = choose_step(c, nullptr)) return m;
   if (std::find(s.kinds.begin(), s.kinds.end(), c.obstacle.kind) == s.kinds.end()) {
     std::vector<std::string_view> fit;
     for (const auto& other : specs())

@@ -8,11 +8,13 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "barimpact/model/contact_law.hpp"
 #include "barimpact/model/input_error.hpp"
 #include "barimpact/model/material.hpp"
 #include "barimpact/model/obstacle.hpp"
@@ -39,6 +41,25 @@ struct LoadData {
 /// A body of the line ([[body]]), listed from the near end (x = 0) outward.
 enum class BodyKind { bar, mass };
 
+/// How a shaft's static capacity is spread along its embedded length.
+enum class ShaftDistribution {
+  uniform,    ///< the same per unit length
+  triangular  ///< zero at the ground surface, largest at the toe (the body's near end)
+};
+
+/// Smith's side springs on a bar ([body.shaft]): total static capacity R_u
+/// spread over the embedded nodes (by the element lengths, consistently with
+/// the distribution), each node elastic-perfectly-plastic with quake q and
+/// damping J in both directions.
+struct ShaftData {
+  double ultimate = 0.0;   ///< total static shaft capacity, N
+  double embedded = -1.0;  ///< length in the soil from the body's near end (< 0: all of it)
+  ShaftDistribution distribution = ShaftDistribution::uniform;
+  double quake = 0.00254;  ///< q, m (Smith's 0.1 in)
+  double damping = 0.164;  ///< J_side, s/m (Smith's 0.05 s/ft)
+  DampingLaw damping_law = DampingLaw::smith;
+};
+
 struct BodyData {
   std::string name;
   BodyKind kind = BodyKind::bar;
@@ -52,10 +73,11 @@ struct BodyData {
   std::string displacement = "0";  ///< u0(x) (bar), a number (mass)
   std::string velocity = "0";      ///< v0(x) (bar), a number (mass)
   MaterialData material;           ///< bar: elastic, or elastic-plastic (material.hpp)
+  std::optional<ShaftData> shaft;  ///< bar: Smith's side springs along it, if any
 };
 
 /// A joint's or an end's law. At an end, the obstacle is a joint with the ground.
-enum class JointLaw { free, clamped, welded, spring, elastic, viscoelastic, rigid, cushion, force, velocity };
+enum class JointLaw { free, clamped, welded, spring, elastic, viscoelastic, rigid, cushion, force, velocity, smith };
 
 struct LawData {
   JointLaw law = JointLaw::free;
@@ -65,6 +87,9 @@ struct LawData {
   bool restitution_given = false;
   double gap = 0.0;         ///< unilateral laws: initial clearance >= 0
   std::string value = "0";  ///< force or velocity history along +x, an expression in t
+  /// smith (near end only): R_u (toe capacity, N), q (m, default Smith's 0.1 in),
+  /// J_toe (s/m, default Smith's 0.15 s/ft) and the damping law.
+  SoilSpring soil{0.0, 0.00254, 0.492, DampingLaw::smith};
 };
 
 struct JointData {
@@ -72,6 +97,13 @@ struct JointData {
   std::string lower;  ///< the body nearer x = 0
   std::string upper;
   LawData law;
+};
+
+/// [blow]: what a pile-driving blow's results (summary.json's `blow`) read.
+struct BlowData {
+  std::string gauge;  ///< the gauge ENTHRU is measured at (empty: the pile's top gauge, if any)
+  std::string ram;    ///< the ram (empty: the outermost body)
+  std::string pile;   ///< the pile (empty: the bar nearest x = 0)
 };
 
 struct GaugeData {
@@ -87,7 +119,8 @@ struct InitialData {
 
 struct TimeData {
   double end = 1.0;
-  double step = 0.01;  ///< dt
+  double step = 0.01;      ///< dt
+  bool step_auto = false;  ///< step = "auto": an explicit scheme's stable step for the line
   std::string scheme = "paper";
   double alpha = 0.25;       ///< alpha of (6.3)
   double lambda = 0.0;       ///< lambda_shift: z = exp(-lambda t) u, (6.1)
@@ -112,6 +145,7 @@ struct Case {
   LawData near_end;
   LawData far_end;
   std::vector<GaugeData> gauges;
+  BlowData blow;
   LoadData load;
   TimeData time;
   OutputData output;

@@ -8,25 +8,56 @@
 //   cushion       p = max(0, min(k c, (k / e^2)(c - (1 - e^2) c_max)))  (Smith's capblock:
 //                 loads along k, unloads and reloads along k / e^2; c_max the largest c so far)
 //   rigid         c <= 0, p >= 0, p c = 0: the force is the constraint's multiplier
+//   smith         Smith's (1960) toe: R_s = min(R_u, k (c - s)^+), k = R_u / q, its slip
+//                 s = (c_max - q)^+ (the soil's permanent set); p = max(0, R_s + J |R_s| dc/dt)
+//                 (damping_law smith) or, while c > s, max(0, R_s + J R_u dc/dt) (viscous)
 //
 // Energy: a cushion stores what it gives back, (k / 2 e^2)((c - (1 - e^2) c_max)^+)^2,
-// and has dissipated k (1 - e^2) c_max^2 / 2, a function of c_max alone.
+// and has dissipated k (1 - e^2) c_max^2 / 2, a function of c_max alone. Smith's
+// soil stores k ((c - s)^+)^2 / 2 and its slip has dissipated R_u s; its damping's
+// work depends on the path (the schemes book it).
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <string_view>
 
 namespace barimpact {
 
-enum class LawKind { elastic, viscoelastic, cushion, rigid };
+enum class LawKind { elastic, viscoelastic, cushion, rigid, smith };
 
 [[nodiscard]] std::string_view to_string(LawKind kind);
+
+/// How Smith's soil damps: J |R_s| v (Smith 1960; GRLWEAP's "Smith"), or
+/// J R_u v (GRLWEAP's "Smith-viscous"), v the velocity into the soil.
+enum class DampingLaw { smith, viscous };
+
+/// A two-way Smith spring's slip after the penetration reaches w: the spring
+/// stays within its quake q of it, k |w - s| <= R_u (Smith's side springs).
+[[nodiscard]] inline double smith_slip(double slip, double w, double quake) {
+  return std::min(std::max(slip, w - quake), w + quake);
+}
+
+/// Smith's soil resistance at a penetration w (into the soil) with slip s:
+/// the static force k (w - s) of the elastic-perfectly-plastic spring
+/// (k = R_u / q), and its damping at rate v, J |R_s| v or J R_u v.
+struct SoilSpring {
+  double ultimate = 0.0;  ///< R_u
+  double quake = 1.0;     ///< q
+  double damping = 0.0;   ///< J, s/m
+  DampingLaw damping_law = DampingLaw::smith;
+  [[nodiscard]] double stiffness() const { return ultimate / quake; }
+  [[nodiscard]] double damping_force(double r_static, double v) const {
+    return damping * (damping_law == DampingLaw::smith ? std::abs(r_static) : ultimate) * v;
+  }
+};
 
 struct ContactLaw {
   LawKind kind = LawKind::elastic;
   double stiffness = 0.0;    ///< k (loading, for a cushion)
   double viscosity = 0.0;    ///< l, viscoelastic
   double restitution = 1.0;  ///< e: a cushion's; a rigid link's for the event-capturing schemes
+  SoilSpring soil;           ///< smith: R_u, q, J, its damping law (stiffness is R_u / q)
 
   [[nodiscard]] bool rigid() const { return kind == LawKind::rigid; }
   /// p >= 0 for compression c, its rate, and c_max >= c.
@@ -41,10 +72,35 @@ struct ContactLaw {
         const double e2 = restitution * restitution;
         return std::max(0.0, std::min(stiffness * c, stiffness / e2 * (c - (1.0 - e2) * c_max)));
       }
+      case LawKind::smith: {
+        const double slip = std::max(0.0, c_max - soil.quake);
+        if (c <= slip) return 0.0;  // above its slipped position: the toe has left the soil
+        const double r = std::min(soil.ultimate, stiffness * (c - slip));
+        return std::max(0.0, r + soil.damping_force(r, rate));
+      }
       case LawKind::rigid:
         break;
     }
     return 0.0;
+  }
+  /// Smith's static part R_s alone (the law's force for the others without
+  /// their dashpot): what the damping's work is measured against.
+  [[nodiscard]] double static_force(double c, double c_max) const {
+    if (c <= 0.0) return 0.0;
+    if (kind == LawKind::smith) {
+      const double slip = std::max(0.0, c_max - soil.quake);
+      return c <= slip ? 0.0 : std::min(soil.ultimate, stiffness * (c - slip));
+    }
+    if (kind == LawKind::viscoelastic) return stiffness * c;
+    return force(c, 0.0, c_max);
+  }
+  /// The largest dashpot coefficient the law can show (l, or J R_u), for stable steps.
+  [[nodiscard]] double largest_viscosity() const {
+    return kind == LawKind::smith ? soil.damping * soil.ultimate : kind == LawKind::viscoelastic ? viscosity : 0.0;
+  }
+  /// The stiffest slope of the law (k, or a cushion's unloading k / e^2).
+  [[nodiscard]] double largest_stiffness() const {
+    return kind == LawKind::cushion ? stiffness / (restitution * restitution) : stiffness;
   }
   /// The energy the law stores at compression c (and gives back on unloading).
   [[nodiscard]] double energy(double c, double c_max) const {
@@ -53,11 +109,16 @@ struct ContactLaw {
       const double s = std::max(0.0, c - (1.0 - e2) * c_max);
       return 0.5 * stiffness / e2 * s * s;
     }
+    if (kind == LawKind::smith) {
+      const double e = std::min(soil.quake, c - std::max(0.0, c_max - soil.quake));
+      return e > 0.0 ? 0.5 * stiffness * e * e : 0.0;
+    }
     if (kind == LawKind::rigid || c <= 0.0) return 0.0;
     return 0.5 * stiffness * c * c;
   }
-  /// What a cushion's hysteresis has dissipated once compressed to c_max.
+  /// What a cushion's hysteresis, or Smith's slip R_u s, has dissipated once compressed to c_max.
   [[nodiscard]] double hysteresis(double c_max) const {
+    if (kind == LawKind::smith) return soil.ultimate * std::max(0.0, c_max - soil.quake);
     if (kind != LawKind::cushion) return 0.0;
     return 0.5 * stiffness * (1.0 - restitution * restitution) * c_max * c_max;
   }

@@ -83,6 +83,21 @@ struct GaugePoint {
   double weight = 0.0;
 };
 
+/// Smith's side springs (the case's [body.shaft]) on the nodes of the line:
+/// at node j a resistance to the penetration w = -u_j (into the soil, -x),
+///   R_s = k_j (w - s_j) within [-R_u_j, R_u_j] (the slip s_j keeps it there),
+///   R = R_s + (J_j |R_s| + D_j) dw/dt,
+/// along +x on the node; J_j is Smith's damping (damping_law smith) and D_j =
+/// J R_u_j the viscous one, one of them 0, so that the force is branch-free.
+struct Shaft {
+  std::vector<double> ultimate;    ///< R_u per node (0: no soil there)
+  std::vector<double> stiffness;   ///< k = R_u / q
+  std::vector<double> smith;       ///< J (Smith's damping) or 0
+  std::vector<double> viscous;     ///< J R_u (viscous damping) or 0
+  std::vector<std::size_t> nodes;  ///< the nodes with soil, ascending
+  [[nodiscard]] bool empty() const { return nodes.empty(); }
+};
+
 struct Line {
   std::vector<double> x;           ///< reference positions of the nodes
   std::vector<Bond> bonds;         ///< x.size() - 1 of them
@@ -91,6 +106,7 @@ struct Line {
   std::vector<Link> links;         ///< near end first, then joints in line order, then far end
   End near, far;
   std::vector<GaugePoint> gauges;
+  Shaft shaft;                   ///< Smith's side springs (empty: none)
   std::string body_force = "0";  ///< f(x, t), force per unit length on the bar elements
   double gravity = 0.0;          ///< g, towards -x
   /// Per body (line order): its elastic-plastic material, none if elastic.

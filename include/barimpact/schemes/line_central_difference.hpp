@@ -26,6 +26,13 @@
 // step stays explicit and p^{n+1} is computed as soon as u^{n+1} is; the
 // elastic stencil carries the plastic strains as forces A E (p_{j-1} - p_j),
 // and the budget's identity gains D_plastic (closing as the elastic one).
+//
+// Smith's soil (model/line.hpp's Shaft, contact_law.hpp's smith toe): the
+// resistance at t_n from u^n, its slip s^n = clamp(s^{n-1}, w^n - q, w^n + q)
+// (w = -u the penetration) and its damping from the backward rate, as
+// Smith's own recurrence does; it stores k (w - s)^2 / 2 (E_obstacle), its
+// slip dissipates R_u |s^n - s^{n-1}| and its damping R_d^n (w^{n+1} - w^{n-1}) / 2
+// (both D_contact), so that the budget closes as the penalty links' does.
 #pragma once
 
 #include <array>
@@ -71,26 +78,36 @@ class LineCentralDifference final : public LineScheme {
   /// ends, joints, masses, held ends) by the general rows.
   void advance_levels(const double* um, const double* u, double* up, double t);
   template <bool viscous, bool loaded>
-  void uniform_rows(const double* um, const double* u, double* up) const;
+  void uniform_rows(const double* um, const double* u, double* up);
+  /// Smith's shaft resistance on node j at level u (along +x), its slip and
+  /// slip work updated, its damping force kept for the budget.
+  double shaft_force(std::size_t j, const double* um, const double* u);
   /// r_j = F_j + N_j - N_{j-1} at node j (bond tensions from u, rates from um).
   [[nodiscard]] double row_force(const double* um, const double* u, std::size_t j) const;
 
   // A stretch of interior nodes [first, last) of one uniform body: stencils
   // k (2u_j - u_{j-1} - u_{j+1}), the same with c, and one lumped mass.
-  // Elastic-plastic stretches add the plastic strains' forces E A (p_{j-1} - p_j).
+  // Elastic-plastic stretches add the plastic strains' forces E A (p_{j-1} - p_j),
+  // stretches in the soil Smith's resistance (shaft_force, fused).
   struct Stretch {
     std::size_t first, last;
     double k, c, inv_m;
     double axial;  // E A
     bool plastic;
+    bool soil;
   };
-  template <bool viscous, bool loaded, bool plastic>
-  void stretch_rows(const Stretch& s, const double* um, const double* u, double* up) const;
+  template <bool viscous, bool loaded, bool plastic, bool soil>
+  void stretch_rows(const Stretch& s, const double* um, const double* u, double* up);
   std::vector<Stretch> stretches_;
   std::vector<std::size_t> special_;       // the nodes outside every stretch
   std::vector<double> k_, c_, inv_m_, m_;  // per bond; per node
   std::vector<double> r_, rigid_;          // forces at the level; rigid links' impulse forces
   PlasticBonds plastic_;                   // the elastic-plastic elements' state (none: every body elastic)
+  // Smith's shaft: per node its quake, slip s^n and damping force at t_n; the
+  // special nodes in the soil; the slip's work so far, the damping's this level.
+  std::vector<double> quake_, slip_, soil_damping_;
+  std::vector<std::size_t> special_soil_;
+  double slip_work_ = 0.0, soil_damping_work_ = 0.0;
   std::array<std::vector<double>, 3> levels_;
   double* prev_ = nullptr;
   double* cur_ = nullptr;

@@ -86,12 +86,16 @@ struct SchemeMisfit {
 
 /// Checks that `c.time.scheme` can run `c` (obstacle kind, bar, step limit).
 /// The `characteristic` scheme sets `c.time.step = h/c` (when `step_given`
-/// it must already be that). Returns the first misfit, if any.
+/// it must already be that); `time.step = "auto"` sets it for the explicit
+/// schemes (auto_step_fraction of their stable step). Returns the first misfit, if any.
 [[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
 
 /// The largest stable step of the explicit schemes (central differences,
 /// lumped or consistent mass) for `c`'s mesh, bar and obstacle.
 [[nodiscard]] double stable_step(const Case& c, bool consistent_mass);
+
+/// time.step = "auto" takes this fraction of the explicit scheme's stable step.
+inline constexpr double auto_step_fraction = 0.9;
 
 /// The scheme `c.time.scheme` names, set up for `c`. Throws InputError.
 [[nodiscard]] std::unique_ptr<Scheme> make_scheme(const Case& c);

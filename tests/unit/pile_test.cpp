@@ -1,0 +1,263 @@
+// Smith's soil (model/contact_law.hpp's smith toe, model/line.hpp's Shaft):
+// the laws' slip bookkeeping, the case keys, the shaft's distribution, and
+// central differences on piles: a quasi-static push reaches the static
+// capacity, a blow's budget closes.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "../support/run_case.hpp"
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/line_scheme.hpp"
+
+namespace barimpact {
+namespace {
+
+using testing::case_from;
+
+ContactLaw toe(double ultimate, double quake, double damping, DampingLaw law = DampingLaw::smith) {
+  ContactLaw l;
+  l.kind = LawKind::smith;
+  l.soil = {ultimate, quake, damping, law};
+  l.stiffness = l.soil.stiffness();
+  return l;
+}
+
+// The work of the static force along a path of compressions (trapezoids on
+// 1e5 steps a leg: the force is piecewise linear, so only the kinks err, by
+// at most k dc^2 = 1e-5 R_u q each) against the stored energy plus the slip's work.
+TEST(SmithLaw, ToeSlipBookkeepingIsExactOnLoadingUnloadingReloading) {
+  const double ru = 1000.0, q = 0.01;
+  const ContactLaw law = toe(ru, q, 0.0);
+  double c = 0.0, c_max = 0.0, work = 0.0;
+  auto go = [&](double to) {
+    const double from = c;
+    for (int i = 1; i <= 100'000; ++i) {
+      const double f0 = law.force(c, 0.0, c_max);
+      const double c1 = from + (to - from) * i / 100'000;
+      c_max = std::max(c_max, c1);
+      work += 0.5 * (f0 + law.force(c1, 0.0, c_max)) * (c1 - c);
+      c = c1;
+    }
+    EXPECT_NEAR(work, law.energy(c, c_max) + law.hysteresis(c_max), 4e-5 * ru * q) << "at c = " << c;
+  };
+  go(3 * q);  // yields at q, slips 2 q
+  EXPECT_NEAR(law.force(c, 0.0, c_max), ru, 1e-12 * ru);
+  EXPECT_NEAR(law.hysteresis(c_max), ru * 2 * q, 1e-12 * ru * q);
+  go(1.5 * q);  // unloads: above the slipped position 2 q the toe carries nothing
+  EXPECT_EQ(law.force(c, 0.0, c_max), 0.0);
+  go(2.5 * q);  // reloads elastically from the slipped position
+  EXPECT_NEAR(law.force(c, 0.0, c_max), 0.5 * ru, 1e-9 * ru);
+  go(5 * q);  // yields again where it left off, 3 q
+  EXPECT_NEAR(law.hysteresis(c_max), ru * 4 * q, 1e-12 * ru * q);
+  go(-q);  // pulled out: no tension
+  EXPECT_EQ(law.force(c, 0.0, c_max), 0.0);
+  go(6 * q);
+  EXPECT_NEAR(law.hysteresis(c_max), ru * 5 * q, 1e-12 * ru * q);
+}
+
+TEST(SmithLaw, ToeForceIsNeverNegativeAndDampsOnlyWhileInTheSoil) {
+  for (const DampingLaw d : {DampingLaw::smith, DampingLaw::viscous}) {
+    const ContactLaw law = toe(1000.0, 0.01, 0.5, d);
+    const double c_max = 0.03;                        // slipped 0.02
+    EXPECT_EQ(law.force(0.015, -5.0, c_max), 0.0);    // above the slipped position, moving up
+    EXPECT_EQ(law.force(0.015, 100.0, c_max), 0.0);   // above it, moving down: no damping either
+    EXPECT_EQ(law.force(0.025, -100.0, c_max), 0.0);  // rebounding fast: never a pull
+    const double rs = law.static_force(0.025, c_max);
+    EXPECT_NEAR(rs, 500.0, 1e-12 * 500.0);
+    const double expected = d == DampingLaw::smith ? rs * (1 + 0.5 * 2.0) : rs + 0.5 * 1000.0 * 2.0;
+    EXPECT_DOUBLE_EQ(law.force(0.025, 2.0, c_max), expected);
+  }
+}
+
+// Smith's side spring both ways: the stored energy k (w - s)^2 / 2 plus
+// R_u sum |ds| is the work of k (w - s) along any path.
+TEST(SmithLaw, ShaftSpringSlipsBothWaysWithExactBookkeeping) {
+  const double ru = 500.0, q = 0.002, k = ru / q;
+  double w = 0.0, s = 0.0, work = 0.0, slipped = 0.0;
+  auto go = [&](double to) {  // as the toe's: 1e5 trapezoids a leg
+    const double from = w;
+    for (int i = 1; i <= 100'000; ++i) {
+      const double f0 = k * (w - s);
+      const double w1 = from + (to - from) * i / 100'000;
+      const double s1 = smith_slip(s, w1, q);
+      slipped += ru * std::abs(s1 - s);
+      s = s1;
+      work += 0.5 * (f0 + k * (w1 - s)) * (w1 - w);
+      w = w1;
+      ASSERT_LE(std::abs(k * (w - s)), ru * (1 + 1e-12));
+    }
+    EXPECT_NEAR(work, 0.5 * k * (w - s) * (w - s) + slipped, 4e-5 * ru * q) << "at w = " << w;
+  };
+  go(4 * q);
+  EXPECT_NEAR(s, 3 * q, 1e-12);
+  go(-3 * q);  // through zero force to -R_u, slipping back
+  EXPECT_NEAR(k * (w - s), -ru, 1e-9 * ru);
+  EXPECT_NEAR(s, -2 * q, 1e-12);
+  go(q);
+  EXPECT_NEAR(slipped, ru * (3 + 5 + 2) * q, 1e-6 * ru * q);  // up to s = 0 at w = q
+}
+
+constexpr const char* pile_toml = R"(
+[[body]]
+name = "pile"
+length = 10.0
+elements = 50
+area = 0.006
+modulus = 210e9
+density = 7850.0
+viscosity = 2e6
+[body.shaft]
+ultimate = 300e3
+quake = 0.0025
+damping = 0.0
+[near_end]
+law = "smith"
+ultimate = 200e3
+quake = 0.0025
+damping = 0.0
+[time]
+end = 0.01
+step = "auto"
+scheme = "central-difference"
+)";
+
+TEST(SmithCase, ShaftIsSpreadOverTheEmbeddedNodesByTheElementLengths) {
+  for (const char* dist : {"uniform", "triangular"}) {
+    for (const double embedded : {10.0, 6.3}) {
+      const Case c = case_from(pile_toml, {fmt::format("body.pile.shaft.distribution={}", dist),
+                                           fmt::format("body.pile.shaft.embedded={}", embedded)});
+      const Line line = build_line(c);
+      const auto& r = line.shaft.ultimate;
+      EXPECT_NEAR(std::accumulate(r.begin(), r.end(), 0.0), 300e3, 1e-9 * 300e3) << dist << " " << embedded;
+      const auto ground = static_cast<std::size_t>(std::ceil(embedded / 0.2 - 1e-9));
+      for (std::size_t j = ground + 1; j < r.size(); ++j) EXPECT_EQ(r[j], 0.0) << j;  // above the ground
+      if (std::string(dist) == "uniform" && embedded == 10.0) {
+        EXPECT_NEAR(r[0], 300e3 / 100, 1e-6);  // half an element's share at the toe
+        EXPECT_NEAR(r[20], 300e3 / 50, 1e-6);
+      }
+      if (std::string(dist) == "triangular") {
+        for (std::size_t j = 2; j < ground; ++j) EXPECT_LT(r[j], r[j - 1]) << "largest at the toe";
+      }
+      for (std::size_t j : line.shaft.nodes) EXPECT_DOUBLE_EQ(line.shaft.stiffness[j], r[j] / 0.0025);
+    }
+  }
+}
+
+TEST(SmithCase, RefusesWhatItCannotRun) {
+  EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"smith\"\nultimate = 1.0\n", "far_end.law",
+                 "near-end law only");
+  EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"free\"\nquake = 1.0\n", "far_end.quake",
+                 "not used by law \"free\"");
+  auto with = [](const std::string& from, const std::string& to) {
+    std::string s = pile_toml;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  EXPECT_REFUSED(with("ultimate = 200e3\n", ""), "near_end.ultimate", "is required");
+  EXPECT_REFUSED(with("ultimate = 300e3\n", ""), "body.pile.shaft.ultimate", "is required");
+  EXPECT_REFUSED(with("damping = 0.0\n[near_end]", "skin = 1.0\n[near_end]"), "body.pile.shaft.skin",
+                 "not a shaft key");
+  EXPECT_REFUSED(with("ultimate = 300e3\n", "ultimate = 300e3\nembedded = 11.0\n"), "body.pile.shaft.embedded",
+                 "(0, 10]");
+  EXPECT_REFUSED(with("quake = 0.0025\ndamping = 0.0\n[time]", "quake = 0.0\ndamping = 0.0\n[time]"), "near_end.quake",
+                 "> 0");
+  EXPECT_REFUSED(with("damping = 0.0\n[time]", "damping = 0.0\ndamping_law = \"case\"\n[time]"), "near_end.damping_law",
+                 "smith or viscous");
+  EXPECT_REFUSED(with("scheme = \"central-difference\"", "scheme = \"paper\""), "time.step", "\"auto\"",
+                 "explicit schemes");
+  EXPECT_REFUSED(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""),
+                 "time.scheme", "Smith", "central-difference");
+  EXPECT_REFUSED(with("step = \"auto\"", "step = \"fast\""), "time.step", "a number or \"auto\"");
+}
+
+TEST(SmithCase, AutoStepIsTheStableStepOfTheLineWithItsSoil) {
+  const Case c = case_from(pile_toml);
+  const Line line = build_line(c);
+  EXPECT_DOUBLE_EQ(c.time.step, auto_step_fraction * line_stable_step(line, false));
+  // The soil stiffens the toe node: the step is below the bare pile's.
+  std::string free = pile_toml;
+  free.replace(free.find("[near_end]"), free.find("[time]") - free.find("[near_end]"), "");
+  const Case bare = case_from(free, {"body.pile.shaft.ultimate=0"});
+  EXPECT_LT(c.time.step, bare.time.step);
+  // The resolved case reads back to the same case.
+  const Case again = Case::from_string(c.to_toml(), {}, "resolved");
+  EXPECT_EQ(again.to_toml(), c.to_toml());
+  EXPECT_EQ(again.time.step, c.time.step);
+}
+
+double column(const RunResult& r, const std::string& name, std::size_t row) {
+  for (std::size_t i = 0; i < r.columns.size(); ++i)
+    if (r.columns[i] == name) return r.extra[row * r.columns.size() + i];
+  ADD_FAILURE() << "no column " << name;
+  return NAN;
+}
+
+// The pile pushed down at 0.01 m/s (ramped over 0.1 s, 50 transit times, so
+// that it rings by under 1e-3 of the load), pulled back 11 mm and pushed
+// again: once every spring has yielded the head carries the static capacity
+// R_toe + R_shaft; pulled back, the toe leaves its slipped position (no
+// force) and the shaft holds the pile down with its whole capacity.
+TEST(SmithPile, QuasiStaticPushReachesTheStaticCapacityThroughUnloadingAndReloading) {
+  const Case c = case_from(std::string(pile_toml) + R"toml(
+[far_end]
+law = "velocity"
+value = "0.01*(-min(1,max(0,t/0.1)) + 2*min(1,max(0,(t-1.5)/0.1)) - 2*min(1,max(0,(t-2.6)/0.1)))"
+[output]
+every = 100
+)toml",
+                           {"time.end=4.6", "body.pile.viscosity=2e7"});
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.complete) << r.summary.message;
+  auto row_at = [&](double t) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < r.history.size(); ++i)
+      if (std::abs(r.history[i].t - t) < std::abs(r.history[best].t - t)) best = i;
+    return best;
+  };
+  for (const double t : {1.0, 1.4, 4.2, 4.6}) {
+    const std::size_t i = row_at(t);
+    EXPECT_NEAR(r.history[i].R, 200e3, 1e-12 * 200e3) << "the toe at its capacity, t = " << t;
+    EXPECT_NEAR(column(r, "far_end.force", i), 500e3, 1e-3 * 500e3) << "t = " << t;  // the ringing: 1e-3
+  }
+  const std::size_t back = row_at(2.6);
+  EXPECT_EQ(r.history[back].R, 0.0);
+  EXPECT_NEAR(column(r, "far_end.force", back), -300e3, 1e-3 * 300e3);
+  // The budget: the soil's slip work and stored energy against the head's work.
+  const double scale = r.history.back().D_contact;
+  EXPECT_GT(scale, 0.0);
+  for (const auto& h : r.history) EXPECT_NEAR(h.total(), 0.0, 1e-7 * scale) << h.t;
+}
+
+}  // namespace
+}  // namespace barimpact
+
+namespace barimpact {
+namespace {
+
+// A blow of the example pile, both damping laws, toe and shaft: the budget
+// (soil spring energy in E_obstacle; slip, damping and cushion losses in
+// D_contact) closes to the issue's 1e-3 of the hammer's energy at every row.
+// Measured: 5e-5 (the soil and cushion forces at t_n against the centred
+// increments: second order in dt, as the penalty links').
+TEST(SmithPile, BlowBudgetCloses) {
+  for (const char* law : {"smith", "viscous"}) {
+    const Case c = testing::example("pile/steel-pipe-sand.toml", {fmt::format("near_end.damping_law={}", law),
+                                                                  fmt::format("body.pile.shaft.damping_law={}", law)});
+    const RunResult r = run(c);
+    ASSERT_TRUE(r.summary.complete) << r.summary.message;
+    const double e0 = r.history.front().total();
+    double worst = 0.0;
+    for (const auto& h : r.history) worst = std::max(worst, std::abs(h.total() - e0));
+    EXPECT_LT(worst, 1e-3 * e0) << law;
+    EXPECT_GT(r.history.back().D_contact, 0.5 * e0) << "the soil and cushions take most of the blow";
+    for (const auto& h : r.history) EXPECT_GE(h.R, 0.0) << "the toe never pulls";
+  }
+}
+
+}  // namespace
+}  // namespace barimpact
