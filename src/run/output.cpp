@@ -275,6 +275,28 @@ std::string summary_json(const Case& c, const Summary& s) {
                {"t", s.plastic->t},
                {"work", work}};
   }
+  nlohmann::json blow = nullptr;
+  if (const auto& b = s.blow) {
+    auto peak = [](const StressPeak& p) {
+      return nlohmann::json{{"value", p.value}, {"body", p.body}, {"x", p.x}, {"t", p.t}};
+    };
+    blow = {{"set", b->set},
+            {"blows_per_m", number_or_null(b->blows_per_m())},
+            {"blows_per_250mm", number_or_null(b->blows_per_250mm())},
+            {"max_compression", peak(b->max_compression)},
+            {"max_tension", peak(b->max_tension)},
+            {"enthru", number_or_null(b->enthru)},
+            {"gauge", b->gauge.empty() ? nlohmann::json(nullptr) : nlohmann::json(b->gauge)},
+            {"hammer_energy", b->hammer_energy},
+            {"transfer_ratio", number_or_null(b->transfer_ratio())},
+            {"ram", b->ram},
+            {"pile", b->pile},
+            {"impact_time", b->impact_time},
+            {"impact_velocity", b->impact_velocity},
+            {"toe_penetration", b->toe_penetration},
+            {"finished", b->finished},
+            {"rest_time", number_or_null(b->rest_time)}};
+  }
   const double rel = s.energy_initial != 0.0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   const nlohmann::json j = {
       {"complete", s.complete},
@@ -284,6 +306,9 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"steps", s.steps},
       {"steps_done", s.steps_done},
       {"step", c.time.step},
+      {"step_rule", c.time.step_auto
+                        ? fmt::format("auto: {} of {}'s stable step for this line", auto_step_fraction, c.time.scheme)
+                        : std::string("given")},
       {"elements", c.bar.elements},
       {"t_end", s.t_end},
       {"contacts", contacts},
@@ -292,6 +317,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"max_reaction", s.max_reaction},
       {"links", links},
       {"plastic", plastic},
+      {"blow", blow},
       {"energy_initial", number_or_null(s.energy_initial)},
       {"energy_final", number_or_null(s.energy_final)},
       {"energy_error_max", number_or_null(s.energy_error_max)},
@@ -336,6 +362,21 @@ std::string summary_text(const Case& c, const Summary& s) {
                        s.plastic->largest_strain, s.plastic->body, s.plastic->x, s.plastic->t);
     for (const auto& [body, w] : s.plastic->work) out += fmt::format(" {} {:.4g}", body, w);
     out += "\n";
+  }
+  if (const auto& b = s.blow) {
+    out +=
+        fmt::format("  blow: set {:.4g} mm ({} blows per 250 mm), max compression {:.4g} MPa, max tension {:.4g} MPa\n",
+                    1e3 * b->set,
+                    b->set > 0 ? fmt::format("{:.3g}", b->blows_per_250mm())
+                               : std::string("refusal:"
+                                             " inf"),
+                    1e-6 * b->max_compression.value, 1e-6 * b->max_tension.value);
+    out += fmt::format("  hammer energy {:.4g} J at t = {:.4g}; ENTHRU {}{}; {}\n", b->hammer_energy, b->impact_time,
+                       std::isnan(b->enthru) ? std::string("not measured (no gauge on the pile)")
+                                             : fmt::format("{:.4g} J at {}", b->enthru, b->gauge),
+                       std::isnan(b->enthru) ? "" : fmt::format(" (transfer ratio {:.3g})", b->transfer_ratio()),
+                       b->finished ? fmt::format("pile at rest from t = {:.4g}", b->rest_time)
+                                   : std::string("the pile had not come to rest"));
   }
   if (std::isfinite(s.energy_initial))
     out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",

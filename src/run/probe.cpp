@@ -58,12 +58,19 @@ Probes::Probes(const Case& c, const Line& line) : line_(line) {
   }
 }
 
-// k (u_{j+1} - u_j) + c (v_{j+1} - v_j): the bond's tension.
-double Probes::tension(const Scheme& s, std::size_t j) const {
-  const Bond& b = line_.bonds[j];
+double bond_tension(const Line& line, const Scheme& s, std::size_t j) {
+  const Bond& b = line.bonds[j];
   double t = b.stiffness * (s.displacement_at(j + 1) - s.displacement_at(j));
   if (b.viscosity != 0.0) t += b.viscosity * (s.velocity_at(j + 1) - s.velocity_at(j));
   return t - b.axial * s.plastic_strain(j);  // E A (eps - eps_p): 0 in an elastic body
+}
+
+double gauge_force(const Line& line, const Scheme& s, const GaugePoint& g) {
+  return 0.5 * (bond_tension(line, s, g.left) + bond_tension(line, s, g.right));
+}
+
+double gauge_velocity(const Scheme& s, const GaugePoint& g) {
+  return (1.0 - g.weight) * s.velocity_at(g.node) + g.weight * s.velocity_at(g.node + 1);
 }
 
 double Probes::value(const Scheme& s, const Column& col) const {
@@ -74,14 +81,14 @@ double Probes::value(const Scheme& s, const Column& col) const {
     case Kind::link_opening:
       return i == Link::ground ? 0.0 : s.link_opening(i);
     case Kind::bond_force:
-      return i == Link::ground ? std::numeric_limits<double>::quiet_NaN() : -tension(s, i);
+      return i == Link::ground ? std::numeric_limits<double>::quiet_NaN() : -bond_tension(line_, s, i);
     case Kind::bond_opening:
       return s.displacement_at(i + 1) - s.displacement_at(i);
     case Kind::far_force: {
       if (i != Link::ground) return s.link_force(i);
       const double f = s.far_force();
       if (!std::isnan(f) || line_.bonds.empty()) return f;
-      return -tension(s, line_.bonds.size() - 1);
+      return -bond_tension(line_, s, line_.bonds.size() - 1);
     }
     case Kind::far_opening:
       return i != Link::ground ? s.link_opening(i) : -s.displacement_at(line_.nodes() - 1);
@@ -94,14 +101,10 @@ double Probes::value(const Scheme& s, const Column& col) const {
       auto strain = [&](std::size_t j) { return (s.displacement_at(j + 1) - s.displacement_at(j)) / line_.bonds[j].h; };
       return 0.5 * (strain(g.left) + strain(g.right));
     }
-    case Kind::gauge_velocity: {
-      const GaugePoint& g = line_.gauges[i];
-      return (1.0 - g.weight) * s.velocity_at(g.node) + g.weight * s.velocity_at(g.node + 1);
-    }
-    case Kind::gauge_force: {
-      const GaugePoint& g = line_.gauges[i];
-      return 0.5 * (tension(s, g.left) + tension(s, g.right));
-    }
+    case Kind::gauge_velocity:
+      return gauge_velocity(s, line_.gauges[i]);
+    case Kind::gauge_force:
+      return gauge_force(line_, s, line_.gauges[i]);
   }
   return 0.0;
 }

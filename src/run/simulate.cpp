@@ -90,6 +90,7 @@ struct Recorders {
   ContactMonitor contact;
   LinkMonitor links;
   PlasticMonitor plastic;
+  std::optional<BlowMonitor> blow;
   explicit Recorders(const Case& c)
       : line(build_line(c)),
         probes(c, line),
@@ -97,8 +98,14 @@ struct Recorders {
         fields(c, line, c.output.fields_at),
         contact(near_obstacle(c)),
         links(line),
-        plastic(line, c.output.every) {}
-  std::array<Observer*, 5> all() { return {&history, &fields, &contact, &links, &plastic}; }
+        plastic(line, c.output.every) {
+    if (reports_blow(c, line)) blow.emplace(c, line);
+    observers = {&history, &fields, &contact, &links, &plastic};
+    if (blow) observers.push_back(&*blow);
+  }
+  Recorders(const Recorders&) = delete;  // blow watches `line`, observers point into it
+  const std::vector<Observer*>& all() const { return observers; }
+  std::vector<Observer*> observers;
 };
 
 RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
@@ -209,7 +216,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
   Recorders rec(c);
-  std::vector<Observer*> observers{&rec.history, &rec.fields, &rec.contact, &rec.links, &rec.plastic};
+  std::vector<Observer*> observers = rec.all();
   if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
   return collect(c, loop, steps, rec, started, finite_rows);
@@ -272,6 +279,14 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
   }
   r.fields = rec.fields.take();
   s.warnings = check_health(c, s, r.history);
+  if (rec.blow) {
+    s.blow = rec.blow->summary();
+    if (!s.blow->finished && s.complete)
+      s.warnings.push_back(fmt::format(
+          "blow-unfinished: the pile had not come to rest by t = {:.6g} (every node below 1% of the impact velocity "
+          "{:.4g} after the soil's last slip): the set and blow counts may still change; raise time.end",
+          s.t_end, std::abs(s.blow->impact_velocity)));
+  }
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }

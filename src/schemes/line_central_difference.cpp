@@ -358,6 +358,13 @@ Energies LineCentralDifference::energies() const {
   return e;
 }
 
+double LineCentralDifference::soil_slip_work() const {
+  double d = slip_work_;
+  for (std::size_t i = 0; i < line_.links.size(); ++i)
+    if (line_.links[i].law.kind == LawKind::smith) d += line_.links[i].law.hysteresis(c_max_[i]);
+  return d;
+}
+
 bool LineCentralDifference::finite() const {
   const std::size_t last = line_.nodes() - 1;
   return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&

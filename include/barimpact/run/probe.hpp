@@ -17,6 +17,12 @@
 
 namespace barimpact {
 
+/// Bond j's tension at t_n: k (u_{j+1} - u_j) + c (v_{j+1} - v_j) - E A eps_p.
+[[nodiscard]] double bond_tension(const Line& line, const Scheme& s, std::size_t j);
+/// A gauge's axial force (tension > 0) and its velocity along +x at t_n.
+[[nodiscard]] double gauge_force(const Line& line, const Scheme& s, const GaugePoint& g);
+[[nodiscard]] double gauge_velocity(const Scheme& s, const GaugePoint& g);
+
 class Probes {
  public:
   Probes() = default;
@@ -45,7 +51,6 @@ class Probes {
     Kind kind;
     std::size_t index;  // link, bond, node or gauge
   };
-  [[nodiscard]] double tension(const Scheme& s, std::size_t bond) const;
   [[nodiscard]] double value(const Scheme& s, const Column& col) const;
 
   Line line_;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/run/blow.hpp"
 #include "barimpact/run/observer.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
@@ -55,6 +56,7 @@ struct Summary {
   double max_penetration = 0.0;
   double max_reaction = 0.0;
   std::optional<PlasticSummary> plastic;  ///< none: every body elastic
+  std::optional<BlowSummary> blow;        ///< none: no Smith soil and no [blow]
   double energy_initial = 0.0;            ///< E_total at t = 0
   double energy_final = 0.0;              ///< E_total at the last history row
   double energy_error_max = 0.0;          ///< max over rows of |E_total - E_total(0)|

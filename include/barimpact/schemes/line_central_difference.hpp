@@ -59,6 +59,7 @@ class LineCentralDifference final : public LineScheme {
     return plastic_.active() ? plastic_.current()[bond] : 0.0;
   }
   [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_.body_work(body); }
+  [[nodiscard]] double soil_slip_work() const override;
 
  private:
   /// next = 2 cur - prev + dt^2 r / m on the free nodes (`taylor`: the start's

@@ -68,6 +68,8 @@ class Scheme {
   [[nodiscard]] virtual double plastic_strain(std::size_t /*bond*/) const { return 0.0; }
   /// The plastic work body b has dissipated up to t_n.
   [[nodiscard]] virtual double plastic_work(std::size_t /*body*/) const { return 0.0; }
+  /// What Smith's soil (toe and shaft) has dissipated by slipping up to t_n.
+  [[nodiscard]] virtual double soil_slip_work() const { return 0.0; }
   /// Why finite() turned false when the state is finite but failed (an
   /// iteration that did not converge); empty otherwise.
   [[nodiscard]] virtual std::string failure() const { return {}; }

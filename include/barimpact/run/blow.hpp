@@ -1,0 +1,78 @@
+// A pile-driving blow's results (summary.json's `blow`), watched step by
+// step on a line with Smith's soil or a [blow] section: the set, the blow
+// counts, the pile's stress extremes, the energy through the analyser's
+// gauge (ENTHRU), the hammer's energy at impact and whether the pile came
+// to rest. Conventions are the pile-driving analyser's (ASTM D4945): forces
+// tension-positive, velocities along +x, so that energy flowing down the
+// pile (towards the toe at x = 0) is positive.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+#include "barimpact/model/line.hpp"
+#include "barimpact/run/observer.hpp"
+
+namespace barimpact {
+
+/// A stress extreme of the pile: its size (>= 0), where along the line and when.
+struct StressPeak {
+  double value = 0.0;
+  std::string body;
+  double x = 0.0, t = 0.0;
+};
+
+struct BlowSummary {
+  std::string pile, ram, gauge;  ///< gauge empty: no ENTHRU
+  /// The toe spring's plastic slip, into the soil (its largest penetration
+  /// less its quake for a single loading); 0: the hammer did not move it.
+  double set = 0.0;
+  double toe_penetration = 0.0;  ///< the toe's largest penetration
+  StressPeak max_compression, max_tension;
+  double enthru = std::numeric_limits<double>::quiet_NaN();  ///< max over t of int N v dt at the gauge
+  double impact_time = 0.0, impact_velocity = 0.0;
+  double hammer_energy = 0.0;  ///< the ram's kinetic energy at impact
+  bool finished = false;       ///< the pile came to rest after the last soil slip
+  double rest_time = std::numeric_limits<double>::quiet_NaN();
+
+  [[nodiscard]] double blows_per_m() const { return set > 0.0 ? 1.0 / set : std::numeric_limits<double>::infinity(); }
+  [[nodiscard]] double blows_per_250mm() const { return 0.25 * blows_per_m(); }
+  [[nodiscard]] double transfer_ratio() const { return enthru / hammer_energy; }
+};
+
+/// Whether a case's run reports a blow: Smith's soil on its line, or [blow].
+[[nodiscard]] bool reports_blow(const Case& c, const Line& line);
+
+class BlowMonitor final : public Observer {
+ public:
+  BlowMonitor(const Case& c, const Line& line);
+  void begin(const Scheme& scheme, long long steps) override;
+  bool observe(const Scheme& scheme) override;
+  [[nodiscard]] BlowSummary summary() const;
+
+ private:
+  void watch_stresses(const Scheme& s);
+  void watch_impact(const Scheme& s);
+  void watch_rest(const Scheme& s);
+
+  const Line& line_;
+  BlowSummary out_;
+  std::size_t first_ = 0, last_ = 0;          // the pile's nodes
+  std::size_t ram_first_ = 0, ram_last_ = 0;  // the ram's
+  std::size_t ram_link_ = Link::ground;       // the link below the ram (none: in contact from t = 0)
+  std::size_t toe_link_ = Link::ground;       // the near end's Smith link
+  double toe_quake_ = 0.0;
+  std::optional<GaugePoint> gauge_;
+  std::vector<double> mass_;  // lumped, per node
+  double dt_ = 0.0, power_ = 0.0, energy_ = 0.0;
+  double ram_energy_ = 0.0, ram_velocity_ = 0.0;  // at the last step observed
+  bool impacted_ = false;
+  double slip_ = 0.0;     // the soil's slip work at the last step
+  bool at_rest_ = false;  // resting since the last slip
+};
+
+}  // namespace barimpact

@@ -1,0 +1,155 @@
+#include "barimpact/run/blow.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "barimpact/run/probe.hpp"
+
+namespace barimpact {
+
+namespace {
+
+std::size_t body_named(const Line& line, const std::string& name) {
+  for (std::size_t b = 0; b < line.bodies.size(); ++b)
+    if (line.bodies[b].name == name) return b;
+  return line.bodies.size();
+}
+
+// The pile: [blow] pile, else the bar nearest x = 0.
+std::size_t pile_of(const Case& c, const Line& line) {
+  if (!c.blow.pile.empty()) return body_named(line, c.blow.pile);
+  for (std::size_t b = 0; b < line.bodies.size(); ++b)
+    if (!line.bodies[b].is_mass) return b;
+  return 0;
+}
+
+}  // namespace
+
+bool reports_blow(const Case& c, const Line& line) {
+  const bool toe = !line.links.empty() && line.links.front().law.kind == LawKind::smith;
+  return toe || !line.shaft.empty() || !c.blow.gauge.empty() || !c.blow.ram.empty() || !c.blow.pile.empty();
+}
+
+BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.time.step) {
+  const BodyRange& pile = line.bodies[pile_of(c, line)];
+  out_.pile = pile.name;
+  first_ = pile.first;
+  last_ = pile.last;
+  const std::size_t ram = c.blow.ram.empty() ? line.bodies.size() - 1 : body_named(line, c.blow.ram);
+  out_.ram = line.bodies[ram].name;
+  ram_first_ = line.bodies[ram].first;
+  ram_last_ = line.bodies[ram].last;
+  for (std::size_t i = 0; i < line.links.size(); ++i) {
+    if (line.links[i].b == ram_first_ && !line.links[i].is_end) ram_link_ = i;
+    if (line.links[i].name == "near_end" && line.links[i].law.kind == LawKind::smith) {
+      toe_link_ = i;
+      toe_quake_ = line.links[i].law.soil.quake;
+    }
+  }
+  // ENTHRU's gauge: [blow] gauge, else the pile's gauge nearest its head.
+  for (const auto& g : line.gauges) {
+    const bool on_pile = g.node >= first_ && g.node < last_;
+    if (c.blow.gauge.empty() ? on_pile && (!gauge_ || g.node >= gauge_->node) : g.name == c.blow.gauge) gauge_ = g;
+  }
+  if (gauge_) out_.gauge = gauge_->name;
+  mass_ = line.lumped_mass();
+  if (line.bodies[ram].is_mass)  // its own mass, not the half elements of a bar welded to it
+    mass_[ram_first_] = line.point_mass[ram_first_];
+}
+
+void BlowMonitor::begin(const Scheme& /*scheme*/, long long /*steps*/) {
+  const BlowSummary fresh;
+  const std::string pile = out_.pile, ram = out_.ram, gauge = out_.gauge;
+  out_ = fresh;
+  out_.pile = pile;
+  out_.ram = ram;
+  out_.gauge = gauge;
+  out_.max_compression.body = out_.max_tension.body = pile;
+  out_.max_compression.x = out_.max_tension.x = line_.x[first_];
+  power_ = energy_ = 0.0;
+  impacted_ = at_rest_ = false;
+  slip_ = 0.0;
+}
+
+bool BlowMonitor::observe(const Scheme& s) {
+  watch_impact(s);
+  watch_stresses(s);
+  if (gauge_) {  // ENTHRU: int N v dt by trapezoids, its largest value
+    const double power = gauge_force(line_, s, *gauge_) * gauge_velocity(s, *gauge_);
+    if (s.step() > 0) energy_ += 0.5 * (power_ + power) * dt_;
+    power_ = power;
+    out_.enthru = std::max(std::isnan(out_.enthru) ? 0.0 : out_.enthru, energy_);
+  }
+  if (toe_link_ != Link::ground)
+    out_.toe_penetration = std::max(out_.toe_penetration, -s.link_opening(toe_link_));
+  else
+    out_.toe_penetration = std::max(out_.toe_penetration, -s.displacement_at(first_));
+  watch_rest(s);
+  return true;
+}
+
+// Impact: the first step the link below the ram pushes (from t = 0 without
+// one); the ram's kinetic energy and velocity are those of the step before.
+void BlowMonitor::watch_impact(const Scheme& s) {
+  if (impacted_) return;
+  double energy = 0.0, momentum = 0.0, mass = 0.0;
+  for (std::size_t j = ram_first_; j <= ram_last_; ++j) {
+    const double v = s.velocity_at(j);
+    energy += 0.5 * mass_[j] * v * v;
+    momentum += mass_[j] * v;
+    mass += mass_[j];
+  }
+  const bool touching = ram_link_ == Link::ground || s.link_force(ram_link_) > 0.0;
+  if (touching) {
+    impacted_ = true;
+    const bool before = s.step() > 0 && ram_link_ != Link::ground;
+    out_.impact_time = before ? s.time() - dt_ : s.time();
+    out_.hammer_energy = before ? ram_energy_ : energy;
+    out_.impact_velocity = before ? ram_velocity_ : momentum / mass;
+  }
+  ram_energy_ = energy;
+  ram_velocity_ = momentum / mass;
+}
+
+// The pile's elements' stress (E A eps + eta A deps/dt - E A eps_p) / A.
+void BlowMonitor::watch_stresses(const Scheme& s) {
+  for (std::size_t j = first_; j < last_; ++j) {
+    const double sigma = bond_tension(line_, s, j) / line_.bonds[j].area;
+    StressPeak& peak = sigma < 0.0 ? out_.max_compression : out_.max_tension;
+    if (std::abs(sigma) > peak.value) {
+      peak.value = std::abs(sigma);
+      peak.x = 0.5 * (line_.x[j] + line_.x[j + 1]);
+      peak.t = s.time();
+    }
+  }
+}
+
+// At rest: every node of the pile below 1% of the impact velocity, at a step
+// after the soil's last slip.
+void BlowMonitor::watch_rest(const Scheme& s) {
+  const double slip = s.soil_slip_work();
+  if (slip > slip_) {
+    slip_ = slip;
+    at_rest_ = false;
+  }
+  if (!impacted_ || at_rest_) return;
+  const double limit = 0.01 * std::abs(out_.impact_velocity);
+  for (std::size_t j = first_; j <= last_; ++j)
+    if (!(std::abs(s.velocity_at(j)) < limit)) return;
+  at_rest_ = true;
+  out_.rest_time = s.time();
+}
+
+BlowSummary BlowMonitor::summary() const {
+  BlowSummary b = out_;
+  b.finished = at_rest_;
+  if (!at_rest_) b.rest_time = std::numeric_limits<double>::quiet_NaN();
+  b.set = std::max(0.0, b.toe_penetration - toe_quake_);
+  if (toe_link_ == Link::ground && !line_.shaft.empty()) {  // no toe spring: the shaft's quake at the toe
+    const std::size_t j = line_.shaft.nodes.front();
+    b.set = std::max(0.0, b.toe_penetration - line_.shaft.ultimate[j] / line_.shaft.stiffness[j]);
+  }
+  return b;
+}
+
+}  // namespace barimpact
