@@ -4,6 +4,7 @@
 //   barimpact exact CASE.toml --out DIR [--set ...]   (the exact solution, same files)
 //   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
 //   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch]   (also under mpirun -n P)
+//   barimpact bearing CASE.toml --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--jobs N] [--no-plot]
 //   barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
 //                      [--vary key=spec] [--schemes a,b] [--reference auto|rigid|finest] [--jobs N]
 //
@@ -39,6 +40,7 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/schemes/scheme.hpp"
+#include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
 #include "barimpact/study/sweep.hpp"
 
@@ -430,6 +432,34 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   return study_exit({"cases", "sweep.csv", rows.size(), complete, stopped, warned}, flags);
 }
 
+struct BearingArgs {
+  std::string case_path, out, capacity;
+  double toe_share = -1.0;
+  bool no_plot = false;
+  barimpact::SweepOptions options;
+  WriteFlags flags;
+};
+
+int bearing_command(const BearingArgs& a) {
+  barimpact::BearingOptions o;
+  barimpact::parse_capacity(a.capacity, o);
+  if (a.toe_share >= 0.0) o.toe_share = a.toe_share;
+  const barimpact::BearingPlan plan(a.case_path, o);
+  const std::filesystem::path dir(a.out);
+  const auto rows = barimpact::write_bearing(plan, dir, a.options, a.flags.force);
+  std::vector<barimpact::SweepRow> runs;
+  for (const auto& r : rows) runs.push_back(r.run);
+  auto count = [&](auto&& pred) { return std::count_if(runs.begin(), runs.end(), pred); };
+  const auto complete = count([](const auto& r) { return r.status == "complete"; });
+  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
+  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
+  const bool plotted = !a.no_plot && stopped == 0 && complete > 0 && run_python({"bearing-plot", dir.string()});
+  fmt::print("{} capacities from {:.4g} to {:.4g} N (toe share {:.3g}): {} complete; bearing.csv{} in {}\n",
+             rows.size(), o.from, o.to, plan.toe_share(), complete, plotted ? " and bearing.png" : "", a.out);
+  print_study_warnings(runs);
+  return study_exit({"cases", "bearing.csv", rows.size(), complete, stopped, warned}, a.flags);
+}
+
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
   // The figures' directory follows the output rule too, and is marked as
@@ -483,10 +513,11 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "plot"};
+  const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "bearing", "plot"};
   if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
     fmt::print(stderr,
-               "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, plot; see barimpact "
+               "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, bearing, plot; see "
+               "barimpact "
                "--help)\n",
                argv[1]);
     return exit_bad_input;
@@ -510,6 +541,20 @@ int main(int argc, char** argv) {
   add_write_flags(sweep, sweep_flags);
   sweep->add_option("--jobs", sweep_options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--no-batch", no_batch, "Run every case alone (no SIMD batches)");
+
+  BearingArgs bearing_args;
+  auto* bearing = app.add_subcommand(
+      "bearing", "Bearing graph of a pile-driving case: the blow count against the static capacity (bearing.csv)");
+  bearing->add_option("case", bearing_args.case_path, "Case file (TOML) with Smith's soil")->required();
+  bearing->add_option("--out", bearing_args.out, "Output directory: a new or empty one, or a bearing's (resumes)")
+      ->required();
+  bearing->add_option("--capacity", bearing_args.capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")
+      ->required();
+  bearing->add_option("--toe-share", bearing_args.toe_share, "R_toe / capacity (default: the case's)")
+      ->check(CLI::Range(0.0, 1.0));
+  bearing->add_option("--jobs", bearing_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  bearing->add_flag("--no-plot", bearing_args.no_plot, "Skip bearing.png");
+  add_write_flags(bearing, bearing_args.flags);
 
   ConvergeArgs conv_args;
   auto* conv =
@@ -574,6 +619,11 @@ int main(int argc, char** argv) {
       return converge_command(conv_args);
     }
     if (plot->parsed()) return plot_command(plot_dir, plot_out, plot_force);
+    if (bearing->parsed()) {
+      bearing_args.options.interrupt = &interrupted;
+      bearing_args.options.batch = false;  // Smith's soil runs on central differences
+      return bearing_command(bearing_args);
+    }
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());
     return exit_bad_input;

@@ -19,7 +19,7 @@ from ._core import Case, InputError, Result
 from ._core import exact as _exact
 from ._core import run as _run
 
-__all__ = ["Case", "Result", "InputError", "run", "exact", "exact_example1", "plot", "load"]
+__all__ = ["Case", "Result", "InputError", "run", "exact", "exact_example1", "bearing", "plot", "load"]
 
 
 def run(case, progress=None):
@@ -39,6 +39,28 @@ def exact(case):
     if not isinstance(case, Case):
         case = Case(case)
     return _exact(case)
+
+
+def bearing(case, out, capacity, toe_share=None, jobs=0, plot=True, force=False):
+    """The bearing graph (`barimpact bearing CASE --out OUT --capacity FROM:TO:COUNT`):
+    `case` a case file with Smith's soil, `capacity` (from, to, count) in N,
+    `toe_share` R_toe / capacity (None: the case's). Runs every capacity on
+    `jobs` threads (0: all cores; resumes a bearing directory), writes
+    bearing.csv (and bearing.png unless plot=False) and returns its columns as
+    a dict of numpy arrays (blow counts inf where the hammer cannot move the pile)."""
+    import os
+    from ._core import _bearing
+    lo, hi, count = capacity
+    _bearing(os.fspath(case), os.fspath(out), float(lo), float(hi), int(count), toe_share, int(jobs), force)
+    from .bearing import plot_bearing, read_bearing
+    rows = read_bearing(out)
+    if plot:
+        plot_bearing(out)
+    columns = {}
+    for key in rows[0] if rows else []:
+        values = [r[key] for r in rows]
+        columns[key] = np.array(values) if not isinstance(values[0], str) else values
+    return columns
 
 
 Result.summary = property(lambda self: json.loads(self.summary_json), doc="summary.json as a dict")

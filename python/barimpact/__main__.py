@@ -13,7 +13,14 @@ def main(argv=None):
     p.add_argument("--out", default=None, help="where the figures go (default: DIR/figures)")
     c = sub.add_parser("converge-plot", help="draw the plots of a barimpact converge directory")
     c.add_argument("dir")
+    b = sub.add_parser("bearing-plot", help="draw bearing.png of a barimpact bearing directory")
+    b.add_argument("dir")
     args = parser.parse_args(argv)
+    if args.command == "bearing-plot":
+        from .bearing import plot_bearing
+        for path in plot_bearing(args.dir):
+            print(path)
+        return 0
     if args.command == "converge-plot":
         from .convergence import plot_study
         for path in plot_study(args.dir):

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 #include <exception>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/study/bearing.hpp"
 
 namespace py = pybind11;
 using namespace barimpact;
@@ -278,6 +280,26 @@ PYBIND11_MODULE(_core, m) {
       py::arg("case"), py::arg("progress") = py::none(),
       "Run a case (the GIL is released); `progress(info: dict)` is called about twice a second,\n"
       "returning False stops the run. Ctrl-C stops it too, raising KeyboardInterrupt.");
+
+  m.def(
+      "_bearing",
+      [](const std::string& case_file, const std::string& out, double from, double to, int count,
+         const py::object& toe_share, int jobs, bool force) {
+        BearingOptions o;
+        o.from = from;
+        o.to = to;
+        o.count = count;
+        parse_capacity(fmt::format("{}:{}:{}", from, to, count), o);  // the command's rules
+        if (!toe_share.is_none()) o.toe_share = toe_share.cast<double>();
+        const BearingPlan plan(case_file, o);
+        SweepOptions options;
+        options.jobs = jobs;
+        options.batch = false;
+        py::gil_scoped_release release;
+        (void)write_bearing(plan, out, options, force);
+      },
+      py::arg("case"), py::arg("out"), py::arg("capacity_from"), py::arg("capacity_to"), py::arg("count"),
+      py::arg("toe_share") = py::none(), py::arg("jobs") = 0, py::arg("force") = false);
 
   m.def(
       "exact",

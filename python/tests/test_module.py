@@ -1,3 +1,4 @@
+import subprocess
 import threading
 import time
 from pathlib import Path
@@ -213,3 +214,18 @@ def test_an_elastic_plastic_bar():
     assert np.max(np.abs(total[1:] - total[1])) < 1e-12
     assert r.eps_p.shape == r.sigma.shape and np.min(r.eps_p) < 0.0
     assert r.summary["plastic"]["body"] == "rod" and r.summary["plastic"]["largest_strain"] < 0.0
+
+
+def test_bearing_from_python_matches_the_command_line(tmp_path):
+    """barimpact.bearing writes what `barimpact bearing` writes, and returns its columns."""
+    pipe = EXAMPLES / "pile" / "steel-pipe-sand.toml"
+    cols = barimpact.bearing(pipe, tmp_path / "py", (1e6, 5e7, 3), plot=False)
+    subprocess.run([CLI, "bearing", str(pipe), "--out", str(tmp_path / "cli"), "--capacity", "1e6:5e7:3",
+                    "--no-plot"], check=True, capture_output=True)
+    py_rows = (tmp_path / "py" / "bearing.csv").read_text().splitlines()
+    cli_rows = (tmp_path / "cli" / "bearing.csv").read_text().splitlines()
+    assert [r.split(",")[:11] for r in py_rows] == [r.split(",")[:11] for r in cli_rows]
+    assert list(cols["capacity"]) == [1e6, 2.55e7, 5e7]
+    assert cols["set"][0] > 0 and cols["blows_per_250mm"][-1] == float("inf")
+    summary = barimpact.run(pipe).summary["blow"]
+    assert summary["set"] > 0 and summary["max_compression"]["body"] == "pile"

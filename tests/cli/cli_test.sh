@@ -275,5 +275,32 @@ expect_refused "bar.yield_stress is used by material = \"plastic\" only" run "$e
 printf '[bar]\n[[body]]\nname = "a"\n' > "$work/badline.toml"
 expect_refused "cannot be combined with [[body]]" run "$work/badline.toml" --out "$work/refused"
 
+# Pile driving: a blow's results, the bearing graph (columns, inf for a
+# refusal, resumable), and Smith's soil's bad input.
+pipe="$examples/pile/steel-pipe-sand.toml"
+"$bin" run "$pipe" --out "$work/pipe" > /dev/null && ok || bad "pile example"
+/usr/bin/python3 - "$work/pipe/summary.json" <<'PY' && ok || bad "summary.json blow"
+import json, sys
+b = json.load(open(sys.argv[1]))["blow"]
+for key in ("set", "blows_per_m", "blows_per_250mm", "enthru", "hammer_energy", "transfer_ratio", "finished"):
+    assert key in b, key
+for key in ("max_compression", "max_tension"):
+    assert set(b[key]) >= {"value", "body", "x", "t"} and b[key]["value"] >= 0 and b[key]["body"] == "pile", b[key]
+assert b["set"] > 0 and abs(b["blows_per_250mm"] - 0.25 / b["set"]) < 1e-9 * b["blows_per_250mm"], b
+assert 0 < b["transfer_ratio"] < 1 and b["finished"] is True, b
+PY
+"$bin" bearing "$pipe" --out "$work/bearing" --capacity 1e6:5e7:3 --no-plot > /dev/null && ok || bad "bearing exit"
+[ "$(head -1 "$work/bearing/bearing.csv" | cut -d, -f1-8)" = "capacity,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru,finished" ] && ok || bad "bearing columns"
+[ "$(wc -l < "$work/bearing/bearing.csv")" -eq 4 ] && ok || bad "bearing rows"
+[ "$(tail -1 "$work/bearing/bearing.csv" | cut -d, -f2-4)" = "0,inf,inf" ] && ok || bad "refusal row: $(tail -1 "$work/bearing/bearing.csv")"
+cp "$work/bearing/bearing.csv" "$work/bearing-first.csv"
+"$bin" bearing "$pipe" --out "$work/bearing" --capacity 1e6:5e7:3 --no-plot > /dev/null && ok || bad "bearing rerun"
+cut -d, -f1-11 "$work/bearing/bearing.csv" | cmp -s - <(cut -d, -f1-11 "$work/bearing-first.csv") && ok || bad "bearing resumed differs"
+expect_refused "--capacity" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6
+expect_refused "--toe-share" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share 2
+expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3
+expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
+expect_refused "time.scheme = \"paper\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=paper --set time.step=1e-5
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

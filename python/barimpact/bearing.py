@@ -1,0 +1,70 @@
+"""The bearing graph of a `barimpact bearing` directory: the static capacity
+against the blow count (the way wave-equation programs draw it), and beside
+it the pile's largest compression and tension stresses at each capacity."""
+import csv
+import math
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from .plot import DPI  # noqa: E402
+
+
+def _float(text):
+    try:
+        return float(text)
+    except (TypeError, ValueError):
+        return math.nan
+
+
+def read_bearing(directory):
+    """bearing.csv's rows as dicts of floats (finished as a bool, the rest as text)."""
+    rows = []
+    with open(Path(directory) / "bearing.csv", newline="") as f:
+        for r in csv.DictReader(f):
+            row = {k: _float(v) for k, v in r.items() if k not in ("finished", "id", "status", "message", "warnings")}
+            row.update(finished=r["finished"] == "true", id=r["id"], status=r["status"], message=r["message"])
+            rows.append(row)
+    return rows
+
+
+def plot_bearing(directory, formats=("png", "svg")):
+    """Draws bearing.png (and .svg) into the directory; returns the paths."""
+    d = Path(directory)
+    rows = read_bearing(d)
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=DPI, sharey=True, layout="constrained")
+    moved = [r for r in rows if math.isfinite(r["blows_per_250mm"])]
+    refused = [r for r in rows if r["blows_per_250mm"] == math.inf]
+    mn = 1e-6  # N -> MN, Pa -> MPa
+    if moved:
+        ax.plot([r["blows_per_250mm"] for r in moved], [mn * r["capacity"] for r in moved], "o-", label="blow count")
+    unfinished = [r for r in moved if not r["finished"]]
+    if unfinished:
+        ax.plot([r["blows_per_250mm"] for r in unfinished], [mn * r["capacity"] for r in unfinished], "x",
+                color="tab:red", label="pile not yet at rest")
+    if refused:
+        right = max([r["blows_per_250mm"] for r in moved], default=1.0)
+        ax.plot([right] * len(refused), [mn * r["capacity"] for r in refused], ">", color="tab:gray",
+                label="refusal (set 0)")
+    ax.set_xlabel("blows per 250 mm")
+    ax.set_ylabel("static capacity (MN)")
+    ax.set_title("Bearing graph")
+    ax.set_xlim(left=0)
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    ok = [r for r in rows if math.isfinite(r["max_compression"])]
+    ax2.plot([mn * r["max_compression"] for r in ok], [mn * r["capacity"] for r in ok], "o-", label="max compression")
+    ax2.plot([mn * r["max_tension"] for r in ok], [mn * r["capacity"] for r in ok], "s--", label="max tension")
+    ax2.set_xlabel("stress in the pile (MPa)")
+    ax2.set_title("Driving stresses")
+    ax2.grid(True, alpha=0.3)
+    ax2.legend()
+    written = []
+    for fmt in formats:
+        fig.savefig(d / f"bearing.{fmt}", dpi=DPI)
+        written.append(d / f"bearing.{fmt}")
+    plt.close(fig)
+    return written

@@ -1,0 +1,189 @@
+#include "barimpact/study/bearing.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "barimpact/run/output.hpp"
+#include "barimpact/run/output_directory.hpp"
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// The numbers TOML reads back to the same double.
+std::string toml_number(double v) {
+  std::string text = fmt::format("{}", v);
+  if (text.find_first_of(".en") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string cell(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return fmt::format("{}", v);
+}
+
+std::string csv_quoted(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch == '\n' ? ' ' : ch);
+  return out + "\"";
+}
+
+// The blow a run directory's summary.json holds, into `row`.
+void read_blow(const fs::path& run_dir, BearingRow& row) {
+  row.set = row.blows_per_250mm = row.blows_per_m = row.max_compression = row.max_tension = row.enthru =
+      row.transfer_ratio = nan;
+  row.finished = false;
+  std::ifstream in(run_dir / "summary.json");
+  if (!in) return;
+  try {
+    const auto j = nlohmann::json::parse(in);
+    const auto& b = j.at("blow");
+    if (b.is_null()) return;
+    auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : nan; };
+    row.set = number(b.at("set"));
+    const bool refusal = row.set == 0.0;  // the hammer did not move the pile: infinite blow counts
+    row.blows_per_m = refusal ? std::numeric_limits<double>::infinity() : number(b.at("blows_per_m"));
+    row.blows_per_250mm = refusal ? std::numeric_limits<double>::infinity() : number(b.at("blows_per_250mm"));
+    row.max_compression = number(b.at("max_compression").at("value"));
+    row.max_tension = number(b.at("max_tension").at("value"));
+    row.enthru = number(b.at("enthru"));
+    row.transfer_ratio = number(b.at("transfer_ratio"));
+    row.finished = b.at("finished").get<bool>();
+  } catch (const std::exception&) {
+    row.set = nan;  // not a summary barimpact wrote whole
+  }
+}
+
+}  // namespace
+
+void parse_capacity(const std::string& text, BearingOptions& o) {
+  const auto fail = [&](const std::string& rule) { throw InputError(fmt::format("--capacity {}: {}", text, rule)); };
+  const auto a = text.find(':'), b = text.find(':', a == std::string::npos ? a : a + 1);
+  if (a == std::string::npos || b == std::string::npos) fail("expected FROM:TO:COUNT (capacities in N)");
+  try {
+    std::size_t used = 0;
+    o.from = std::stod(text.substr(0, a), &used);
+    if (used != a) fail("FROM is not a number");
+    o.to = std::stod(text.substr(a + 1, b - a - 1), &used);
+    if (used != b - a - 1) fail("TO is not a number");
+    const long long count = std::stoll(text.substr(b + 1), &used);
+    if (used != text.size() - b - 1) fail("COUNT is not an integer");
+    if (count < 1 || count > 100'000) fail("COUNT must be in [1, 100000]");
+    o.count = static_cast<int>(count);
+  } catch (const std::logic_error&) {
+    fail("expected FROM:TO:COUNT, numbers (capacities in N) and an integer");
+  }
+  if (!(std::isfinite(o.from) && std::isfinite(o.to) && o.from >= 0 && o.to >= 0))
+    fail("capacities must be finite and >= 0");
+  if (o.count == 1 && o.from != o.to) fail("one capacity needs FROM = TO (or COUNT >= 2)");
+}
+
+BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
+  const Case c = Case::from_file(case_file);
+  const bool toe = c.near_end.law == JointLaw::smith;
+  std::vector<std::string> shafts;
+  double shaft = 0.0;
+  for (const auto& b : c.bodies)
+    if (b.shaft) {
+      shafts.push_back(b.name);
+      shaft += b.shaft->ultimate;
+    }
+  if (!toe && shafts.empty())
+    throw InputError(
+        fmt::format("bearing: {} has no Smith soil to scale ([near_end] law = \"smith\" and/or a [body.shaft])",
+                    case_file.string()));
+  const double total = (toe ? c.near_end.soil.ultimate : 0.0) + shaft;
+  share_ = o.toe_share   ? *o.toe_share
+           : total > 0.0 ? (toe ? c.near_end.soil.ultimate : 0.0) / total
+                         : (toe ? 1.0 : 0.0);
+  if (!(share_ >= 0.0 && share_ <= 1.0))
+    throw InputError(fmt::format("--toe-share must be in [0, 1] (got {})", share_));
+  if (share_ > 0.0 && !toe)
+    throw InputError(fmt::format("--toe-share {} needs a toe to carry it: [near_end] law = \"smith\"", share_));
+  if (share_ < 1.0 && shafts.empty())
+    throw InputError(
+        fmt::format("--toe-share {} leaves {} to a shaft the case does not have ([body.shaft])", share_, 1.0 - share_));
+  // Each shaft keeps its part of the case's shaft capacity (equal parts if it has none).
+  std::vector<double> part;
+  for (const auto& b : c.bodies)
+    if (b.shaft) part.push_back(shaft > 0.0 ? b.shaft->ultimate / shaft : 1.0 / static_cast<double>(shafts.size()));
+  std::vector<std::vector<std::string>> axes(shafts.size() + (toe ? 1 : 0));
+  for (int i = 0; i < o.count; ++i) {
+    const double cap = o.count == 1 ? o.from : o.from + (o.to - o.from) * i / (o.count - 1);
+    capacity_.push_back(cap);
+    std::size_t k = 0;
+    if (toe) axes[k++].push_back(toml_number(share_ * cap));
+    for (double p : part) axes[k++].push_back(toml_number((1.0 - share_) * cap * p));
+  }
+  std::string text = fmt::format("case = {}\n", nlohmann::json(fs::absolute(case_file).string()).dump());
+  std::vector<std::string> keys;
+  if (toe) keys.push_back("near_end.ultimate");
+  for (const auto& name : shafts) keys.push_back(fmt::format("body.{}.shaft.ultimate", name));
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    text += fmt::format("[[axis]]\nkey = \"{}\"\nvalues = [{}]\n", keys[k], fmt::join(axes[k], ", "));
+  if (keys.size() > 1) {
+    std::vector<std::string> quoted_keys;
+    for (const auto& k : keys) quoted_keys.push_back("\"" + k + "\"");
+    text = fmt::format("zip = [[{}]]\n", fmt::join(quoted_keys, ", ")) + text;
+  }
+  sweep_ = SweepPlan::from_string(text, fmt::format("bearing of {}", case_file.string()), fs::current_path());
+}
+
+std::vector<BearingRow> run_bearing(const BearingPlan& plan, const fs::path& dir, const SweepOptions& options) {
+  const auto& points = plan.sweep().points();
+  std::vector<BearingRow> rows(points.size());
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!read_row(plan.sweep(), dir, i, rows[i].run)) todo.push_back(i);
+  for (auto& r : run_sweep(plan.sweep(), dir, todo, options)) rows[static_cast<std::size_t>(std::stoll(r.id))].run = r;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    BearingRow& row = rows[i];
+    row.capacity = plan.capacity(i);
+    row.toe = plan.toe_share() * row.capacity;
+    row.shaft = row.capacity - row.toe;
+    read_blow(dir / "runs" / points[i].id, row);
+    if (row.run.status != "complete") row.finished = false;
+  }
+  return rows;
+}
+
+std::vector<BearingRow> write_bearing(const BearingPlan& plan, const fs::path& dir, const SweepOptions& options,
+                                      bool force) {
+  prepare_output_directory(dir, "bearing", {"runs", "bearing.csv", "bearing.png", "bearing.svg"}, force);
+  std::error_code ec;
+  fs::create_directories(dir / "runs", ec);
+  if (ec) throw InputError(fmt::format("--out {}: cannot create it ({})", dir.string(), ec.message()));
+  remove_stale_staging(dir / "runs", "");  // what a killed bearing left
+  remove_stale_staging(dir, "");
+  auto rows = run_bearing(plan, dir, options);
+  replace_text(dir / "bearing.csv", bearing_csv(rows));
+  return rows;
+}
+
+std::string bearing_csv(const std::vector<BearingRow>& rows) {
+  std::string out =
+      "capacity,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru,finished,toe,shaft,"
+      "transfer_ratio,id,status,message,warnings\n";
+  for (const auto& r : rows) {
+    std::string warnings;
+    for (const auto& w : r.run.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", cell(r.capacity), cell(r.set),
+                       cell(r.blows_per_250mm), cell(r.blows_per_m), cell(r.max_compression), cell(r.max_tension),
+                       cell(r.enthru), r.finished ? "true" : "false", cell(r.toe), cell(r.shaft),
+                       cell(r.transfer_ratio), r.run.id, r.run.status, csv_quoted(r.run.message), csv_quoted(warnings));
+  }
+  return out;
+}
+
+}  // namespace barimpact
