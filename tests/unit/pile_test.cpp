@@ -242,21 +242,23 @@ namespace {
 // A blow of the example pile, both damping laws, toe and shaft: the budget
 // (soil spring energy in E_obstacle; slip, damping and cushion losses in
 // D_contact) closes to the 1e-3 of the hammer's energy at every row.
-// Measured: 5e-5 (the soil and cushion forces at t_n against the centred
-// increments: second order in dt, as the penalty links').
+// Measured: 5e-5 (steel pipe) and 4e-4 (concrete, soft pile cushion): the
+// soil and cushion forces at t_n against the centred increments, second
+// order in dt as the penalty links'.
 TEST(SmithPile, BlowBudgetCloses) {
-  for (const char* law : {"smith", "viscous"}) {
-    const Case c = testing::example("pile/steel-pipe-sand.toml", {fmt::format("near_end.damping_law={}", law),
-                                                                  fmt::format("body.pile.shaft.damping_law={}", law)});
-    const RunResult r = run(c);
-    ASSERT_TRUE(r.summary.complete) << r.summary.message;
-    const double e0 = r.history.front().total();
-    double worst = 0.0;
-    for (const auto& h : r.history) worst = std::max(worst, std::abs(h.total() - e0));
-    EXPECT_LT(worst, 1e-3 * e0) << law;
-    EXPECT_GT(r.history.back().D_contact, 0.5 * e0) << "the soil and cushions take most of the blow";
-    for (const auto& h : r.history) EXPECT_GE(h.R, 0.0) << "the toe never pulls";
-  }
+  for (const char* example : {"pile/steel-pipe-sand.toml", "pile/concrete-clay.toml"})
+    for (const char* law : {"smith", "viscous"}) {
+      const Case c = testing::example(
+          example, {fmt::format("near_end.damping_law={}", law), fmt::format("body.pile.shaft.damping_law={}", law)});
+      const RunResult r = run(c);
+      ASSERT_TRUE(r.summary.complete) << r.summary.message;
+      const double e0 = r.history.front().total();
+      double worst = 0.0;
+      for (const auto& h : r.history) worst = std::max(worst, std::abs(h.total() - e0));
+      EXPECT_LT(worst, 1e-3 * e0) << law;
+      EXPECT_GT(r.history.back().D_contact, 0.5 * e0) << "the soil and cushions take most of the blow";
+      for (const auto& h : r.history) EXPECT_GE(h.R, 0.0) << "the toe never pulls";
+    }
 }
 
 }  // namespace
@@ -264,7 +266,6 @@ TEST(SmithPile, BlowBudgetCloses) {
 
 namespace barimpact {
 namespace {
-
 
 // The blow's results against what the history says, row by row (every step).
 TEST(SmithBlow, ResultsAgreeWithTheHistory) {
@@ -279,9 +280,7 @@ TEST(SmithBlow, ResultsAgreeWithTheHistory) {
   // ENTHRU: the largest running trapezoid sum of N v at the gauge.
   double e = 0.0, most = 0.0;
   for (std::size_t i = 1; i < r.history.size(); ++i) {
-    auto p = [&](std::size_t k) {
-      return column(r, "gauge.head.force", k) * column(r, "gauge.head.velocity", k);
-    };
+    auto p = [&](std::size_t k) { return column(r, "gauge.head.force", k) * column(r, "gauge.head.velocity", k); };
     e += 0.5 * (p(i - 1) + p(i)) * (r.history[i].t - r.history[i - 1].t);
     most = std::max(most, e);
   }
