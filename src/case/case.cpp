@@ -591,12 +591,7 @@ ShaftData read_shaft(Reader& r, const std::string& body, const toml::node& node,
       r.fail(s, key.str(), fmt::format("is not a shaft key (known: {})", fmt::join(known, ", ")));
   if (r.node(s, "ultimate") == nullptr) r.fail(s, "ultimate", "is required: the total static shaft capacity, in N");
   ShaftData d;
-  SoilSpring soil{0.0, d.quake, d.damping, d.damping_law};
-  soil = read_soil(r, s, soil);
-  d.ultimate = soil.ultimate;
-  d.quake = soil.quake;
-  d.damping = soil.damping;
-  d.damping_law = soil.damping_law;
+  d.soil = read_soil(r, s, d.soil);
   d.embedded = r.number(s, "embedded", length);
   if (!(d.embedded > 0 && d.embedded <= length))
     r.fail(s, "embedded", fmt::format("must lie in (0, {}], the body's length (got {})", length, d.embedded));
@@ -1006,6 +1001,12 @@ long long Case::step_count() const {
   return static_cast<long long>(std::ceil(r));
 }
 
+std::string toml_float(double v) {
+  std::string text = fmt::format("{}", v);
+  if (text.find_first_of(".en") == std::string::npos) text += ".0";  // stays a float
+  return text;
+}
+
 std::string_view to_string(FarEnd end) {
   return end == FarEnd::free ? "free" : "clamped";
 }
@@ -1043,13 +1044,6 @@ std::string_view to_string(JointLaw law) {
 }
 
 namespace {
-
-// A TOML float that reads back to the same double (fmt's shortest form).
-std::string toml_float(double v) {
-  std::string text = fmt::format("{}", v);
-  if (text.find_first_of(".en") == std::string::npos) text += ".0";  // stays a float ("inf" and "nan" cannot occur)
-  return text;
-}
 
 // A TOML basic string.
 std::string toml_string(const std::string& v) {
@@ -1111,9 +1105,9 @@ void write_body(std::string& out, const BodyData& b) {
     out += fmt::format(
         "[body.shaft]\nultimate = {}\nembedded = {}\ndistribution = {}\nquake = {}\ndamping = {}\n"
         "damping_law = {}\n\n",
-        toml_float(s->ultimate), toml_float(s->embedded),
-        s->distribution == ShaftDistribution::uniform ? "\"uniform\"" : "\"triangular\"", toml_float(s->quake),
-        toml_float(s->damping), s->damping_law == DampingLaw::smith ? "\"smith\"" : "\"viscous\"");
+        toml_float(s->soil.ultimate), toml_float(s->embedded),
+        s->distribution == ShaftDistribution::uniform ? "\"uniform\"" : "\"triangular\"", toml_float(s->soil.quake),
+        toml_float(s->soil.damping), s->soil.damping_law == DampingLaw::smith ? "\"smith\"" : "\"viscous\"");
 }
 
 }  // namespace

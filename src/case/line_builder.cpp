@@ -107,10 +107,11 @@ void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, con
 void add_shaft(Line& line, const BodyRange& r, const ShaftData& d) {
   const std::size_t n = line.nodes();
   Shaft& s = line.shaft;
-  for (auto* v : {&s.ultimate, &s.stiffness, &s.smith, &s.viscous}) v->resize(n, 0.0);  // the bodies so far
+  for (auto* v : {&s.ultimate, &s.stiffness, &s.quake, &s.smith, &s.viscous}) v->resize(n, 0.0);  // the bodies so far
   const double x0 = line.x[r.first], le = d.embedded;
   auto density = [&](double xi) {
-    return d.distribution == ShaftDistribution::uniform ? d.ultimate / le : 2.0 * d.ultimate / le * (1.0 - xi / le);
+    return d.distribution == ShaftDistribution::uniform ? d.soil.ultimate / le
+                                                        : 2.0 * d.soil.ultimate / le * (1.0 - xi / le);
   };
   const double g = 0.5 / std::sqrt(3.0);
   for (std::size_t j = r.first; j < r.last; ++j) {
@@ -126,9 +127,10 @@ void add_shaft(Line& line, const BodyRange& r, const ShaftData& d) {
   }
   for (std::size_t j = r.first; j <= r.last; ++j) {
     if (s.ultimate[j] <= 0.0) continue;
-    s.stiffness[j] = s.ultimate[j] / d.quake;
-    (d.damping_law == DampingLaw::smith ? s.smith[j] : s.viscous[j]) =
-        d.damping_law == DampingLaw::smith ? d.damping : d.damping * s.ultimate[j];
+    s.stiffness[j] = s.ultimate[j] / d.soil.quake;
+    s.quake[j] = d.soil.quake;
+    (d.soil.damping_law == DampingLaw::smith ? s.smith[j] : s.viscous[j]) =
+        d.soil.damping_law == DampingLaw::smith ? d.soil.damping : d.soil.damping * s.ultimate[j];
   }
 }
 
@@ -185,7 +187,7 @@ Line build(const Case& c) {
     const std::size_t lower_last = line.x.empty() ? 0 : line.x.size() - 1;
     if (j != nullptr && unilateral(j->law.law)) x += j->law.gap;
     add_body(line, b, i, welded, join, x);
-    if (b.shaft && b.shaft->ultimate > 0.0) add_shaft(line, line.bodies.back(), *b.shaft);
+    if (b.shaft && b.shaft->soil.ultimate > 0.0) add_shaft(line, line.bodies.back(), *b.shaft);
     if (b.kind == BodyKind::bar) x += b.length;
     if (j != nullptr && unilateral(j->law.law))
       line.links.push_back(
@@ -201,7 +203,8 @@ Line build(const Case& c) {
   line.far = end_of(c.far_end, last);
   for (const auto& g : c.gauges) line.gauges.push_back(gauge_point(line, c, g));
   if (!line.shaft.ultimate.empty())
-    for (auto* v : {&line.shaft.ultimate, &line.shaft.stiffness, &line.shaft.smith, &line.shaft.viscous})
+    for (auto* v :
+         {&line.shaft.ultimate, &line.shaft.stiffness, &line.shaft.quake, &line.shaft.smith, &line.shaft.viscous})
       v->resize(line.nodes(), 0.0);
   for (std::size_t j = 0; j < line.shaft.ultimate.size(); ++j)
     if (line.shaft.ultimate[j] > 0.0) line.shaft.nodes.push_back(j);

@@ -147,7 +147,7 @@ BlowSummary BlowMonitor::summary() const {
   b.set = std::max(0.0, b.toe_penetration - toe_quake_);
   if (toe_link_ == Link::ground && !line_.shaft.empty()) {  // no toe spring: the shaft's quake at the toe
     const std::size_t j = line_.shaft.nodes.front();
-    b.set = std::max(0.0, b.toe_penetration - line_.shaft.ultimate[j] / line_.shaft.stiffness[j]);
+    b.set = std::max(0.0, b.toe_penetration - line_.shaft.quake[j]);
   }
   return b;
 }

@@ -99,8 +99,7 @@ double largest_frequency_squared(const Case& c) {
   // Every penalty link as a spring (its stiffness while in contact).
   for (const auto& l : line.links) {
     if (l.law.rigid()) continue;
-    const double k =
-        l.law.kind == LawKind::cushion ? l.law.stiffness / (l.law.restitution * l.law.restitution) : l.law.stiffness;
+    const double k = l.law.largest_stiffness();
     if (l.a != Link::ground) K.diag[l.a] += k;
     if (l.b != Link::ground) K.diag[l.b] += k;
     if (l.a != Link::ground && l.b != Link::ground) K.off[l.a] -= k;

@@ -43,8 +43,6 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
       stretches_.push_back({j, j + 1, b.stiffness, b.viscosity, inv_m_[j], b.axial, plastic(b), soil(j)});
   }
   if (!shaft.empty()) {
-    quake_.assign(n, 0.0);
-    for (std::size_t j : shaft.nodes) quake_[j] = shaft.ultimate[j] / shaft.stiffness[j];
     slip_.assign(n, 0.0);
     soil_damping_.assign(n, 0.0);
   }
@@ -53,7 +51,7 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
 double LineCentralDifference::shaft_force(std::size_t j, const double* um, const double* u) {
   const Shaft& s = line_.shaft;
   const double w = -u[j];
-  const double slip = smith_slip(slip_[j], w, quake_[j]);
+  const double slip = smith_slip(slip_[j], w, s.quake[j]);
   slip_work_ += s.ultimate[j] * std::abs(slip - slip_[j]);
   slip_[j] = slip;
   const double rs = s.stiffness[j] * (w - slip);
@@ -100,7 +98,7 @@ void LineCentralDifference::stretch_rows(const Stretch& s, const double* __restr
   const double k = s.k, c = s.c * inv_dt, scale = dt2 * s.inv_m, axial = s.axial;
   // Smith's shaft, as shaft_force() (fused: the node's u^{n+1} is final here).
   double* __restrict slip = soil ? slip_.data() : nullptr;
-  const double* __restrict quake = soil ? quake_.data() : nullptr;
+  const double* __restrict quake = soil ? line_.shaft.quake.data() : nullptr;
   const double* __restrict ru = soil ? line_.shaft.ultimate.data() : nullptr;
   const double* __restrict ks = soil ? line_.shaft.stiffness.data() : nullptr;
   const double* __restrict js = soil ? line_.shaft.smith.data() : nullptr;
@@ -260,10 +258,7 @@ void LineCentralDifference::start() {
     // A rigid link's impulse against the mean of the rates at t = 0 and over
     // (0, dt): the Taylor step's own identity (twice the half step's share).
     if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
-    if (l.law.kind == LawKind::viscoelastic)
-      viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, cur_))) * rate;
-    if (l.law.kind == LawKind::smith)
-      contact += (force_[i] - l.law.static_force(-line_.opening(i, cur_), c_max_[i])) * rate;
+    book_link_damping(i, -line_.opening(i, cur_), rate, viscous, contact);
   }
   for (std::size_t j : line_.shaft.nodes) contact -= soil_damping_[j] * v0_[j];  // R_d dw/dt, w = -u
   work_half_ = 0.5 * dt_ * power;

@@ -167,8 +167,7 @@ void LinePaoliSchatzman::start() {
     // A rigid link's impulse against the mean of the rates at t = 0 and over
     // (0, dt), as central differences' start (the Taylor step's identity).
     if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
-    if (l.law.kind == LawKind::viscoelastic)
-      viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, cur_))) * rate;
+    book_link_damping(i, -line_.opening(i, cur_), rate, viscous, contact);
   }
   work_half_ = 0.5 * dt_ * power;
   dissipation_half_ = 0.5 * dt_ * viscous;

@@ -165,7 +165,7 @@ void LinePaper::start() {
     c_max_[i] = std::max(0.0, c);
     force_[i] = law.force(c, rate, c_max_[i]);
     add_link_force(i, force_[i], r.data());
-    if (law.kind == LawKind::viscoelastic) viscous += (force_[i] - law.stiffness * std::max(0.0, c)) * rate;
+    viscous += law.damping_part(force_[i], c, c_max_[i]) * rate;  // a viscoelastic dashpot (paper refuses Smith's soil)
   }
   Tridiagonal m = mass_;
   std::vector<HeldRow> rows = hold_rows(line_, m);

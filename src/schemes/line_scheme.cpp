@@ -172,11 +172,14 @@ void LineScheme::book_link_work(const double* um, const double* u, const double*
     const Link& l = line_.links[i];
     const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
     if (l.law.rigid()) contact += force_[i] * dcomp;
-    if (l.law.kind == LawKind::viscoelastic)
-      viscous += (force_[i] - l.law.stiffness * std::max(0.0, -line_.opening(i, u))) * dcomp;
-    if (l.law.kind == LawKind::smith)  // Smith's damping is the soil's: D_contact
-      contact += (force_[i] - l.law.static_force(-line_.opening(i, u), c_max_[i])) * dcomp;
+    book_link_damping(i, -line_.opening(i, u), dcomp, viscous, contact);
   }
+}
+
+void LineScheme::book_link_damping(std::size_t i, double c, double motion, double& viscous, double& contact) const {
+  const ContactLaw& law = line_.links[i].law;
+  const double work = law.damping_part(force_[i], c, c_max_[i]) * motion;
+  (law.kind == LawKind::smith ? contact : viscous) += work;  // Smith's damping is the soil's
 }
 
 double LineScheme::link_hysteresis() const {

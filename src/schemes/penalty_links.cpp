@@ -81,7 +81,7 @@ int PenaltyLinks::solve(const double* cbar, const double* rbar, const double* c_
   double c_scale = 0.0, p_scale = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const ContactLaw& law = laws_[i];
-    const double k = law.kind == LawKind::cushion ? law.stiffness / (law.restitution * law.restitution) : law.stiffness;
+    const double k = law.largest_stiffness();
     c_scale = std::max(c_scale, std::abs(cbar[i]));
     p_scale = std::max(p_scale, k * std::abs(cbar[i]) + law.viscosity * std::abs(rbar[i]));
   }

@@ -10,6 +10,7 @@
 
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
+#include "csv_cells.hpp"
 
 namespace barimpact {
 
@@ -18,26 +19,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-// The numbers TOML reads back to the same double.
-std::string toml_number(double v) {
-  std::string text = fmt::format("{}", v);
-  if (text.find_first_of(".en") == std::string::npos) text += ".0";
-  return text;
-}
-
-std::string cell(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return fmt::format("{}", v);
-}
-
-std::string csv_quoted(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch == '\n' ? ' ' : ch);
-  return out + "\"";
-}
 
 // The blow a run directory's summary.json holds, into `row`.
 void read_blow(const fs::path& run_dir, BearingRow& row) {
@@ -97,7 +78,7 @@ BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
   for (const auto& b : c.bodies)
     if (b.shaft) {
       shafts.push_back(b.name);
-      shaft += b.shaft->ultimate;
+      shaft += b.shaft->soil.ultimate;
     }
   if (!toe && shafts.empty())
     throw InputError(
@@ -117,14 +98,15 @@ BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
   // Each shaft keeps its part of the case's shaft capacity (equal parts if it has none).
   std::vector<double> part;
   for (const auto& b : c.bodies)
-    if (b.shaft) part.push_back(shaft > 0.0 ? b.shaft->ultimate / shaft : 1.0 / static_cast<double>(shafts.size()));
+    if (b.shaft)
+      part.push_back(shaft > 0.0 ? b.shaft->soil.ultimate / shaft : 1.0 / static_cast<double>(shafts.size()));
   std::vector<std::vector<std::string>> axes(shafts.size() + (toe ? 1 : 0));
   for (int i = 0; i < o.count; ++i) {
     const double cap = o.count == 1 ? o.from : o.from + (o.to - o.from) * i / (o.count - 1);
     capacity_.push_back(cap);
     std::size_t k = 0;
-    if (toe) axes[k++].push_back(toml_number(share_ * cap));
-    for (double p : part) axes[k++].push_back(toml_number((1.0 - share_) * cap * p));
+    if (toe) axes[k++].push_back(toml_float(share_ * cap));
+    for (double p : part) axes[k++].push_back(toml_float((1.0 - share_) * cap * p));
   }
   std::string text = fmt::format("case = {}\n", nlohmann::json(fs::absolute(case_file).string()).dump());
   std::vector<std::string> keys;
@@ -178,10 +160,12 @@ std::string bearing_csv(const std::vector<BearingRow>& rows) {
   for (const auto& r : rows) {
     std::string warnings;
     for (const auto& w : r.run.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
-    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", cell(r.capacity), cell(r.set),
-                       cell(r.blows_per_250mm), cell(r.blows_per_m), cell(r.max_compression), cell(r.max_tension),
-                       cell(r.enthru), r.finished ? "true" : "false", cell(r.toe), cell(r.shaft),
-                       cell(r.transfer_ratio), r.run.id, r.run.status, csv_quoted(r.run.message), csv_quoted(warnings));
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", detail::csv_number(r.capacity),
+                       detail::csv_number(r.set), detail::csv_number(r.blows_per_250mm),
+                       detail::csv_number(r.blows_per_m), detail::csv_number(r.max_compression),
+                       detail::csv_number(r.max_tension), detail::csv_number(r.enthru), r.finished ? "true" : "false",
+                       detail::csv_number(r.toe), detail::csv_number(r.shaft), detail::csv_number(r.transfer_ratio),
+                       r.run.id, r.run.status, detail::csv_text(r.run.message), detail::csv_text(warnings));
   }
   return out;
 }

@@ -1,5 +1,7 @@
 #include "barimpact/study/sweep.hpp"
 
+#include "csv_cells.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -315,14 +317,8 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
 }
 
 namespace {
-std::string cell(double v) {
-  return std::isfinite(v) ? fmt::format("{}", v) : std::string("nan");
-}
-std::string quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return out + "\"";
-}
+using detail::csv_number;
+using detail::csv_text;
 }  // namespace
 
 std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) {
@@ -338,13 +334,13 @@ std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) 
     out += r.id;
     for (const auto& v : r.values) {
       out += ',';
-      out += quoted(v);
+      out += csv_text(v);
     }
     const std::string warnings = join_warnings(r.warnings);
-    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, cell(r.t_end), r.contacts,
-                       cell(r.first_contact), cell(r.lift_off), cell(r.rebound_velocity), cell(r.max_penetration),
-                       cell(r.max_reaction), cell(r.energy_error_relative), cell(r.run_seconds), quoted(r.message),
-                       quoted(warnings));
+    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, csv_number(r.t_end),
+                       r.contacts, csv_number(r.first_contact), csv_number(r.lift_off), csv_number(r.rebound_velocity),
+                       csv_number(r.max_penetration), csv_number(r.max_reaction), csv_number(r.energy_error_relative),
+                       csv_number(r.run_seconds), csv_text(r.message), csv_text(warnings));
   }
   return out;
 }

@@ -52,12 +52,11 @@ enum class ShaftDistribution {
 /// the distribution), each node elastic-perfectly-plastic with quake q and
 /// damping J in both directions.
 struct ShaftData {
-  double ultimate = 0.0;   ///< total static shaft capacity, N
+  /// R_u the total static shaft capacity (N), q (m, default Smith's 0.1 in),
+  /// J_side (s/m, default Smith's 0.05 s/ft) and the damping law.
+  SoilSpring soil{0.0, 0.00254, 0.164, DampingLaw::smith};
   double embedded = -1.0;  ///< length in the soil from the body's near end (< 0: all of it)
   ShaftDistribution distribution = ShaftDistribution::uniform;
-  double quake = 0.00254;  ///< q, m (Smith's 0.1 in)
-  double damping = 0.164;  ///< J_side, s/m (Smith's 0.05 s/ft)
-  DampingLaw damping_law = DampingLaw::smith;
 };
 
 struct BodyData {
@@ -191,6 +190,9 @@ struct Case {
 /// The whole of an input file (`what`: "case file", "sweep file"); empty is
 /// fine. Throws InputError when it cannot be read or exceeds 64 MiB.
 [[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what);
+
+/// A finite double as a TOML float that reads back to the same double (fmt's shortest form).
+[[nodiscard]] std::string toml_float(double v);
 
 [[nodiscard]] std::string_view to_string(FarEnd end);
 [[nodiscard]] std::string_view to_string(BodyKind kind);

@@ -94,6 +94,11 @@ struct ContactLaw {
     if (kind == LawKind::viscoelastic) return stiffness * c;
     return force(c, 0.0, c_max);
   }
+  /// What of the force p at compression c is damping (a viscoelastic law's
+  /// dashpot, Smith's soil damping): p less the static part; 0 for the others.
+  [[nodiscard]] double damping_part(double p, double c, double c_max) const {
+    return kind == LawKind::viscoelastic || kind == LawKind::smith ? p - static_force(c, c_max) : 0.0;
+  }
   /// The largest dashpot coefficient the law can show (l, or J R_u), for stable steps.
   [[nodiscard]] double largest_viscosity() const {
     return kind == LawKind::smith ? soil.damping * soil.ultimate : kind == LawKind::viscoelastic ? viscosity : 0.0;

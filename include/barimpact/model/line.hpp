@@ -92,6 +92,7 @@ struct GaugePoint {
 struct Shaft {
   std::vector<double> ultimate;    ///< R_u per node (0: no soil there)
   std::vector<double> stiffness;   ///< k = R_u / q
+  std::vector<double> quake;       ///< q
   std::vector<double> smith;       ///< J (Smith's damping) or 0
   std::vector<double> viscous;     ///< J R_u (viscous damping) or 0
   std::vector<std::size_t> nodes;  ///< the nodes with soil, ascending

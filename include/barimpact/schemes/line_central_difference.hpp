@@ -104,9 +104,9 @@ class LineCentralDifference final : public LineScheme {
   std::vector<double> k_, c_, inv_m_, m_;  // per bond; per node
   std::vector<double> r_, rigid_;          // forces at the level; rigid links' impulse forces
   PlasticBonds plastic_;                   // the elastic-plastic elements' state (none: every body elastic)
-  // Smith's shaft: per node its quake, slip s^n and damping force at t_n; the
+  // Smith's shaft: per node its slip s^n and damping force at t_n; the
   // special nodes in the soil; the slip's work so far, the damping's this level.
-  std::vector<double> quake_, slip_, soil_damping_;
+  std::vector<double> slip_, soil_damping_;
   std::vector<std::size_t> special_soil_;
   double slip_work_ = 0.0, soil_damping_work_ = 0.0;
   std::array<std::vector<double>, 3> levels_;

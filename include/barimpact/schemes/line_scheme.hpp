@@ -143,6 +143,10 @@ class LineScheme : public Scheme {
   /// Energy stored in the penalty links at u, and what their hysteresis dissipated.
   [[nodiscard]] double link_energy(const double* u) const;
   [[nodiscard]] double link_hysteresis() const;
+  /// Link i's damping force at compression c (force_[i] less its static
+  /// part) times `motion`, a rate or an increment: a viscoelastic dashpot's
+  /// into `viscous` (D_visc), Smith's soil damping into `contact` (D_contact).
+  void book_link_damping(std::size_t i, double c, double motion, double& viscous, double& contact) const;
   /// A three-level scheme's level-m link terms, each link's force at t_m
   /// tested with (c^{m+1} - c^{m-1}) / 2: a rigid link's into `contact`
   /// (D_contact), a viscoelastic link's beyond its spring into `viscous`.
