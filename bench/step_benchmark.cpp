@@ -7,6 +7,9 @@
 //       --benchmark_enable_random_interleaving=true   (or: make bench)
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include <fmt/format.h>
 
 #include <utility>
@@ -492,6 +495,64 @@ BENCHMARK(BM_BarePaoliSchatzman)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareMassRedistribution)->RangeMultiplier(10)->Range(100, 1'000'000);
 
 namespace {
+// A pile of M elements driven into Smith's soil (central differences, dt
+// the line's "auto" step): `soil` puts a side spring on every node and a
+// Smith toe (the pile moving into the soil at 1 m/s, so that the springs
+// load and slip), else the same pile with a free toe and no soil.
+void BM_PileStep(benchmark::State& state, bool soil) {
+  const long long M = state.range(0);
+  std::string text = fmt::format(
+      "[[body]]\nname = \"pile\"\nlength = 20.0\nelements = {}\narea = 0.01\nmodulus = 210e9\ndensity = 7850.0\n"
+      "velocity = -1.0\n",
+      M);
+  if (soil)
+    text +=
+        "[body.shaft]\nultimate = 1e6\nquake = 0.0025\ndamping = 0.16\n[near_end]\nlaw = \"smith\"\n"
+        "ultimate = 1e6\nquake = 0.0025\ndamping = 0.5\n";
+  text += "[time]\nend = 1.0\nstep = \"auto\"\nscheme = \"central-difference\"\n";
+  time_steps(state, barimpact::Case::from_string(text));
+}
+
+// The bare loop of a pile in Smith's soil: one fused pass of the lumped
+// stencil and every node's side spring (slip, static force, Smith damping
+// from the backward rate, the slip's and the damping's work), the arithmetic
+// LineCentralDifference's stretch does.
+void BM_BareSmithPile(benchmark::State& state) {
+  const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1, l = n - 1;
+  const double h = 1.0 / static_cast<double>(n - 1), dt = h / 2, dt2 = dt * dt, inv_dt = 1.0 / dt;
+  const double kd = 2.0 / h, ko = -1.0 / h, inv_m = 1.0 / h;
+  std::vector<double> a(n, 0.0), b(n, -dt), c(n, 0.0), slip(n, 0.0), ru(n, 1e-3), ks(n, 0.4), q(n, 2.5e-3), js(n, 0.16);
+  double *um = a.data(), *u = b.data(), *up = c.data();
+  double slip_work = 0.0, damping_work = 0.0;
+  for (auto _ : state) {
+    const double* __restrict pu = u;
+    const double* __restrict pm = um;
+    double* __restrict pn = up;
+    double* __restrict ps = slip.data();
+    double sw = 0.0, dw = 0.0;
+    for (std::size_t j = 1; j < l; ++j) {
+      double r = -(kd * pu[j] + ko * (pu[j - 1] + pu[j + 1]));
+      const double w = -pu[j];
+      const double sj = std::min(std::max(ps[j], w - q[j]), w + q[j]);
+      sw += ru[j] * std::abs(sj - ps[j]);
+      ps[j] = sj;
+      const double rs = ks[j] * (w - sj), rd = js[j] * std::abs(rs) * (pm[j] - pu[j]) * inv_dt;
+      r += rs + rd;
+      pn[j] = 2.0 * pu[j] - pm[j] + dt2 * inv_m * r;
+      dw += rd * 0.5 * (pm[j] - pn[j]);
+    }
+    pn[0] = 2.0 * pu[0] - pm[0] + dt2 * (-(0.5 * kd * pu[0] + ko * pu[1]) * 2.0 * inv_m);
+    pn[l] = 2.0 * pu[l] - pm[l] + dt2 * (-(0.5 * kd * pu[l] + ko * pu[l - 1]) * 2.0 * inv_m);
+    slip_work += sw;
+    damping_work += dw;
+    rotate_levels(um, u, up);
+    benchmark::DoNotOptimize(u);
+    benchmark::DoNotOptimize(slip_work);
+    benchmark::DoNotOptimize(damping_work);
+  }
+  per_node_step(state, n);
+}
+
 const bool registered = [] {
   for (auto [scheme, rigid] :
        {std::pair{"paper", false}, std::pair{"newmark", false}, std::pair{"central-difference", false},
@@ -515,6 +576,11 @@ const bool registered = [] {
           ->RangeMultiplier(10)
           ->Range(100, 1'000'000);
     }
+  for (bool soil : {false, true})
+    benchmark::RegisterBenchmark(soil ? "BM_Pile/smith-soil" : "BM_Pile/no-soil", BM_PileStep, soil)
+        ->RangeMultiplier(10)
+        ->Range(100, 100'000);
+  benchmark::RegisterBenchmark("BM_BareSmithPile", BM_BareSmithPile)->RangeMultiplier(10)->Range(100, 100'000);
   for (const char* scheme : {"moreau-jean", "paoli-schatzman", "mass-redistribution"}) {
     for (bool active : {false, true}) {
       const std::string name = fmt::format("BM_RigidLine/{}/{}", scheme, active ? "active" : "idle");
