@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace barimpact {
 
 namespace {
@@ -72,7 +74,8 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   std::vector<double> delassus(links * links, 0.0);
   std::vector<ContactLaw> laws;
   for (std::size_t i = 0; i < links; ++i) {
-    laws.push_back(line_.links[i].law);
+    // Smith's toe is soil_'s: in the active set it is a law that never pushes.
+    laws.push_back(line_.links[i].law.kind == LawKind::smith ? ContactLaw{} : line_.links[i].law);
     for (std::size_t j = 0; j < links; ++j)
       delassus[i * links + j] = line_.opening(i, response[j].data()) - line_.links[i].gap;
   }
@@ -80,6 +83,14 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
   for (auto* x : {&p_old_, &c_old_, &c_free_, &rate_free_, &a_free_last_}) x->assign(links, 0.0);
   set_plastic(a, held_, beta_ * dt_ * dt_, u_);  // a load at t_{n+1} moves u^{n+1} by beta dt^2 A^{-1}
+  soil_ = SoilIteration(line_, a, held_, beta_ * dt_ * dt_, gamma_ / (beta_ * dt_));  // and v^{n+1} by gamma dt A^{-1}
+  if (soil_.active()) {  // line_scheme_misfit refuses elastic-plastic bodies with it: snapshot_ is the soil's
+    soil_load_.assign(n, 0.0);
+    for (auto* x : {&u_, &v_, &acc_, &load_, &load_old_, &p_old_, &c_old_, &force_, &c_max_}) snapshot_.keep(*x);
+    for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_, &near_force_, &far_force_})
+      snapshot_.keep(*x);
+    snapshot_.keep(penalty_.branches());
+  }
   if (plastic_iteration_.active()) {
     for (auto* x : {&v_, &acc_, &load_old_, &p_old_, &c_old_}) snapshot_.keep(*x);
     for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_}) snapshot_.keep(*x);
@@ -140,6 +151,7 @@ double LineNewmark::support(std::size_t j, double t) const {
     return s;
   };
   double s = row(mass_, acc_) + row(visc_, v_) + row(stiff_, u_) - (load_zero_ ? 0.0 : load_[j]);
+  if (soil_.active()) s -= soil_.load_on(j);
   for (std::size_t i = 0; i < line_.links.size(); ++i) {
     if (line_.links[i].a == j) s += force_[i];
     if (line_.links[i].b == j) s -= force_[i];
@@ -165,6 +177,10 @@ void LineNewmark::start() {
     c_max_[i] = std::max(0.0, c);
     force_[i] = law.rigid() ? 0.0 : law.force(c, -(line_.opening(i, v_.data()) - line_.links[i].gap), c_max_[i]);
     add_link_force(i, force_[i], acc_.data());
+  }
+  if (soil_.active()) {
+    soil_.start(u_.data(), v_.data());
+    soil_.add_start_forces(acc_.data());
   }
   std::vector<char> held(n, 0);
   for (std::size_t j : held_) held[j] = 1;
@@ -230,7 +246,9 @@ void LineNewmark::solve_links() {
 // right-hand side and first sweep; the links; away from x = 0, the back
 // substitution with a, u, v and the budget's sums.
 void LineNewmark::advance() {
-  if (plastic_iteration_.active())
+  if (soil_.active())
+    advance_soil();
+  else if (plastic_iteration_.active())
     advance_plastic([this] { advance_elastic(); }, u_);
   else
     advance_elastic();
@@ -240,7 +258,16 @@ void LineNewmark::advance_elastic() {
   const double t = static_cast<double>(n_ + 1) * dt_;
   load_at(t);
   const bool loaded = !load_zero_;
-  if (loaded)
+  sweep_load_ = load_.data();
+  if (soil_.active()) {  // the first sweep reads F^{n+1} + g^k, the budget F alone
+    if (loaded)
+      std::copy(load_.begin(), load_.end(), soil_load_.begin());
+    else
+      std::fill(soil_load_.begin(), soil_load_.end(), 0.0);
+    soil_.add_load(soil_load_.data());
+    sweep_load_ = soil_load_.data();
+  }
+  if (loaded || soil_.active())
     viscous_ ? forward<true, true>(t) : forward<true, false>(t);
   else
     viscous_ ? forward<false, true>(t) : forward<false, false>(t);
@@ -251,6 +278,30 @@ void LineNewmark::advance_elastic() {
     viscous_ ? backward<false, true>() : backward<false, false>();
   ++n_;
   book_links(t);
+}
+
+void LineNewmark::advance_soil() {
+  snapshot_.save();
+  soil_.begin_step();
+  for (int k = 1;; ++k) {
+    advance_elastic();
+    if (soil_.settled(u_.data(), v_.data())) break;
+    if (k == SoilIteration::most_iterations) {  // the run stops: finite() turns false
+      failed_ = true;
+      failed_soil_ = fmt::format(
+          "Smith's soil did not settle in {} steps (its forces still move by {:.3g} times the tolerance 1e-10 of "
+          "its capacity)",
+          k, soil_.misfit());
+      return;
+    }
+    snapshot_.restore();
+    --n_;
+  }
+  soil_.accept(snapshot_.saved(0).data(), u_.data());
+  const std::size_t toe = soil_.toe_link();
+  if (toe == Link::ground) return;
+  force_[toe] = p_old_[toe] = soil_.toe_force();
+  if (line_.links[toe].name == "near_end") near_force_ = force_[toe];
 }
 
 // Towards x = 0: u^*, v^* in place (node j - 1's one row ahead, for the
@@ -268,7 +319,7 @@ void LineNewmark::forward(double t) {
   const double* __restrict k = stiff_bond_.data();
   const double* __restrict c = visc_bond_.data();
   const double* __restrict cp = coupling_.data();
-  const double* __restrict f = load_.data();
+  const double* __restrict f = sweep_load_;
   for (int e = 0; e < 2; ++e) {  // the ends' v^n and a^n, kept for their u^{n+1} - u^n
     const std::size_t j = e == 0 ? 0 : last;
     end_old_[e][0] = v[j];
@@ -428,8 +479,17 @@ Energies LineNewmark::energies() const {
   e.work = ext_work_;
   e.dissipation = dissipation_;
   e.contact = link_hysteresis();
+  if (soil_.active()) {
+    e.obstacle += soil_.shaft_energy(u_.data());
+    e.contact += soil_.shaft_slip_work() + soil_.damping_work();
+  }
   add_plastic(e, u_.data());
   return e;
+}
+
+double LineNewmark::soil_slip_work() const {
+  const std::size_t toe = soil_.toe_link();
+  return soil_.shaft_slip_work() + (toe == Link::ground ? 0.0 : line_.links[toe].law.hysteresis(c_max_[toe]));
 }
 
 bool LineNewmark::finite() const {

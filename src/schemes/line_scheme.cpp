@@ -111,6 +111,7 @@ void LineScheme::plastic_loads() {
 
 std::string LineScheme::failure() const {
   if (!failed_) return {};
+  if (!failed_soil_.empty()) return failed_soil_;
   return fmt::format(
       "the elastic-plastic iteration did not settle in {} steps (the plastic strains still move by {:.3g} times "
       "the tolerance 1e-10 sigma_y / E)",
@@ -230,18 +231,20 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
-  // Smith's soil: central differences step it (its slip and damping explicit).
-  if (name != "central-difference") {
-    for (const auto& l : line.links)
-      if (l.law.kind == LawKind::smith)
-        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil at \"{}\" yet (scheme that can: "
-                                                "central-difference)",
-                                                name, l.name)};
-    if (!line.shaft.empty())
-      return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's shaft resistance ([body.shaft]) yet "
-                                              "(scheme that can: central-difference)",
-                                              name)};
-  }
+  // Smith's soil: central differences step it (its slip and damping
+  // explicit), newmark solves it at the new level (soil_iteration.hpp).
+  const bool soil = !line.shaft.empty() || std::any_of(line.links.begin(), line.links.end(),
+                                                       [](const Link& l) { return l.law.kind == LawKind::smith; });
+  if (soil && name != "central-difference" && name != "newmark")
+    return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil (law = \"smith\", [body.shaft]) yet "
+                                            "(schemes that can: central-difference, newmark)",
+                                            name)};
+  if (soil && name == "newmark")
+    for (std::size_t b = 0; b < line.plasticity.size(); ++b)
+      if (line.plasticity[b])
+        return LineMisfit{"scheme", fmt::format("= \"newmark\" cannot run Smith's soil beside the elastic-plastic "
+                                                "body \"{}\" yet (scheme that can: central-difference)",
+                                                line.bodies[b].name)};
   if (name == "characteristic")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])

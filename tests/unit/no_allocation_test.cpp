@@ -15,6 +15,7 @@
 #include "../support/line_parts.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/run/blow.hpp"
 #include "barimpact/run/observer.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
@@ -54,7 +55,7 @@ struct Counted {
 
 // Steps case `c` with the observers a run uses (history, fields, contact,
 // links, plastic); `each` sees the scheme after every step, inside the count.
-Counted count_loop(const Case& c, const std::function<void(const Scheme&)>& each = nullptr) {
+Counted count_loop(const Case& c, const std::function<void(const Scheme&)>& each = nullptr, Observer* extra = nullptr) {
   auto s = make_scheme(c);
   const Line line = build_line(c);
   const Probes probes(c, line);
@@ -66,12 +67,14 @@ Counted count_loop(const Case& c, const std::function<void(const Scheme&)>& each
   const std::array<Observer*, 5> observers{&history, &fields, &contact, &links, &plastic};
   const long long steps = c.step_count();
   for (auto* o : observers) o->begin(*s, steps);
+  if (extra) extra->begin(*s, steps);
   s->start();
   allocations = 0;
   counting = true;
   for (long long n = 0; n <= steps; ++n) {
     if (n > 0) s->advance();
     for (auto* o : observers) o->observe(*s);
+    if (extra) extra->observe(*s);
     if (each) each(*s);
   }
   counting = false;
@@ -284,6 +287,29 @@ TEST(TimeLoop, PlasticImplicitSchemesNeverAllocate) {
     EXPECT_EQ(r.allocations, 0) << scheme;
     EXPECT_LT(r.largest_plastic_strain, 0.0) << scheme;
     EXPECT_GT(r.plastic_work, 0.0) << scheme;
+  }
+}
+
+}  // namespace
+}  // namespace barimpact
+
+namespace barimpact {
+namespace {
+
+// A blow of the example pile (Smith's toe and shaft, two cushions) under
+// central differences and newmark (its soil iteration taking steps again),
+// with the blow's monitor beside the run's observers.
+TEST(TimeLoop, PileDrivingNeverAllocates) {
+  for (const char* scheme : {"central-difference", "newmark"}) {
+    const bool implicit = scheme == std::string("newmark");
+    const Case c = testing::example(
+        "pile/steel-pipe-sand.toml",
+        {fmt::format("time.scheme={}", scheme), implicit ? "time.step=1e-5" : "time.step=auto", "time.end=0.03"});
+    const Line line = build_line(c);
+    BlowMonitor blow(c, line);
+    const Counted r = count_loop(c, nullptr, &blow);
+    EXPECT_EQ(r.allocations, 0) << scheme;
+    EXPECT_GT(blow.summary().set, 0.0) << scheme;
   }
 }
 

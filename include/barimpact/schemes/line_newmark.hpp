@@ -30,12 +30,16 @@
 // their spring's, trapezoidal; a cushion's hysteresis is D_contact.
 // Elastic-plastic bodies: the plastic strains' load G p at t_{n+1}, found
 // by the Newton iteration of plastic_iteration.hpp around this step.
+// Smith's soil likewise: its forces at t_{n+1} a load found by the Newton
+// iteration of soil_iteration.hpp (the toe's link then has no law in the
+// active set), booked apart from W_ext.
 #pragma once
 
 #include <vector>
 
 #include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/penalty_links.hpp"
+#include "barimpact/schemes/soil_iteration.hpp"
 
 namespace barimpact {
 
@@ -49,9 +53,13 @@ class LineNewmark final : public LineScheme {
   [[nodiscard]] double velocity_at(std::size_t j) const override { return v_[j]; }
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
+  [[nodiscard]] double soil_slip_work() const override;
 
  private:
   void advance_elastic();
+  /// A step with Smith's soil: taken again from level n until the soil's
+  /// forces at t_{n+1} hold (soil_iteration.hpp).
+  void advance_soil();
   /// r = F(t) + end forces - C v - K u at every free row; held rows get `held`.
   void residual(const std::vector<double>& u, const std::vector<double>& v, double t, std::vector<double>& r);
   void build_blocks();
@@ -86,6 +94,9 @@ class LineNewmark final : public LineScheme {
   std::vector<Block> blocks_;
   std::vector<std::size_t> held_;  // nodes held by their ends
   PenaltyLinks penalty_;           // the links' laws and Delassus matrix W_ij = h_i . A^{-1} h_j
+  SoilIteration soil_;             // Smith's toe and shaft, out of penalty_
+  std::vector<double> soil_load_;  // F^{n+1} + g^k, what the first sweep reads while the soil acts
+  const double* sweep_load_ = nullptr;
   std::vector<double> u_, v_, acc_, rhs_, work_;
   std::vector<double> load_old_, p_old_, c_old_, c_free_, rate_free_, a_free_last_;
   std::vector<double> stiff_bond_, visc_bond_;  // k_j, c_j per bond

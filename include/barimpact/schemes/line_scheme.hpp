@@ -158,6 +158,7 @@ class LineScheme : public Scheme {
   StepSnapshot snapshot_;  // the level a plastic step starts from (u first)
   bool failed_ = false;    // the plastic iteration did not settle (finite() is then false)
   double failed_misfit_ = 0.0;
+  std::string failed_soil_;  // why Smith's soil's iteration did not settle (soil_iteration.hpp)
   long long n_ = 0;
   std::vector<double> load_;  // F at the current load time
   bool load_zero_ = true, load_steady_ = true;
