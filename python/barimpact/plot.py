@@ -147,6 +147,48 @@ def _line_figures(data, out, formats, written):
         _save(fig, out, name, formats, written)
 
 
+def _blow_figures(data, out, formats, written):
+    """A blow's figures: force and Z v at the gauge (the analyser's plot,
+    compression and downward velocity positive), the toe's resistance, and
+    the stress envelopes along the pile."""
+    blow = data.summary.get("blow")
+    if not blow:
+        return
+    h, t = data.history, data.history["t"]
+    gauge = blow.get("gauge")
+    if gauge and f"gauge.{gauge}.force" in h and blow.get("impedance"):
+        z = blow["impedance"]
+        fig, ax = _figure(f"Pile head ({gauge}): force and Z v (compression, downward > 0)")
+        ax.plot(t * 1e3, -h[f"gauge.{gauge}.force"] / 1e3, lw=1.1, label="F")
+        ax.plot(t * 1e3, -z * h[f"gauge.{gauge}.velocity"] / 1e3, lw=1.1, label=f"Z v, Z = {z / 1e3:.4g} kN s/m")
+        ax.set_xlabel("t (ms)")
+        ax.set_ylabel("kN")
+        ax.legend(fontsize=8)
+        _save(fig, out, "blow_head", formats, written)
+    fig, ax = _figure("Toe resistance and penetration")
+    ax.plot(t * 1e3, h["R"] / 1e3, lw=1.1, color="tab:brown", label="toe force")
+    ax.set_xlabel("t (ms)")
+    ax.set_ylabel("toe force (kN)")
+    right = ax.twinx()
+    right.plot(t * 1e3, -h["U"] * 1e3, lw=1.0, color="tab:blue", label="toe penetration")
+    if blow.get("set", 0) > 0:
+        right.axhline(blow["set"] * 1e3, color="tab:blue", lw=0.8, ls="--", label=f"set {blow['set'] * 1e3:.3g} mm")
+    right.set_ylabel("penetration (mm)")
+    lines = ax.get_legend_handles_labels(), right.get_legend_handles_labels()
+    ax.legend(lines[0][0] + lines[1][0], lines[0][1] + lines[1][1], fontsize=8)
+    _save(fig, out, "blow_toe", formats, written)
+    env = blow.get("envelope")
+    if env and env.get("x"):
+        fig, ax = _figure(f"Stress envelopes along the pile ({blow.get('pile', '')})")
+        x = np.asarray(env["x"])
+        ax.plot(np.asarray(env["compression"]) / 1e6, x, lw=1.2, label="largest compression")
+        ax.plot(np.asarray(env["tension"]) / 1e6, x, lw=1.2, label="largest tension")
+        ax.set_xlabel("stress (MPa)")
+        ax.set_ylabel("x (m, toe at 0)")
+        ax.legend(fontsize=8)
+        _save(fig, out, "blow_envelopes", formats, written)
+
+
 def _figure(title, grid=True):
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
     ax.set_title(title)
@@ -313,5 +355,6 @@ def plot(source, out=None, formats=("png", "svg")):
         top.legend(loc="best")
     _save(fig, out, "impacts", formats, written)
     _line_figures(data, out, formats, written)
+    _blow_figures(data, out, formats, written)
     mark_written(out, [Path(p).name for p in written])
     return written

@@ -83,3 +83,18 @@ def test_figures_of_a_run_are_barimpacts_and_go_with_it(tmp_path):
     p = subprocess.run([CLI, "run", *case], capture_output=True, text=True)
     assert p.returncode == 0, p.stderr
     assert not (run / "figures").exists()
+
+
+def test_a_blow_gets_the_analysers_figures(tmp_path):
+    """A pile's run: force and Z v at the head gauge, the toe, the stress
+    envelopes; the envelopes in summary.json bound the extremes."""
+    r = barimpact.run(EXAMPLES / "pile" / "steel-pipe-sand.toml")
+    blow = r.summary["blow"]
+    env = blow["envelope"]
+    assert len(env["x"]) == len(env["compression"]) == len(env["tension"]) == 100
+    assert max(env["compression"]) == blow["max_compression"]["value"]
+    assert blow["impedance"] == pytest.approx(0.0105 * (210e9 * 7850.0) ** 0.5, rel=1e-12)
+    written = [p.name for p in barimpact.plot(r, tmp_path)]
+    for name in ("blow_head", "blow_toe", "blow_envelopes"):
+        assert f"{name}.png" in written and f"{name}.svg" in written
+        assert png_size(tmp_path / f"{name}.png") == (960, 540)

@@ -51,7 +51,12 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
     const bool on_pile = g.node >= first_ && g.node < last_;
     if (c.blow.gauge.empty() ? on_pile && (!gauge_ || g.node >= gauge_->node) : g.name == c.blow.gauge) gauge_ = g;
   }
-  if (gauge_) out_.gauge = gauge_->name;
+  if (gauge_) {
+    out_.gauge = gauge_->name;
+    const Bond& b = line.bonds[std::min(gauge_->node, last_ - 1)];
+    out_.impedance = std::sqrt(b.axial * b.mass / b.h);  // E A / c
+  }
+  for (std::size_t j = first_; j < last_; ++j) out_.envelope.x.push_back(0.5 * (line.x[j] + line.x[j + 1]));
   mass_ = line.lumped_mass();
   if (line.bodies[ram].is_mass)  // its own mass, not the half elements of a bar welded to it
     mass_[ram_first_] = line.point_mass[ram_first_];
@@ -59,11 +64,17 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
 
 void BlowMonitor::begin(const Scheme& /*scheme*/, long long /*steps*/) {
   const BlowSummary fresh;
+  out_.envelope.compression.assign(out_.envelope.x.size(), 0.0);
+  out_.envelope.tension.assign(out_.envelope.x.size(), 0.0);
   const std::string pile = out_.pile, ram = out_.ram, gauge = out_.gauge;
+  const double impedance = out_.impedance;
+  BlowSummary::Envelope envelope = std::move(out_.envelope);
   out_ = fresh;
   out_.pile = pile;
   out_.ram = ram;
   out_.gauge = gauge;
+  out_.impedance = impedance;
+  out_.envelope = std::move(envelope);
   out_.max_compression.body = out_.max_tension.body = pile;
   out_.max_compression.x = out_.max_tension.x = line_.x[first_];
   power_ = energy_ = 0.0;
@@ -113,8 +124,12 @@ void BlowMonitor::watch_impact(const Scheme& s) {
 
 // The pile's elements' stress (E A eps + eta A deps/dt - E A eps_p) / A.
 void BlowMonitor::watch_stresses(const Scheme& s) {
+  double* __restrict compression = out_.envelope.compression.data();
+  double* __restrict tension = out_.envelope.tension.data();
   for (std::size_t j = first_; j < last_; ++j) {
     const double sigma = bond_tension(line_, s, j) / line_.bonds[j].area;
+    compression[j - first_] = std::max(compression[j - first_], -sigma);
+    tension[j - first_] = std::max(tension[j - first_], sigma);
     StressPeak& peak = sigma < 0.0 ? out_.max_compression : out_.max_tension;
     if (std::abs(sigma) > peak.value) {
       peak.value = std::abs(sigma);

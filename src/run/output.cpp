@@ -295,7 +295,10 @@ std::string summary_json(const Case& c, const Summary& s) {
             {"impact_velocity", b->impact_velocity},
             {"toe_penetration", b->toe_penetration},
             {"finished", b->finished},
-            {"rest_time", number_or_null(b->rest_time)}};
+            {"rest_time", number_or_null(b->rest_time)},
+            {"impedance", number_or_null(b->impedance)},
+            {"envelope",
+             {{"x", b->envelope.x}, {"compression", b->envelope.compression}, {"tension", b->envelope.tension}}}};
   }
   const double rel = s.energy_initial != 0.0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   const nlohmann::json j = {

@@ -345,6 +345,18 @@ TEST(SmithBlow, ResultsAgreeWithTheHistory) {
   }
   EXPECT_GT(b.max_tension.value, 0.0);
   EXPECT_LE(b.max_compression.x, 20.0);
+  // The envelopes: one entry per pile element, their largest the extremes,
+  // and the gauge's element's at least the gauge's stress at every row.
+  ASSERT_EQ(b.envelope.x.size(), 100u);
+  EXPECT_EQ(*std::max_element(b.envelope.compression.begin(), b.envelope.compression.end()), b.max_compression.value);
+  EXPECT_EQ(*std::max_element(b.envelope.tension.begin(), b.envelope.tension.end()), b.max_tension.value);
+  const std::size_t at_gauge = 96;  // x = 19.2 is node 96, between elements 95 and 96: its force their mean
+  EXPECT_NEAR(b.envelope.x[at_gauge], 19.3, 1e-12);
+  for (std::size_t i = 0; i < r.history.size(); ++i) {
+    const double sigma = column(r, "gauge.head.force", i) / 0.0105;
+    EXPECT_LE(-sigma, std::max(b.envelope.compression[95], b.envelope.compression[96]) * (1 + 1e-12));
+  }
+  EXPECT_NEAR(b.impedance, 0.0105 * std::sqrt(210e9 * 7850.0), 1e-9 * b.impedance);  // E A / c
   EXPECT_TRUE(b.finished);
   EXPECT_LT(b.rest_time, c.time.end);
 }

@@ -38,6 +38,12 @@ struct BlowSummary {
   double hammer_energy = 0.0;  ///< the ram's kinetic energy at impact
   bool finished = false;       ///< the pile came to rest after the last soil slip
   double rest_time = std::numeric_limits<double>::quiet_NaN();
+  double impedance = std::numeric_limits<double>::quiet_NaN();  ///< Z = A sqrt(E rho) at the gauge
+  /// The stress envelopes along the pile: per element its middle x and its
+  /// largest compression and tension (>= 0) over every step.
+  struct Envelope {
+    std::vector<double> x, compression, tension;
+  } envelope;
 
   [[nodiscard]] double blows_per_m() const { return set > 0.0 ? 1.0 / set : std::numeric_limits<double>::infinity(); }
   [[nodiscard]] double blows_per_250mm() const { return 0.25 * blows_per_m(); }
