@@ -165,6 +165,22 @@ def _blow_figures(data, out, formats, written):
         ax.set_ylabel("kN")
         ax.legend(fontsize=8)
         _save(fig, out, "blow_head", formats, written)
+    if data.case.get("near_end", {}).get("law") == "smith":
+        _toe_figure(data, blow, out, formats, written)
+    env = blow.get("envelope")
+    if env and env.get("x"):
+        fig, ax = _figure(f"Stress envelopes along the pile ({blow.get('pile', '')})")
+        x = np.asarray(env["x"])
+        ax.plot(np.asarray(env["compression"]) / 1e6, x, lw=1.2, label="largest compression")
+        ax.plot(np.asarray(env["tension"]) / 1e6, x, lw=1.2, label="largest tension")
+        ax.set_xlabel("stress (MPa)")
+        ax.set_ylabel("x (m, toe at 0)")
+        ax.legend(fontsize=8)
+        _save(fig, out, "blow_envelopes", formats, written)
+
+
+def _toe_figure(data, blow, out, formats, written):
+    h, t = data.history, data.history["t"]
     fig, ax = _figure("Toe resistance and penetration")
     ax.plot(t * 1e3, h["R"] / 1e3, lw=1.1, color="tab:brown", label="toe force")
     ax.set_xlabel("t (ms)")
@@ -177,16 +193,6 @@ def _blow_figures(data, out, formats, written):
     lines = ax.get_legend_handles_labels(), right.get_legend_handles_labels()
     ax.legend(lines[0][0] + lines[1][0], lines[0][1] + lines[1][1], fontsize=8)
     _save(fig, out, "blow_toe", formats, written)
-    env = blow.get("envelope")
-    if env and env.get("x"):
-        fig, ax = _figure(f"Stress envelopes along the pile ({blow.get('pile', '')})")
-        x = np.asarray(env["x"])
-        ax.plot(np.asarray(env["compression"]) / 1e6, x, lw=1.2, label="largest compression")
-        ax.plot(np.asarray(env["tension"]) / 1e6, x, lw=1.2, label="largest tension")
-        ax.set_xlabel("stress (MPa)")
-        ax.set_ylabel("x (m, toe at 0)")
-        ax.legend(fontsize=8)
-        _save(fig, out, "blow_envelopes", formats, written)
 
 
 def _figure(title, grid=True):

@@ -21,8 +21,8 @@ half the segment's travel time dl / c.
 
 `blow(case_file, segments, ratio)` reads an example's bodies, cushions and
 soil (bars, masses, cushion joints, a smith toe and a uniform or triangular
-shaft) and returns the set, the largest compression stress in the pile and
-the time of rest, as barimpact's `blow` names them.
+shaft) and returns the set and the largest compression stress in the pile, as
+barimpact's `blow` names them, and the time of the soil's last slip.
 """
 import math
 import tomllib
@@ -87,7 +87,7 @@ def _soil(case, pile):
 
 def blow(case_file, segments, ratio=0.5, end=None):
     """Smith's model of the case's blow with the pile in `segments` segments and
-    dt = ratio dl / c. Returns a dict: set, max_compression, rest_time."""
+    dt = ratio dl / c. Returns a dict: set, max_compression, last_slip, dt, steps."""
     with open(case_file, "rb") as f:
         case = tomllib.load(f)
     pile_body = next(b for b in case["body"] if b.get("kind", "bar") != "mass")
@@ -128,7 +128,7 @@ def blow(case_file, segments, ratio=0.5, end=None):
         f = np.where(cushion, np.clip(np.minimum(f, unloading), 0.0, None), f)
         # the shaft: D' within Q of D both ways, R = K'(D - D') plus damping
         before = plastic.copy()
-        plastic = np.clip(plastic, d - quake, d + quake)
+        plastic = np.where(ru > 0, np.clip(plastic, d - quake, d + quake), 0.0)  # weights without soil never slip
         rs = stiff * (d - plastic)
         r = rs + np.where(viscous, damp * ru * v, damp * np.abs(rs) * v)
         r = np.where(ru > 0, r, 0.0)

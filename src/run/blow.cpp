@@ -53,8 +53,8 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
   }
   if (gauge_) {
     out_.gauge = gauge_->name;
-    const Bond& b = line.bonds[std::min(gauge_->node, last_ - 1)];
-    out_.impedance = std::sqrt(b.axial * b.mass / b.h);  // E A / c
+    const Bond& b = line.bonds[std::min(gauge_->node, line.bonds.size() - 1)];  // the gauged bar's
+    out_.impedance = std::sqrt(b.axial * b.mass / b.h);                         // E A / c
   }
   for (std::size_t j = first_; j < last_; ++j) out_.envelope.x.push_back(0.5 * (line.x[j] + line.x[j + 1]));
   mass_ = line.lumped_mass();

@@ -239,6 +239,10 @@ std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
     return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil (law = \"smith\", [body.shaft]) yet "
                                             "(schemes that can: central-difference, newmark)",
                                             name)};
+  if (soil && name == "newmark" && !(c.time.beta > 0.0))
+    return LineMisfit{"beta",
+                      "= 0 (explicit newmark) cannot run Smith's soil: its iteration needs beta > 0 (or use "
+                      "scheme = \"central-difference\")"};
   if (soil && name == "newmark")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])

@@ -114,7 +114,8 @@ bool SoilIteration::settled(const double* u, const double* v) {
     trial_state_[i] = s.state;
     tangent_[i] = s.tangent;
     if (points_[i].toe && on_face(i, u[points_[i].node], v[points_[i].node])) continue;
-    worst = std::max(worst, std::abs(s.force - iterate_[i]));
+    const double d = std::abs(s.force - iterate_[i]);
+    if (!(d <= worst)) worst = d;  // a NaN stays: the iteration then fails, it does not settle
   }
   misfit_ = worst / tolerance_;
   if (worst <= tolerance_) return true;
@@ -198,11 +199,14 @@ void SoilIteration::accept(const double* u_old, const double* u) {
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const Point& p = points_[i];
     const double dw = -(u[p.node] - u_old[p.node]);
-    damping_work_ += 0.5 * (damping_[i] + trial_damping_[i]) * dw;
+    // The damping the step applied: its force less the static part (on a
+    // viscous toe's face anything between 0 and J R_u v, else G^'s to the tolerance).
+    const double applied = iterate_[i] - (trial_[i] - trial_damping_[i]);
+    damping_work_ += 0.5 * (damping_[i] + applied) * dw;
     if (!p.toe) slip_work_ += p.ultimate * std::abs(trial_state_[i] - state_[i]);
     state_[i] = trial_state_[i];
-    force_[i] = iterate_[i];  // what the step applied (within the tolerance of G^)
-    damping_[i] = trial_damping_[i];
+    force_[i] = iterate_[i];
+    damping_[i] = applied;
     if (p.toe) toe_force_ = force_[i];
   }
 }

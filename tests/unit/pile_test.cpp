@@ -176,6 +176,9 @@ TEST(SmithCase, RefusesWhatItCannotRun) {
       testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""),
                        {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
   EXPECT_NE(plastic.find("elastic-plastic body \"pile\""), std::string::npos) << plastic;
+  const std::string explicit_newmark = testing::refusal(
+      with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""), {"time.beta=0"});
+  EXPECT_NE(explicit_newmark.find("time.beta = 0"), std::string::npos) << explicit_newmark;
   EXPECT_REFUSED(with("step = \"auto\"", "step = \"fast\""), "time.step", "a number or \"auto\"");
 }
 

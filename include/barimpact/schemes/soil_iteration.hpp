@@ -41,8 +41,8 @@ class SoilIteration {
   static constexpr int most_iterations = 30;
 
   SoilIteration() = default;
-  /// The soil of `line`; `a` the scheme's matrix (rows of `held` the
-  /// identity), `c` and `r` as above.
+  /// The soil of `line`; `a` the scheme's matrix (the Newton solve makes
+  /// the rows of `held` the identity), `c` and `r` as above (r finite: beta > 0).
   SoilIteration(const Line& line, const Tridiagonal& a, const std::vector<std::size_t>& held, double c, double r);
 
   [[nodiscard]] bool active() const { return !points_.empty(); }
