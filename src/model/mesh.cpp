@@ -134,4 +134,31 @@ void Mesh::interpolate(const Expression& g, std::span<double> out) const {
   for (std::size_t j = 0; j < nodes(); ++j) out[j] = g(x(j), 0.0);
 }
 
+void solve_tangent(std::vector<double>& diag, std::vector<double>& off, const std::vector<std::size_t>& held,
+                   std::span<double> b, std::span<double> b2) {
+  const std::size_t n = diag.size();
+  const bool two = !b2.empty();
+  for (std::size_t j : held) {
+    diag[j] = 1.0;
+    b[j] = 0.0;
+    if (two) b2[j] = 0.0;
+    if (j > 0) off[j - 1] = 0.0;
+    if (j + 1 < n) off[j] = 0.0;
+  }
+  // Forward elimination, diag becoming the inverse pivots (one division a
+  // row), then back substitution.
+  diag[0] = 1.0 / diag[0];
+  for (std::size_t j = 1; j < n; ++j) {
+    const double m = off[j - 1] * diag[j - 1];
+    diag[j] = 1.0 / (diag[j] - m * off[j - 1]);
+    b[j] -= m * b[j - 1];
+    if (two) b2[j] -= m * b2[j - 1];
+  }
+  b[n - 1] *= diag[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) b[j] = (b[j] - off[j] * b[j + 1]) * diag[j];
+  if (!two) return;
+  b2[n - 1] *= diag[n - 1];
+  for (std::size_t j = n - 1; j-- > 0;) b2[j] = (b2[j] - off[j] * b2[j + 1]) * diag[j];
+}
+
 }  // namespace barimpact

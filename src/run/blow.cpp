@@ -57,26 +57,18 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
     out_.impedance = std::sqrt(b.axial * b.mass / b.h);                         // E A / c
   }
   for (std::size_t j = first_; j < last_; ++j) out_.envelope.x.push_back(0.5 * (line.x[j] + line.x[j + 1]));
+  out_.envelope.compression.assign(out_.envelope.x.size(), 0.0);
+  out_.envelope.tension.assign(out_.envelope.x.size(), 0.0);
+  out_.max_compression.body = out_.max_tension.body = out_.pile;
+  out_.max_compression.x = out_.max_tension.x = line.x[first_];
+  start_ = out_;
   mass_ = line.lumped_mass();
   if (line.bodies[ram].is_mass)  // its own mass, not the half elements of a bar welded to it
     mass_[ram_first_] = line.point_mass[ram_first_];
 }
 
 void BlowMonitor::begin(const Scheme& /*scheme*/, long long /*steps*/) {
-  const BlowSummary fresh;
-  out_.envelope.compression.assign(out_.envelope.x.size(), 0.0);
-  out_.envelope.tension.assign(out_.envelope.x.size(), 0.0);
-  const std::string pile = out_.pile, ram = out_.ram, gauge = out_.gauge;
-  const double impedance = out_.impedance;
-  BlowSummary::Envelope envelope = std::move(out_.envelope);
-  out_ = fresh;
-  out_.pile = pile;
-  out_.ram = ram;
-  out_.gauge = gauge;
-  out_.impedance = impedance;
-  out_.envelope = std::move(envelope);
-  out_.max_compression.body = out_.max_tension.body = pile;
-  out_.max_compression.x = out_.max_tension.x = line_.x[first_];
+  out_ = start_;
   power_ = energy_ = 0.0;
   impacted_ = at_rest_ = false;
   slip_ = 0.0;

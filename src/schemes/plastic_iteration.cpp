@@ -139,22 +139,7 @@ void PlasticIteration::newton(const double* u, const double* force, double scale
     }
   }
   if (!links_in_matrix_) add_links(force);
-  for (std::size_t j : held_) {
-    diag_[j] = 1.0;
-    du_[j] = 0.0;
-    if (j > 0) off_[j - 1] = 0.0;
-    if (j + 1 < n) off_[j] = 0.0;
-  }
-  // Forward elimination, diag_ becoming the inverse pivots (one division a
-  // row), then back substitution.
-  diag_[0] = 1.0 / diag_[0];
-  for (std::size_t j = 1; j < n; ++j) {
-    const double m = off_[j - 1] * diag_[j - 1];
-    diag_[j] = 1.0 / (diag_[j] - m * off_[j - 1]);
-    du_[j] -= m * du_[j - 1];
-  }
-  du_[n - 1] *= diag_[n - 1];
-  for (std::size_t j = n - 1; j-- > 0;) du_[j] = (du_[j] - off_[j] * du_[j + 1]) * diag_[j];
+  solve_tangent(diag_, off_, held_, du_);
   for (std::size_t j = 0; j < n; ++j) du_[j] += u[j];  // u^{n+1} + du
   (void)trial(du_.data(), scale);
   std::swap(pk_, trial_p_);

@@ -44,10 +44,12 @@ SoilIteration::Resistance SoilIteration::at(std::size_t i, double u, double v) c
   Resistance out;
   const double w = p.toe ? -(u + p.gap) : -u, rate = -v;
   double r = 0.0, k_el = 0.0;
+  bool in_soil = true;  // the toe below its slipped position (a side spring always)
   if (p.toe) {
     out.state = std::max(state_[i], w);
     const double slip = std::max(0.0, out.state - p.quake);
-    if (w > slip) {
+    in_soil = w > slip;
+    if (in_soil) {
       r = std::min(p.ultimate, p.stiffness * (w - slip));
       k_el = w < state_[i] || w <= p.quake ? p.stiffness : 0.0;  // below c_max, or not yet yielded
     }
@@ -58,7 +60,7 @@ SoilIteration::Resistance SoilIteration::at(std::size_t i, double u, double v) c
   }
   const double eta = p.smith > 0.0 ? p.smith * std::abs(r) : p.viscous;  // the dashpot J |R_s| or J R_u
   double d = eta * rate, dd_dw = p.smith > 0.0 ? p.smith * (r < 0.0 ? -k_el : k_el) * rate : 0.0;
-  if (p.toe && !(w > std::max(0.0, out.state - p.quake))) d = dd_dw = 0.0;  // out of the soil: no damping
+  if (!in_soil) d = dd_dw = 0.0;  // above its slipped position: no damping
   out.force = r + d;
   out.damping = d;
   out.tangent = std::max(0.0, k_el + dd_dw + r_ * eta);
@@ -140,7 +142,6 @@ bool SoilIteration::on_face(std::size_t i, double u, double v) const {
 // p - F(p) increases (with upward jumps at the face) and bisection finds
 // where it changes sign, the face included.
 void SoilIteration::newton(const double* u, const double* v) {
-  const std::size_t n = a_.size();
   std::copy(a_.diag.begin(), a_.diag.end(), diag_.begin());
   std::copy(a_.off.begin(), a_.off.end(), off_.begin());
   std::fill(du_.begin(), du_.end(), 0.0);
@@ -154,45 +155,32 @@ void SoilIteration::newton(const double* u, const double* v) {
     diag_[j] += c_ * tangent_[i];
     du_[j] += c_ * (trial_[i] - iterate_[i]);
   }
-  for (std::size_t j : held_) {
-    diag_[j] = 1.0;
-    du_[j] = toe_du_[j] = 0.0;
-    if (j > 0) off_[j - 1] = 0.0;
-    if (j + 1 < n) off_[j] = 0.0;
-  }
-  for (std::size_t j = 1; j < n; ++j) {
-    const double m = off_[j - 1] / diag_[j - 1];
-    diag_[j] -= m * off_[j - 1];
-    du_[j] -= m * du_[j - 1];
-    toe_du_[j] -= m * toe_du_[j - 1];
-  }
-  du_[n - 1] /= diag_[n - 1];
-  toe_du_[n - 1] /= diag_[n - 1];
-  for (std::size_t j = n - 1; j-- > 0;) {
-    du_[j] = (du_[j] - off_[j] * du_[j + 1]) / diag_[j];
-    toe_du_[j] = (toe_du_[j] - off_[j] * toe_du_[j + 1]) / diag_[j];
-  }
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    if (!points_[i].toe) continue;
-    const std::size_t j = points_[i].node;
-    const double g = iterate_[i];
-    auto law = [&](double p) {
-      const double du = du_[j] + toe_du_[j] * (p - g);
-      return at(i, u[j] + du, v[j] + r_ * du).force;
-    };
-    double lo = 0.0, hi = law(0.0);  // p - F(p): <= 0 at 0, >= 0 at F(0) (F is largest at 0)
-    for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
-      const double mid = 0.5 * (lo + hi);
-      (mid - law(mid) < 0.0 ? lo : hi) = mid;
-    }
-    iterate_[i] = hi;
-    for (std::size_t m = 0; m < n; ++m) du_[m] += toe_du_[m] * (hi - g);
-  }
+  solve_tangent(diag_, off_, held_, du_, toe_du_);
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (points_[i].toe) solve_toe(i, u, v);
   for (std::size_t i = 0; i < points_.size(); ++i) {
     if (points_[i].toe) continue;
     const std::size_t j = points_[i].node;
     iterate_[i] = at(i, u[j] + du_[j], v[j] + r_ * du_[j]).force;
   }
+}
+
+// The toe's force p on the step's line through it, du + toe_du (p - g^k):
+// bisection on p - F(p), <= 0 at 0 and >= 0 at F(0), where F is largest.
+void SoilIteration::solve_toe(std::size_t i, const double* u, const double* v) {
+  const std::size_t j = points_[i].node;
+  const double g = iterate_[i];
+  auto law = [&](double p) {
+    const double du = du_[j] + toe_du_[j] * (p - g);
+    return at(i, u[j] + du, v[j] + r_ * du).force;
+  };
+  double lo = 0.0, hi = law(0.0);
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (mid - law(mid) < 0.0 ? lo : hi) = mid;
+  }
+  iterate_[i] = hi;
+  for (std::size_t m = 0; m < du_.size(); ++m) du_[m] += toe_du_[m] * (hi - g);
 }
 
 void SoilIteration::accept(const double* u_old, const double* u) {

@@ -28,6 +28,13 @@ struct Tridiagonal {
   [[nodiscard]] static Tridiagonal combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b);
 };
 
+/// Solves A x = b in place by the Thomas algorithm, A symmetric tridiagonal
+/// given by `diag` and `off` (both overwritten), its rows `held` made the
+/// identity first (their b 0); `b2`, if given, a second right-hand side. The
+/// Newton tangents of the plastic and soil iterations.
+void solve_tangent(std::vector<double>& diag, std::vector<double>& off, const std::vector<std::size_t>& held,
+                   std::span<double> b, std::span<double> b2 = {});
+
 /// The factors of a symmetric positive definite tridiagonal matrix, computed
 /// once, eliminated from the far end towards x = 0 (A = U L): the first sweep
 /// runs from node n-1 to node 0, so that x_0, where the obstacle acts, is

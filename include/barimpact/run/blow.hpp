@@ -66,6 +66,7 @@ class BlowMonitor final : public Observer {
   void watch_rest(const Scheme& s);
 
   const Line& line_;
+  BlowSummary start_;  // what a run starts from: the names, the envelopes' x, nothing seen yet
   BlowSummary out_;
   std::size_t first_ = 0, last_ = 0;          // the pile's nodes
   std::size_t ram_first_ = 0, ram_last_ = 0;  // the ram's

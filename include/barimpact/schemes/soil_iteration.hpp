@@ -90,6 +90,8 @@ class SoilIteration {
   /// Point i's resistance at (u, v) of its node, from level n's state.
   [[nodiscard]] Resistance at(std::size_t i, double u, double v) const;
   void newton(const double* u, const double* v);
+  /// g^{k+1} of the toe (point i) on the step's line through it; du updated.
+  void solve_toe(std::size_t i, const double* u, const double* v);
   /// Whether the toe (point i) holds on its face at (u, v) with force g^k.
   [[nodiscard]] bool on_face(std::size_t i, double u, double v) const;
 
