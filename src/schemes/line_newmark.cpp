@@ -281,22 +281,9 @@ void LineNewmark::advance_elastic() {
 }
 
 void LineNewmark::advance_soil() {
-  snapshot_.save();
-  soil_.begin_step();
-  for (int k = 1;; ++k) {
-    advance_elastic();
-    if (soil_.settled(u_.data(), v_.data())) break;
-    if (k == SoilIteration::most_iterations) {  // the run stops: finite() turns false
-      failed_ = true;
-      failed_soil_ = fmt::format(
-          "Smith's soil did not settle in {} steps (its forces still move by {:.3g} times the tolerance 1e-10 of "
-          "its capacity)",
-          k, soil_.misfit());
-      return;
-    }
-    snapshot_.restore();
-    --n_;
-  }
+  if (!advance_soil_level(
+          soil_, [this] { advance_elastic(); }, [this] { return soil_.settled(u_.data(), v_.data()); }))
+    return;
   soil_.accept(snapshot_.saved(0).data(), u_.data());
   const std::size_t toe = soil_.toe_link();
   if (toe == Link::ground) return;

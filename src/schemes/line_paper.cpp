@@ -30,6 +30,7 @@ LinePaper::LinePaper(const Case& c, Line line)
   Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiff_);
   S = Tridiagonal::combine(1.0, S, lambda_, visc_);
   for (const auto& l : line_.links) {
+    if (l.law.kind == LawKind::smith) continue;  // soil_'s
     const double half = 0.5 * l.law.stiffness;
     if (l.a != Link::ground) S.diag[l.a] += half;
     if (l.b != Link::ground) S.diag[l.b] += half;
@@ -44,6 +45,11 @@ LinePaper::LinePaper(const Case& c, Line line)
   factor_ = TwistedTridiagonal(A);
   // A load at t_{m+1} enters with weight alpha / exp(lambda t_{m+1}): u^{m+1} moves by alpha A^{-1} g.
   set_plastic_levels(A, held_nodes(held_), alpha_);
+  // Smith's soil: Phi^m / exp(lambda t_m) moves u^{m+1} = exp(lambda t_{m+1}) z^{m+1}
+  // by exp(lambda dt) A^{-1} Phi^m, and the centred velocity by 1/(2 dt) of that.
+  const double shift = lambda_ == 0.0 ? 1.0 : std::exp(lambda_ * dt_);
+  soil_ = SoilIteration(line_, A, held_nodes(held_), shift, half_inv_dt);
+  soil_.use_levels({alpha_ / shift, 1.0 - 2.0 * alpha_, alpha_ * shift});
 
   // Link faces and force ends take forces besides the bonds': general rows.
   std::vector<unsigned char> special(n, 0);
@@ -104,8 +110,14 @@ LinePaper::LinePaper(const Case& c, Line line)
   for (auto& l : levels_) l.assign(n, 0.0);
   load_mode_ = load_zero_ ? LoadMode::zero : load_steady_ ? LoadMode::steady : LoadMode::unsteady;
   step_mode_ = load_mode_;
-  if (load_mode_ != LoadMode::zero || plastic_iteration_.active())
+  if (load_mode_ != LoadMode::zero || plastic_iteration_.active() || soil_.active())
     for (auto& f : loads_) f.assign(n, 0.0);
+  if (soil_.active()) {  // line_scheme_misfit refuses elastic-plastic bodies with it: snapshot_ is the soil's
+    for (auto* x : {&soil_rhs_, &soil_u_, &soil_old_, &soil_v_}) x->assign(n, 0.0);
+    for (auto* x : {&force_, &c_max_}) snapshot_.keep(*x);
+    for (double* x : {&near_force_, &far_force_}) snapshot_.keep(*x);
+    keep_levels();
+  }
   if (plastic_iteration_.active()) {
     plastic_ = PlasticBonds(line_, alpha_);
     if (lambda_ != 0.0)
@@ -165,7 +177,12 @@ void LinePaper::start() {
     c_max_[i] = std::max(0.0, c);
     force_[i] = law.force(c, rate, c_max_[i]);
     add_link_force(i, force_[i], r.data());
-    viscous += law.damping_part(force_[i], c, c_max_[i]) * rate;  // a viscoelastic dashpot (paper refuses Smith's soil)
+    if (law.kind != LawKind::smith)
+      viscous += law.damping_part(force_[i], c, c_max_[i]) * rate;  // soil_ books the toe's
+  }
+  if (soil_.active()) {
+    soil_.start(u0_.data(), v0_.data());
+    soil_.add_start_forces(r.data());
   }
   Tridiagonal m = mass_;
   std::vector<HeldRow> rows = hold_rows(line_, m);
@@ -190,6 +207,10 @@ void LinePaper::start() {
   for (const auto& h : rows)  // a held node moves as every step will move it, exactly
     next_[h.node] =
         h.driven ? (u0_[h.node] + dt_ * (h.near ? near_value(0.5 * dt_) : far_value(0.5 * dt_))) / scale(1) : 0.0;
+  if (soil_.active()) {
+    for (std::size_t j = 0; j < n; ++j) soil_u_[j] = scale(1) * next_[j];
+    soil_.start_levels(soil_u_.data(), v0_.data(), dt_);
+  }
   if (plastic_iteration_.active()) {
     // p^1 from the return map at u^1, its load in F(t_1); the start's share
     // of the plastic work and load work at level "-1" = u^1 - dt v0.
@@ -222,6 +243,10 @@ void LinePaper::start() {
 }
 
 void LinePaper::advance() {
+  if (soil_.active()) {
+    advance_soil();
+    return;
+  }
   if (!plastic_iteration_.active()) {
     advance_elastic();
     return;
@@ -232,6 +257,32 @@ void LinePaper::advance() {
                                                 return std::pair<const double*, double>{next_, scale(n_ + 1)};
                                               });
   if (!failed_) record_plastic(m, yielded);
+}
+
+void LinePaper::advance_soil() {
+  const bool held = advance_soil_level(
+      soil_,
+      [this] {
+        advance_elastic();
+        soil_levels();
+      },
+      [this] { return soil_.settled(soil_u_.data(), soil_v_.data()); });
+  if (held) soil_.accept(soil_old_.data(), soil_u_.data());
+}
+
+void LinePaper::soil_levels() {
+  const std::size_t n = line_.nodes();
+  const double sp = scale(n_ + 1), sm = scale(n_ - 1), inv_2dt = 0.5 / dt_;
+  for (std::size_t j = 0; j < n; ++j) {
+    soil_u_[j] = sp * next_[j];
+    soil_old_[j] = sm * prev_[j];
+    soil_v_[j] = (soil_u_[j] - soil_old_[j]) * inv_2dt;
+  }
+}
+
+double LinePaper::soil_slip_work() const {
+  const std::size_t toe = soil_.toe_link();
+  return soil_.shaft_slip_work() + (toe == Link::ground ? 0.0 : line_.links[toe].law.hysteresis(c_max_[toe]));
 }
 
 void LinePaper::displacements(long long first, const double* (&u)[3]) const {
@@ -258,8 +309,17 @@ void LinePaper::record_plastic(long long m, bool yielded) {
 void LinePaper::advance_elastic() {
   const long long m = n_ + 1;
   // The plastic strains' load makes F move (their arrays hold G p, and F if any).
-  step_mode_ = load_zero_ ? LoadMode::zero : plastic_iteration_.loading() ? LoadMode::unsteady : load_mode_;
+  step_mode_ = soil_.active()                 ? LoadMode::soil
+               : load_zero_                   ? LoadMode::zero
+               : plastic_iteration_.loading() ? LoadMode::unsteady
+                                              : load_mode_;
   prepare(m);
+  if (soil_.active()) {
+    std::fill(soil_rhs_.begin(), soil_rhs_.end(), 0.0);
+    soil_.add_load(soil_rhs_.data());
+    if (lambda_ != 0.0)
+      for (double& f : soil_rhs_) f /= scale(m);
+  }
   switch (step_mode_) {
     case LoadMode::zero:
       sweeps<LoadMode::zero>(m);
@@ -269,6 +329,9 @@ void LinePaper::advance_elastic() {
       break;
     case LoadMode::unsteady:
       sweeps<LoadMode::unsteady>(m);
+      break;
+    case LoadMode::soil:
+      sweeps<LoadMode::soil>(m);
       break;
   }
   correct(prev_);
@@ -301,6 +364,11 @@ void LinePaper::prepare(long long m) {
     const double c = -(ym / e0 + g);
     link_c_[i] = c;
     c_max_[i] = std::max(c_max_[i], c);
+    if (law.kind == LawKind::smith) {  // soil_'s force, in soil_rhs_
+      status_[i] = Status::base;
+      sigma_[i] = 0.0;
+      continue;
+    }
     const double implicit_rest = (1.0 - 2.0 * alpha_) * ym + alpha_ * yo;  // y^{m,alpha} but its z^{m+1} part
     double s = 0.5 * k * (std::abs(ym + g * e0) - g * ebar), sigma = 0.0;
     Status status = Status::base;
@@ -383,7 +451,7 @@ void LinePaper::sweeps(long long m) {
   const double* fm = nullptr;
   if constexpr (mode == LoadMode::steady) {
     f0 = loads_[0].data();
-  } else if constexpr (mode == LoadMode::unsteady) {
+  } else if constexpr (mode == LoadMode::unsteady || mode == LoadMode::soil) {
     auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
     load_into(static_cast<double>(m + 1) * dt_, newest);
     fp = newest.data();
@@ -391,14 +459,17 @@ void LinePaper::sweeps(long long m) {
     fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
   }
   const double wbar = w[0] + w[1] + w[2];
+  const double* soil = soil_rhs_.data();
   auto load = [=](std::size_t j) {
     if constexpr (mode == LoadMode::zero) {
       (void)j;
       return 0.0;
     } else if constexpr (mode == LoadMode::steady) {
       return wbar * f0[j];
-    } else {
+    } else if constexpr (mode == LoadMode::unsteady) {
       return w[0] * fp[j] + w[1] * f0[j] + w[2] * fm[j];
+    } else {
+      return w[0] * fp[j] + w[1] * f0[j] + w[2] * fm[j] + soil[j];
     }
   };
   auto stencil_row = [&](const Stencil& t, std::size_t j) {
@@ -478,7 +549,7 @@ void LinePaper::book_level(long long m) {
   if (step_mode_ == LoadMode::steady) {
     const double c = s0 * (w[0] + w[1] + w[2]);
     for (std::size_t j = 0; j < n; ++j) dw += c * loads_[0][j] * moved(j);
-  } else if (step_mode_ == LoadMode::unsteady) {
+  } else if (step_mode_ == LoadMode::unsteady || step_mode_ == LoadMode::soil) {  // F alone: soil_ books the soil
     const auto& fp = loads_[static_cast<std::size_t>((m + 1) % 3)];
     const auto& f0 = loads_[static_cast<std::size_t>(m % 3)];
     const auto& fm = loads_[static_cast<std::size_t>((m - 1) % 3)];
@@ -568,6 +639,7 @@ Energies LinePaper::energies() const {
     e.strain = 0.5 * line_.bond_form(BondKind::element, false, u0_.data(), u0_.data());
     e.obstacle += 0.5 * line_.bond_form(BondKind::spring, false, u0_.data(), u0_.data());
     if (plastic_.active()) e.strain += plastic_.strain_energy(u0_.data());
+    add_soil(e, u0_.data(), 1.0);
     return e;
   }
   double before[3], after[3];
@@ -591,7 +663,14 @@ Energies LinePaper::energies() const {
     e.work -= plastic_.load_work();
     e.plastic = plastic_.work();
   }
+  add_soil(e, cur_, scale(n_));
   return e;
+}
+
+void LinePaper::add_soil(Energies& e, const double* u_kept, double s) const {
+  if (!soil_.active()) return;
+  e.obstacle += soil_.shaft_energy(u_kept, s);
+  e.contact += soil_.shaft_slip_work() + soil_.damping_work();
 }
 
 bool LinePaper::finite() const {

@@ -232,23 +232,24 @@ double line_stable_step(const Line& line, bool consistent_mass) {
 std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
   const std::string& name = c.time.scheme;
   // Smith's soil: central differences step it (its slip and damping
-  // explicit), newmark solves it at the new level (soil_iteration.hpp).
+  // explicit), newmark and the paper's scheme solve it by Newton's
+  // iteration at the new level (soil_iteration.hpp).
   const bool soil = !line.shaft.empty() || std::any_of(line.links.begin(), line.links.end(),
                                                        [](const Link& l) { return l.law.kind == LawKind::smith; });
-  if (soil && name != "central-difference" && name != "newmark")
+  if (soil && name != "central-difference" && name != "newmark" && name != "paper")
     return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil (law = \"smith\", [body.shaft]) yet "
-                                            "(schemes that can: central-difference, newmark)",
+                                            "(schemes that can: central-difference, newmark, paper)",
                                             name)};
   if (soil && name == "newmark" && !(c.time.beta > 0.0))
     return LineMisfit{"beta",
                       "= 0 (explicit newmark) cannot run Smith's soil: its iteration needs beta > 0 (or use "
                       "scheme = \"central-difference\")"};
-  if (soil && name == "newmark")
+  if (soil && (name == "newmark" || name == "paper"))
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])
-        return LineMisfit{"scheme", fmt::format("= \"newmark\" cannot run Smith's soil beside the elastic-plastic "
+        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil beside the elastic-plastic "
                                                 "body \"{}\" yet (scheme that can: central-difference)",
-                                                line.bodies[b].name)};
+                                                name, line.bodies[b].name)};
   if (name == "characteristic")
     for (std::size_t b = 0; b < line.plasticity.size(); ++b)
       if (line.plasticity[b])

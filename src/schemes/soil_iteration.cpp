@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
 namespace barimpact {
 
 SoilIteration::SoilIteration(const Line& line, const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
@@ -26,7 +28,8 @@ SoilIteration::SoilIteration(const Line& line, const Tridiagonal& a, const std::
     capacity += shaft.ultimate[j];
   }
   tolerance_ = 1e-10 * capacity;
-  for (auto* x : {&state_, &force_, &damping_, &iterate_, &trial_, &trial_damping_, &trial_state_, &tangent_})
+  for (auto* x : {&state_, &force_, &damping_, &iterate_, &trial_, &trial_damping_, &trial_state_, &tangent_, &spring_,
+                  &spring_old_, &dashpot_, &state_reported_, &trial_spring_, &trial_dashpot_})
     x->assign(points_.size(), 0.0);
   for (auto* x : {&diag_, &du_, &toe_du_}) x->assign(a.size(), 0.0);
   off_.assign(a.off.size(), 0.0);
@@ -39,7 +42,12 @@ SoilIteration::SoilIteration(const Line& line, const Tridiagonal& a, const std::
 // dv / du = r: the spring's k while elastic, and the damping's
 // d/du (J |R_s| dw/dt) = J sign(R_s) k_el dw/dt + r J |R_s| (Smith's) or
 // r J R_u (viscous); a clipped toe has none.
-SoilIteration::Resistance SoilIteration::at(std::size_t i, double u, double v) const {
+void SoilIteration::use_levels(Levels w) {
+  levels_ = true;
+  weights_ = w;
+}
+
+SoilIteration::Resistance SoilIteration::law_at(std::size_t i, double u, double v) const {
   const Point& p = points_[i];
   Resistance out;
   const double w = p.toe ? -(u + p.gap) : -u, rate = -v;
@@ -61,6 +69,9 @@ SoilIteration::Resistance SoilIteration::at(std::size_t i, double u, double v) c
   const double eta = p.smith > 0.0 ? p.smith * std::abs(r) : p.viscous;  // the dashpot J |R_s| or J R_u
   double d = eta * rate, dd_dw = p.smith > 0.0 ? p.smith * (r < 0.0 ? -k_el : k_el) * rate : 0.0;
   if (!in_soil) d = dd_dw = 0.0;  // above its slipped position: no damping
+  out.spring = r;
+  out.dashpot = in_soil ? eta : 0.0;
+  out.stiffness = k_el;
   out.force = r + d;
   out.damping = d;
   out.tangent = std::max(0.0, k_el + dd_dw + r_ * eta);
@@ -72,19 +83,57 @@ SoilIteration::Resistance SoilIteration::at(std::size_t i, double u, double v) c
   return out;
 }
 
+// The three-level form's Phi^m at u^{m+1} = u, v = (u^{m+1} - u^{m-1}) / (2 dt):
+// the spring's R(u) and state as the law's, level m's dashpot fixed.
+SoilIteration::Resistance SoilIteration::level_at(std::size_t i, double u, double v) const {
+  Resistance out = law_at(i, u, 0.0);  // at rest: the spring alone, its tangent, state and dashpot
+  const double k_el = out.stiffness;
+  const double spring = weights_.new_level * out.spring + weights_.current * spring_[i] + weights_.old * spring_old_[i];
+  out.damping = dashpot_[i] * -v;
+  out.force = spring + out.damping;
+  out.tangent = weights_.new_level * k_el + r_ * dashpot_[i];
+  if (points_[i].toe && out.force < 0.0) {  // the toe never pulls
+    out.force = 0.0;
+    out.damping = -spring;
+    out.tangent = 0.0;
+  }
+  return out;
+}
+
 void SoilIteration::start(const double* u0, const double* v0) {
   std::fill(state_.begin(), state_.end(), 0.0);
   slip_work_ = damping_work_ = 0.0;
   toe_force_ = 0.0;
+  slip_last_ = damping_last_ = 0.0;
   for (std::size_t i = 0; i < points_.size(); ++i) {
-    const Resistance s = at(i, u0[points_[i].node], v0[points_[i].node]);
+    const Resistance s = law_at(i, u0[points_[i].node], v0[points_[i].node]);
     if (!points_[i].toe) slip_work_ += points_[i].ultimate * std::abs(s.state);
-    state_[i] = s.state;
+    state_[i] = state_reported_[i] = s.state;
     force_[i] = s.force;
     damping_[i] = s.damping;
+    spring_[i] = s.spring;
     if (points_[i].toe) toe_force_ = s.force;
   }
   begin_step();
+}
+
+void SoilIteration::start_levels(const double* u1, const double* v0, double dt) {
+  double half_step = 0.0;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const Point& p = points_[i];
+    half_step += damping_[i] * -v0[p.node];
+    const Resistance s = law_at(i, u1[p.node], 0.0);  // level 1's spring from level 0's state
+    if (!p.toe) slip_work_ += p.ultimate * std::abs(s.state - state_[i]);
+    state_[i] = s.state;
+    spring_old_[i] = spring_[i];
+    spring_[i] = s.spring;
+    dashpot_[i] = s.dashpot;
+  }
+  damping_work_ = 0.5 * dt * half_step;  // level 0's share: its forward half step, as the scheme books W_ext
+  damping_last_ = 0.0;
+  slip_last_ = 0.0;
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (!points_[i].toe) slip_last_ += points_[i].ultimate * std::abs(state_[i] - state_reported_[i]);
 }
 
 void SoilIteration::add_start_forces(double* f) const {
@@ -114,6 +163,8 @@ bool SoilIteration::settled(const double* u, const double* v) {
     trial_[i] = s.force;
     trial_damping_[i] = s.damping;
     trial_state_[i] = s.state;
+    trial_spring_[i] = s.spring;
+    trial_dashpot_[i] = s.dashpot;
     tangent_[i] = s.tangent;
     if (points_[i].toe && on_face(i, u[points_[i].node], v[points_[i].node])) continue;
     const double d = std::abs(s.force - iterate_[i]);
@@ -129,6 +180,7 @@ bool SoilIteration::settled(const double* u, const double* v) {
 // (from 0 to J R_u dc/dt): there it holds with any force between the two,
 // c = s (the viscoelastic face of penalty_links.hpp).
 bool SoilIteration::on_face(std::size_t i, double u, double v) const {
+  if (levels_) return false;  // Phi is continuous: level m's dashpot is fixed
   const Point& p = points_[i];
   const double w = -(u + p.gap), slip = std::max(0.0, std::max(state_[i], w) - p.quake);
   const double upper = std::max(0.0, -p.viscous * v);
@@ -184,6 +236,10 @@ void SoilIteration::solve_toe(std::size_t i, const double* u, const double* v) {
 }
 
 void SoilIteration::accept(const double* u_old, const double* u) {
+  if (levels_) {
+    accept_level(u_old, u);
+    return;
+  }
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const Point& p = points_[i];
     const double dw = -(u[p.node] - u_old[p.node]);
@@ -199,12 +255,44 @@ void SoilIteration::accept(const double* u_old, const double* u) {
   }
 }
 
-double SoilIteration::shaft_energy(const double* u) const {
+// Level m's damping tested as the scheme tests its forces, with
+// (w^{m+1} - w^{m-1}) / 2; level m + 1's slips and springs, its dashpots.
+void SoilIteration::accept_level(const double* u_old, const double* u) {
+  double damping = 0.0, slip = 0.0;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const Point& p = points_[i];
+    const double applied = iterate_[i] - (trial_[i] - trial_damping_[i]);  // Phi^m less its springs
+    damping += applied * -0.5 * (u[p.node] - u_old[p.node]);
+    if (!p.toe) slip += p.ultimate * std::abs(trial_state_[i] - state_[i]);
+    state_reported_[i] = state_[i];
+    state_[i] = trial_state_[i];
+    spring_old_[i] = spring_[i];
+    spring_[i] = trial_spring_[i];
+    dashpot_[i] = trial_dashpot_[i];
+    force_[i] = iterate_[i];
+    damping_[i] = applied;
+    if (p.toe) toe_force_ = force_[i];
+  }
+  damping_work_ += damping;
+  damping_last_ = damping;
+  slip_work_ += slip;
+  slip_last_ = slip;
+}
+
+std::string SoilIteration::failure() const {
+  return fmt::format(
+      "Smith's soil did not settle in {} steps (its forces still move by {:.3g} times the tolerance 1e-10 of its "
+      "capacity)",
+      most_iterations, misfit_);
+}
+
+double SoilIteration::shaft_energy(const double* u_kept, double scale) const {
+  const std::vector<double>& state = levels_ ? state_reported_ : state_;
   double e = 0.0;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const Point& p = points_[i];
     if (p.toe) continue;
-    const double x = -u[p.node] - state_[i];
+    const double x = -scale * u_kept[p.node] - state[i];
     e += 0.5 * p.stiffness * x * x;
   }
   return e;

@@ -300,7 +300,7 @@ expect_refused "--capacity" bearing "$pipe" --out "$work/refused" --capacity 1e6
 expect_refused "--toe-share" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share 2
 expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
-expect_refused "time.scheme = \"paper\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=paper --set time.step=1e-5
+expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5
 
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

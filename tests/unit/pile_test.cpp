@@ -171,11 +171,17 @@ TEST(SmithCase, RefusesWhatItCannotRun) {
   EXPECT_REFUSED(with("scheme = \"central-difference\"", "scheme = \"paper\""), "time.step", "\"auto\"",
                  "explicit schemes");
   EXPECT_REFUSED(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"moreau-jean\""),
-                 "time.scheme", "Smith", "central-difference, newmark");
+                 "time.scheme", "Smith", "central-difference, newmark, paper");
   const std::string plastic =
       testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""),
                        {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
   EXPECT_NE(plastic.find("elastic-plastic body \"pile\""), std::string::npos) << plastic;
+  const std::string plastic_paper =
+      testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"paper\""),
+                       {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
+  EXPECT_NE(plastic_paper.find("\"paper\" cannot run Smith's soil beside the elastic-plastic body \"pile\""),
+            std::string::npos)
+      << plastic_paper;
   const std::string explicit_newmark = testing::refusal(
       with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""), {"time.beta=0"});
   EXPECT_NE(explicit_newmark.find("time.beta = 0"), std::string::npos) << explicit_newmark;
@@ -210,8 +216,8 @@ double column(const RunResult& r, const std::string& name, std::size_t row) {
 // R_toe + R_shaft; pulled back, the toe leaves its slipped position (no
 // force) and the shaft holds the pile down with its whole capacity.
 TEST(SmithPile, QuasiStaticPushReachesTheStaticCapacityThroughUnloadingAndReloading) {
-  for (const char* scheme : {"central-difference", "newmark"}) {
-    const std::string step = scheme == std::string("newmark") ? "time.step=1e-4" : "time.step=auto";
+  for (const char* scheme : {"central-difference", "newmark", "paper"}) {
+    const std::string step = scheme == std::string("central-difference") ? "time.step=auto" : "time.step=1e-4";
     const Case c = case_from(std::string(pile_toml) + R"toml(
 [far_end]
 law = "velocity"
@@ -236,10 +242,13 @@ every = 100
     const std::size_t back = row_at(2.6);
     EXPECT_EQ(r.history[back].R, 0.0);
     EXPECT_NEAR(column(r, "far_end.force", back), -300e3, 1e-3 * 300e3);
-    // The budget: the soil's slip work and stored energy against the head's work.
+    // The budget: the soil's slip work and stored energy against the head's
+    // work, to 1e-7 (the paper's scheme 1e-6: measured 2e-7, its
+    // alpha-averaged springs across their kinks at dt = 1e-4).
     const double scale = r.history.back().D_contact;
     EXPECT_GT(scale, 0.0);
-    for (const auto& h : r.history) EXPECT_NEAR(h.total(), 0.0, 1e-7 * scale) << scheme << " at " << h.t;
+    const double budget = scheme == std::string("paper") ? 1e-6 : 1e-7;
+    for (const auto& h : r.history) EXPECT_NEAR(h.total(), 0.0, budget * scale) << scheme << " at " << h.t;
   }
 }
 
@@ -250,17 +259,21 @@ namespace barimpact {
 namespace {
 
 // A blow of the example pile, both damping laws, toe and shaft, under
-// central differences (its stable step) and newmark (dt = 1e-5): the budget
-// (soil spring energy in E_obstacle; slip, damping and cushion losses in
-// D_contact) closes to the issue's 1e-3 of the hammer's energy at every row.
-// Measured: central differences 5e-5 (steel pipe) and 4e-4 (concrete, soft
-// pile cushion), the soil and cushion forces at t_n against the centred
-// increments; newmark 1e-6 and 3e-6, the springs' kinks under the trapezoid.
+// central differences (its stable step), newmark and the paper's scheme
+// (dt = 1e-5): the budget (soil spring energy in E_obstacle; slip, damping
+// and cushion losses in D_contact) closes to the issue's 1e-3 of the
+// hammer's energy at every row. Measured: central differences 5e-5 (steel
+// pipe) and 4e-4 (concrete, soft pile cushion), the soil and cushion forces
+// at t_n against the centred increments; newmark 1e-6 and 3e-6, the
+// springs' kinks under the trapezoid; the paper's 2e-5, its cushions' split
+// and the soil springs' alpha-average against their energies (O(dt^2):
+// SmithBlow.PaperSchemeSolvesTheSoilAtItsLevels).
 TEST(SmithPile, BlowBudgetCloses) {
-  for (const char* scheme : {"central-difference", "newmark"})
+  for (const char* scheme : {"central-difference", "newmark", "paper"})
     for (const char* example : {"pile/steel-pipe-sand.toml", "pile/concrete-clay.toml"})
       for (const char* law : {"smith", "viscous"}) {
-        const bool implicit = scheme == std::string("newmark");
+        const bool implicit = scheme != std::string("central-difference");
+        const double tolerance = scheme == std::string("newmark") ? 1e-5 : scheme == std::string("paper") ? 1e-4 : 1e-3;
         const Case c = testing::example(
             example, {fmt::format("near_end.damping_law={}", law), fmt::format("body.pile.shaft.damping_law={}", law),
                       fmt::format("time.scheme={}", scheme), implicit ? "time.step=1e-5" : "time.step=auto"});
@@ -269,7 +282,7 @@ TEST(SmithPile, BlowBudgetCloses) {
         const double e0 = r.history.front().total();
         double worst = 0.0;
         for (const auto& h : r.history) worst = std::max(worst, std::abs(h.total() - e0));
-        EXPECT_LT(worst, (implicit ? 1e-5 : 1e-3) * e0) << scheme << " " << example << " " << law;
+        EXPECT_LT(worst, tolerance * e0) << scheme << " " << example << " " << law;
         EXPECT_GT(r.history.back().D_contact, 0.5 * e0) << "the soil and cushions take most of the blow";
         for (const auto& h : r.history) EXPECT_GE(h.R, 0.0) << "the toe never pulls";
       }
@@ -311,6 +324,39 @@ TEST(SmithBlow, NewmarkHoldsTheSoilAtTheNewLevelAndAgreesWithCentralDifferences)
   EXPECT_NEAR(b.max_compression.value, a.max_compression.value, 5e-3 * a.max_compression.value);
   EXPECT_NEAR(b.enthru, a.enthru, 5e-3 * a.enthru);
   EXPECT_TRUE(b.finished);
+}
+
+// The paper's scheme steps Smith's soil at its three levels
+// (soil_iteration.hpp's three-level form). Its blow agrees with newmark's at
+// the same mesh and step (measured: set 1e-5, max compression 6e-5, ENTHRU
+// 2e-6 relative; asserted 1e-3, both second order in dt); its budget's
+// defect is the alpha-averaged springs' and the cushions' O(dt^2), so it
+// falls by 4 when dt halves (measured 3.96 at lambda = 0 and 3.99 at lambda
+// = 20; asserted > 3.5), and the toe never pulls.
+TEST(SmithBlow, PaperSchemeSolvesTheSoilAtItsLevels) {
+  auto defect = [](const RunResult& r) {
+    const double e0 = r.history.front().total();
+    double worst = 0.0;
+    for (const auto& h : r.history) worst = std::max(worst, std::abs(h.total() - e0));
+    return worst / e0;
+  };
+  const RunResult nm = run(testing::example("pile/steel-pipe-sand.toml", {"time.scheme=newmark", "time.step=1e-5"}));
+  ASSERT_TRUE(nm.summary.blow);
+  for (const char* lambda : {"time.lambda=0", "time.lambda=20"}) {
+    const RunResult coarse =
+        run(testing::example("pile/steel-pipe-sand.toml", {"time.scheme=paper", "time.step=1e-5", lambda}));
+    const RunResult fine =
+        run(testing::example("pile/steel-pipe-sand.toml", {"time.scheme=paper", "time.step=5e-6", lambda}));
+    ASSERT_TRUE(coarse.summary.complete && fine.summary.complete) << coarse.summary.message << fine.summary.message;
+    ASSERT_TRUE(coarse.summary.blow);
+    const BlowSummary &a = *nm.summary.blow, &b = *coarse.summary.blow;
+    EXPECT_NEAR(b.set, a.set, 1e-3 * a.set) << lambda;
+    EXPECT_NEAR(b.max_compression.value, a.max_compression.value, 1e-3 * a.max_compression.value) << lambda;
+    EXPECT_NEAR(b.enthru, a.enthru, 1e-3 * a.enthru) << lambda;
+    EXPECT_TRUE(b.finished) << lambda;
+    EXPECT_GT(defect(coarse) / defect(fine), 3.5) << lambda << ": " << defect(coarse) << " then " << defect(fine);
+    for (const auto& h : coarse.history) EXPECT_GE(h.R, 0.0) << "the toe never pulls";
+  }
 }
 
 // The blow's results against what the history says, row by row (every step).

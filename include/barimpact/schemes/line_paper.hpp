@@ -64,6 +64,13 @@
 // energies of the elastic strains, D_plastic the centred plastic work,
 // W_ext without the plastic load's work. The Taylor start takes p^1 from
 // the return map at u^1.
+//
+// Smith's soil (soil_iteration.hpp's three-level form): its springs
+// alpha-averaged over the three levels as a load, its damping centred at
+// t_m with level m's dashpot; the step is taken again from level m with
+// Newton's update of the soil's force (weight exp(lambda dt), tangent
+// A + exp(lambda dt) K_soil, the links' changes of A left out) until it
+// holds. The toe's link then has no spring in S and no explicit half.
 #pragma once
 
 #include <array>
@@ -74,6 +81,7 @@
 #include "barimpact/schemes/line_rigid.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/plastic_bonds.hpp"
+#include "barimpact/schemes/soil_iteration.hpp"
 
 namespace barimpact {
 
@@ -91,9 +99,11 @@ class LinePaper final : public LineScheme {
     return plastic_.active() ? plastic_.current()[bond] : 0.0;
   }
   [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_.body_work(body); }
+  [[nodiscard]] double soil_slip_work() const override;
 
  private:
-  enum class LoadMode { zero, steady, unsteady };
+  /// `soil`: F moves, and Smith's soil's force joins it.
+  enum class LoadMode { zero, steady, unsteady, soil };
   /// How a link enters level m's step: the factored split spring alone, the
   /// viscoelastic dashpot beside it, the law clipped, a cushion unloading.
   enum class Status : unsigned char { base, pushing, clipped, unloading };
@@ -107,8 +117,13 @@ class LinePaper final : public LineScheme {
   /// The elastic step: z^{m+1} from levels m and m - 1 (m = n + 1), loads
   /// with the plastic strains' iterate.
   void advance_elastic();
-  /// Keeps the level a plastic step starts again from.
+  /// Keeps the level a plastic or soil step starts again from.
   void keep_levels();
+  /// A step with Smith's soil: taken again from level n until the soil's
+  /// force at level n holds (soil_iteration.hpp).
+  void advance_soil();
+  /// u^{m+1}, u^{m-1} and the centred velocity at t_m into soil_u_, soil_old_, soil_v_.
+  void soil_levels();
   /// Level m + 1's plastic strains into plastic_, level m's plastic work booked.
   void record_plastic(long long m, bool yielded);
   /// u at levels first, first + 1, first + 2 (z scaled into scaled_ when lambda != 0).
@@ -125,6 +140,9 @@ class LinePaper final : public LineScheme {
   void report();
   /// The half-step energies between levels a and b (z scaled by sa, sb):
   /// kinetic, strain (bar elements), springs.
+  /// The shaft's springs (E_obstacle), its slip and the soil's damping
+  /// (D_contact) at level n, u^n = s u_kept.
+  void add_soil(Energies& e, const double* u_kept, double s) const;
   void half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const;
 
   double alpha_, lambda_;
@@ -181,6 +199,9 @@ class LinePaper final : public LineScheme {
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // level n's increments
 
+  SoilIteration soil_;
+  std::vector<double> soil_rhs_;                       // Phi^m / exp(lambda t_m), the step's soil force in z-units
+  std::vector<double> soil_u_, soil_old_, soil_v_;     // u^{m+1}, u^{m-1}, (u^{m+1} - u^{m-1}) / (2 dt)
   PlasticBonds plastic_;                               // levels n - 1, n, n + 1 of the plastic strains, their work
   mutable std::array<std::vector<double>, 3> scaled_;  // u = exp(lambda t) z, when lambda != 0
 };

@@ -21,6 +21,7 @@
 #include "barimpact/model/line.hpp"
 #include "barimpact/schemes/plastic_iteration.hpp"
 #include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/soil_iteration.hpp"
 #include "barimpact/schemes/step_snapshot.hpp"
 
 namespace barimpact {
@@ -125,6 +126,27 @@ class LineScheme : public Scheme {
     plastic_iteration_.accept(one_step_plastic_ ? snapshot_.saved(0).data() : nullptr, level.first);
     since_kept_ = 1;
     return true;
+  }
+  /// One step with Smith's soil (soil_iteration.hpp): `step()` is the
+  /// scheme's step with the soil's iterate, `holds()` the soil's check at its
+  /// answer; the step is taken again from level n (snapshot_) until it holds.
+  /// False when it did not in SoilIteration::most_iterations steps: the run stops.
+  template <class Step, class Holds>
+  bool advance_soil_level(SoilIteration& soil, Step&& step, Holds&& holds) {
+    const long long n = n_;
+    snapshot_.save();
+    soil.begin_step();
+    for (int k = 1;; ++k) {
+      step();
+      if (holds()) return true;
+      if (k == SoilIteration::most_iterations) {  // finite() turns false
+        failed_ = true;
+        failed_soil_ = soil.failure();
+        return false;
+      }
+      snapshot_.restore();
+      n_ = n;
+    }
   }
   /// The schemes' loads carry G p^k while it may be nonzero (load_zero_).
   void plastic_loads();
