@@ -17,6 +17,8 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
   for (std::size_t j = 0; j < n; ++j) inv_m_[j] = line_.fixed(j) ? 0.0 : 1.0 / m_[j];
   r_.assign(n, 0.0);
   rigid_.assign(line_.links.size(), 0.0);
+  for (const End* e : {&line_.near, &line_.far})
+    held_ends_ = held_ends_ || e->kind == EndKind::clamped || e->kind == EndKind::velocity;
   for (auto& l : levels_) l.assign(n, 0.0);
   // Uniform interior nodes: both bonds the same element of one body, no point mass, not held.
   auto uniform = [&](std::size_t j) {
@@ -27,11 +29,14 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
   };
   auto plastic = [&](const Bond& b) { return b.body < line_.plasticity.size() && line_.plasticity[b.body]; };
   const Shaft& shaft = line_.shaft;
-  auto soil = [&](std::size_t j) { return !shaft.empty() && shaft.ultimate[j] > 0.0; };
+  auto soil = [&](std::size_t j) {
+    if (shaft.empty() || shaft.ultimate[j] == 0.0) return Soil::none;
+    return shaft.viscous[j] > 0.0 ? Soil::viscous : Soil::smith;
+  };
   for (std::size_t j = 0; j < n; ++j) {
     if (!uniform(j)) {
       special_.push_back(j);
-      if (soil(j)) special_soil_.push_back(j);
+      if (soil(j) != Soil::none) special_soil_.push_back(j);
       continue;
     }
     const Bond& b = line_.bonds[j];
@@ -48,19 +53,19 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
   }
 }
 
-double LineCentralDifference::shaft_force(std::size_t j, const double* um, const double* u) {
+inline double LineCentralDifference::shaft_force(std::size_t j, const double* um, const double* u) {
   const Shaft& s = line_.shaft;
   const double w = -u[j];
   const double slip = smith_slip(slip_[j], w, s.quake[j]);
   slip_work_ += s.ultimate[j] * std::abs(slip - slip_[j]);
   slip_[j] = slip;
   const double rs = s.stiffness[j] * (w - slip);
-  const double rd = (s.smith[j] * std::abs(rs) + s.viscous[j]) * (um[j] - u[j]) / dt_;
+  const double rd = (s.smith[j] * std::abs(rs) + s.viscous[j]) * (um[j] - u[j]) * inv_dt_;
   soil_damping_[j] = rd;
   return rs + rd;
 }
 
-double LineCentralDifference::row_force(const double* um, const double* u, std::size_t j) const {
+inline double LineCentralDifference::row_force(const double* um, const double* u, std::size_t j) const {
   const std::size_t n = line_.nodes();
   const double inv_dt = 1.0 / dt_;
   double r = load_zero_ ? 0.0 : load_[j];
@@ -80,22 +85,32 @@ template <bool viscous, bool loaded>
 void LineCentralDifference::uniform_rows(const double* um, const double* u, double* up) {
   const bool yielded = !plastic_.pristine();  // before the first yield every p is 0: the elastic stencil
   for (const Stretch& s : stretches_) {
-    if (s.soil)
-      s.plastic&& yielded ? stretch_rows<viscous, loaded, true, true>(s, um, u, up)
-                          : stretch_rows<viscous, loaded, false, true>(s, um, u, up);
-    else
-      s.plastic&& yielded ? stretch_rows<viscous, loaded, true, false>(s, um, u, up)
-                          : stretch_rows<viscous, loaded, false, false>(s, um, u, up);
+    const bool p = s.plastic && yielded;
+    switch (s.soil) {
+      case Soil::none:
+        p ? stretch_rows<viscous, loaded, true, Soil::none>(s, um, u, up)
+          : stretch_rows<viscous, loaded, false, Soil::none>(s, um, u, up);
+        break;
+      case Soil::smith:
+        p ? stretch_rows<viscous, loaded, true, Soil::smith>(s, um, u, up)
+          : stretch_rows<viscous, loaded, false, Soil::smith>(s, um, u, up);
+        break;
+      case Soil::viscous:
+        p ? stretch_rows<viscous, loaded, true, Soil::viscous>(s, um, u, up)
+          : stretch_rows<viscous, loaded, false, Soil::viscous>(s, um, u, up);
+        break;
+    }
   }
 }
 
-template <bool viscous, bool loaded, bool plastic, bool soil>
+template <bool viscous, bool loaded, bool plastic, LineCentralDifference::Soil soil_law>
 void LineCentralDifference::stretch_rows(const Stretch& s, const double* __restrict um, const double* __restrict u,
                                          double* __restrict up) {
-  const double dt2 = dt_ * dt_, inv_dt = 1.0 / dt_;
+  const double dt2 = dt_ * dt_, inv_dt = inv_dt_;
   const double* __restrict f = load_.data();
   const double* __restrict p = plastic ? plastic_.next() : nullptr;
   const double k = s.k, c = s.c * inv_dt, scale = dt2 * s.inv_m, axial = s.axial;
+  constexpr bool soil = soil_law != Soil::none;
   // Smith's shaft, as shaft_force() (fused: the node's u^{n+1} is final here).
   double* __restrict slip = soil ? slip_.data() : nullptr;
   const double* __restrict quake = soil ? line_.shaft.quake.data() : nullptr;
@@ -116,7 +131,8 @@ void LineCentralDifference::stretch_rows(const Stretch& s, const double* __restr
       slip_work += ru[j] * std::abs(sj - slip[j]);
       slip[j] = sj;
       const double rs = ks[j] * (w - sj);
-      rd = (js[j] * std::abs(rs) + jv[j]) * (um[j] - u[j]) * inv_dt;
+      // J |R_s| or J R_u (the other is 0 on the node: shaft_force's sum, the same bits)
+      rd = (soil_law == Soil::smith ? js[j] * std::abs(rs) : jv[j]) * (um[j] - u[j]) * inv_dt;
       r += rs + rd;
     }
     up[j] = 2.0 * u[j] - um[j] + scale * r;
@@ -172,6 +188,7 @@ void LineCentralDifference::predict(const double* um, const double* u, double* u
 }
 
 void LineCentralDifference::hold_ends(const double* u, double* up, double t) const {
+  if (!held_ends_) return;
   for (const End* e : {&line_.near, &line_.far}) {
     if (e->kind == EndKind::clamped) up[e->node] = 0.0;
     if (e->kind == EndKind::velocity)
@@ -216,10 +233,8 @@ void LineCentralDifference::end_forces(const double* um, const double* u, const 
   const bool far_held = line_.far.kind == EndKind::clamped || line_.far.kind == EndKind::velocity;
   near_support_ = near_held ? support(line_.near) : 0.0;
   far_support_ = far_held ? support(line_.far) : 0.0;
-  const bool near_link = !line_.links.empty() && line_.links.front().name == "near_end";
-  const bool far_link = !line_.links.empty() && line_.links.back().name == "far_end";
-  near_force_ = near_link ? force_.front() : line_.near.kind == EndKind::force ? near_value(t) : near_support_;
-  far_force_ = far_link ? force_.back() : line_.far.kind == EndKind::force ? -far_value(t) : -far_support_;
+  near_force_ = near_link_ ? force_.front() : line_.near.kind == EndKind::force ? near_value(t) : near_support_;
+  far_force_ = far_link_ ? force_.back() : line_.far.kind == EndKind::force ? -far_value(t) : -far_support_;
 }
 
 void LineCentralDifference::start() {

@@ -446,13 +446,11 @@ void LineNewmark::book_links(double t) {
   if (!load_zero_ && !load_steady_) load_old_ = load_;
   support_old_[0] = s_near;
   support_old_[1] = s_far;
-  const bool near_link = !line_.links.empty() && line_.links.front().name == "near_end";
-  const bool far_link = !line_.links.empty() && line_.links.back().name == "far_end";
-  near_force_ = near_link                           ? force_.front()
+  near_force_ = near_link_                          ? force_.front()
                 : line_.near.kind == EndKind::force ? near_value(t)
                 : line_.fixed(line_.near.node)      ? s_near
                                                     : 0.0;
-  far_force_ = far_link                           ? force_.back()
+  far_force_ = far_link_                          ? force_.back()
                : line_.far.kind == EndKind::force ? -far_value(t)
                : line_.fixed(line_.far.node)      ? -s_far
                                                   : 0.0;

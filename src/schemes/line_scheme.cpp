@@ -15,8 +15,10 @@
 
 namespace barimpact {
 
-LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c.time.step) {
+LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c.time.step), inv_dt_(1.0 / dt_) {
   const std::size_t n = line_.nodes(), links = line_.links.size();
+  near_link_ = !line_.links.empty() && line_.links.front().name == "near_end";
+  far_link_ = !line_.links.empty() && line_.links.back().name == "far_end";
   load_.assign(n, 0.0);
   force_.assign(links, 0.0);
   c_max_.assign(links, 0.0);
@@ -146,7 +148,7 @@ void LineScheme::add_link_force(std::size_t i, double p, double* r) const {
 }
 
 void LineScheme::penalty_forces(const double* u, const double* u_old, double* r) {
-  const double inv_dt = 1.0 / dt_;
+  const double inv_dt = inv_dt_;
   for (std::size_t i = 0; i < line_.links.size(); ++i) {
     const Link& l = line_.links[i];
     if (l.law.rigid()) {

@@ -67,6 +67,7 @@ class LineCentralDifference final : public LineScheme {
   void predict(const double* um, const double* u, double* up, double t, bool taylor);
   /// The held ends' rows of `up`.
   void hold_ends(const double* u, double* up, double t) const;
+  bool held_ends_ = false;  // an end clamped or driven at a velocity
   /// Makes every rigid link's opening at `up` >= 0; returns the impulses' forces in rigid_.
   void project(double* up, double force_scale);
   /// The support forces of held ends, the near and far forces at t_n.
@@ -90,14 +91,16 @@ class LineCentralDifference final : public LineScheme {
   // k (2u_j - u_{j-1} - u_{j+1}), the same with c, and one lumped mass.
   // Elastic-plastic stretches add the plastic strains' forces E A (p_{j-1} - p_j),
   // stretches in the soil Smith's resistance (shaft_force, fused).
+  /// A stretch's side springs: none, or Smith's J |R_s| v or the viscous J R_u v damping.
+  enum class Soil : unsigned char { none, smith, viscous };
   struct Stretch {
     std::size_t first, last;
     double k, c, inv_m;
     double axial;  // E A
     bool plastic;
-    bool soil;
+    Soil soil;
   };
-  template <bool viscous, bool loaded, bool plastic, bool soil>
+  template <bool viscous, bool loaded, bool plastic, Soil soil>
   void stretch_rows(const Stretch& s, const double* um, const double* u, double* up);
   std::vector<Stretch> stretches_;
   std::vector<std::size_t> special_;       // the nodes outside every stretch

@@ -175,7 +175,8 @@ class LineScheme : public Scheme {
   void book_link_work(const double* um, const double* u, const double* up, double& viscous, double& contact) const;
 
   Line line_;
-  double dt_;
+  double dt_, inv_dt_;
+  bool near_link_ = false, far_link_ = false;  // the first link is the near end's, the last the far end's
   PlasticIteration plastic_iteration_;
   StepSnapshot snapshot_;  // the level a plastic step starts from (u first)
   bool failed_ = false;    // the plastic iteration did not settle (finite() is then false)
