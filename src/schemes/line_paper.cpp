@@ -154,8 +154,8 @@ void LinePaper::start() {
   start_plastic(u0_.data());                                  // p^0 from u0
   if (load_mode_ != LoadMode::zero) line_.load(*body_force_, 0.0, loads_[0]);
   if (load_mode_ == LoadMode::unsteady) line_.load(*body_force_, dt_, loads_[1]);
-  if (plastic_iteration_.active() && load_mode_ == LoadMode::steady)
-    loads_[1] = loads_[2] = loads_[0];  // the levels the first yielding step reads (unsteady from then on)
+  if ((plastic_iteration_.active() || soil_.active()) && load_mode_ == LoadMode::steady)
+    loads_[1] = loads_[2] = loads_[0];  // the levels the first unsteady step reads (the plastic or soil mode's)
   if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[0].data());
   near_f_ = {near_value(0.0), near_value(dt_), 0.0};
   far_f_ = {far_value(0.0), far_value(dt_), 0.0};

@@ -129,8 +129,10 @@ void SoilIteration::start_levels(const double* u1, const double* v0, double dt) 
     spring_[i] = s.spring;
     dashpot_[i] = s.dashpot;
   }
-  damping_work_ = 0.5 * dt * half_step;  // level 0's share: its forward half step, as the scheme books W_ext
-  damping_last_ = 0.0;
+  // Level 0's share, its forward half step as the scheme books W_ext, which
+  // t = 0 does not report yet (damping_work() = sum - last / 2 = 0 there).
+  damping_work_ = 0.5 * dt * half_step;
+  damping_last_ = 2.0 * damping_work_;
   slip_last_ = 0.0;
   for (std::size_t i = 0; i < points_.size(); ++i)
     if (!points_[i].toe) slip_last_ += points_[i].ultimate * std::abs(state_[i] - state_reported_[i]);
