@@ -188,14 +188,20 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
   std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
   for (const auto& a : list) plan.keys_.push_back(a.key);
 
-  // The number of cases, refused before the product can wrap around.
-  constexpr std::size_t most = 10'000'000;
+  // The number of cases, refused before the product can wrap around. Each
+  // case is a run directory and the plan holds every case's values: past a
+  // million cases, or two million values over them, it is not a study but a
+  // machine stalled while building its list.
+  constexpr std::size_t most = 1'000'000, most_values = 2'000'000;
   std::size_t total = 1;
   for (const auto& g : groups) {
     const std::size_t size = list[g.front()].values.size();
-    if (total > most / size) throw InputError(fmt::format("{}: more than 1e7 cases", source));
+    if (total > most / size) throw InputError(fmt::format("{}: more than 1e6 cases", source));
     total *= size;
   }
+  if (total * list.size() > most_values)
+    throw InputError(fmt::format("{}: {} cases of {} axes each: more than 2e6 values in all", source, total,
+                                 list.size()));
   const int width = std::max(4, static_cast<int>(std::to_string(total - 1).size()));
   for (std::size_t n = 0; n < total; ++n) {
     SweepPoint p;
