@@ -473,8 +473,7 @@ Energies LineNewmark::energies() const {
 }
 
 double LineNewmark::soil_slip_work() const {
-  const std::size_t toe = soil_.toe_link();
-  return soil_.shaft_slip_work() + (toe == Link::ground ? 0.0 : line_.links[toe].law.hysteresis(c_max_[toe]));
+  return slip_work(soil_);
 }
 
 bool LineNewmark::finite() const {

@@ -281,8 +281,7 @@ void LinePaper::soil_levels() {
 }
 
 double LinePaper::soil_slip_work() const {
-  const std::size_t toe = soil_.toe_link();
-  return soil_.shaft_slip_work() + (toe == Link::ground ? 0.0 : line_.links[toe].law.hysteresis(c_max_[toe]));
+  return slip_work(soil_);
 }
 
 void LinePaper::displacements(long long first, const double* (&u)[3]) const {

@@ -148,6 +148,11 @@ class LineScheme : public Scheme {
       n_ = n;
     }
   }
+  /// What `soil`'s shaft and its toe's link (R_u times its slip) have slipped away up to t_n.
+  [[nodiscard]] double slip_work(const SoilIteration& soil) const {
+    const std::size_t toe = soil.toe_link();
+    return soil.shaft_slip_work() + (toe == Link::ground ? 0.0 : line_.links[toe].law.hysteresis(c_max_[toe]));
+  }
   /// The schemes' loads carry G p^k while it may be nonzero (load_zero_).
   void plastic_loads();
   /// f = the body force and gravity at t, and G p^k while the plastic strains load.
