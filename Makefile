@@ -3,7 +3,7 @@
 #   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan, then a bounded fuzzing run)
 #   make fuzz   only the fuzzing run: the input layer's libFuzzer targets (clang), FUZZ_SECONDS each
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
-            nlohmann-json3-dev libgtest-dev libbenchmark-dev \
+            nlohmann-json3-dev libkissfft-dev libgtest-dev libbenchmark-dev \
             python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest \
             libopenmpi-dev openmpi-bin python3-scipy \
             clang-14 libclang-rt-14-dev python3-hypothesis

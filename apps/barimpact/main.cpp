@@ -37,6 +37,7 @@
 #include <thread>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/schemes/scheme.hpp"
@@ -460,6 +461,40 @@ int bearing_command(const BearingArgs& a) {
   return study_exit({"cases", "bearing.csv", rows.size(), complete, stopped, warned}, a.flags);
 }
 
+// hopkinson: the analysis first (a signal it refuses writes nothing), then
+// hopkinson.csv, summary.json and the figures, moved into place together.
+int hopkinson_command(const std::string& setup_path, const std::string& out, bool no_plot, const WriteFlags& flags) {
+  const auto setup = barimpact::HopkinsonSetup::from_file(setup_path);
+  const auto result = barimpact::analyse_hopkinson(setup, barimpact::read_gauge_signal(setup.incident),
+                                                   barimpact::read_gauge_signal(setup.transmitted));
+  barimpact::RunDirectory dir(out, flags.force, "hopkinson");
+  bool plotted = false;
+  dir.commit([&](const std::filesystem::path& staging) {
+    barimpact::write_text(staging / "hopkinson.csv", barimpact::hopkinson_csv(result));
+    barimpact::write_text(staging / "summary.json", barimpact::hopkinson_summary_json(result));
+    plotted = !no_plot && run_python({"hopkinson-plot", staging.string()});
+  });
+  const auto& a = result.alignment;
+  fmt::print("hopkinson: {} rows from the incident foot at t = {:.6g} (by {}), over {:.4g}\n",
+             result.columns.front().values.size(), a.foot, a.method, a.incident.end - a.incident.start);
+  fmt::print("  peak stress (3-wave) {:.4g} at t = {:.4g}; peak strain rate (3-wave) {:.4g}\n",
+             result.peak_stress_3w.value, result.peak_stress_3w.t, result.peak_strain_rate_3w.value);
+  if (result.equilibrium_from)
+    fmt::print("  equilibrium (|2 (F_front - F_back) / (F_front + F_back)| < 0.05) from t = {:.4g}\n",
+               *result.equilibrium_from);
+  if (result.fit.modulus > 0) {
+    fmt::print("  fit (3-wave): modulus {:.4g}", result.fit.modulus);
+    if (result.fit.yield_stress) fmt::print(", yield stress (0.2% offset) {:.4g}", *result.fit.yield_stress);
+    if (result.fit.hardening_modulus) fmt::print(", hardening modulus {:.4g}", *result.fit.hardening_modulus);
+    fmt::print("\n");
+  }
+  if (!a.dispersion_note.empty()) fmt::print("  dispersion: {}\n", a.dispersion_note);
+  fmt::print("  hopkinson.csv, summary.json{} in {}\n", plotted ? " and figures" : "", dir.target().string());
+  print_warnings(result.warnings);
+  if (flags.strict && !result.warnings.empty()) return exit_warnings;
+  return 0;
+}
+
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
   // The figures' directory follows the output rule too, and is marked as
@@ -513,13 +548,15 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "bearing", "plot"};
+  const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "bearing", "hopkinson", "plot"};
   if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
-    fmt::print(stderr,
-               "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, bearing, plot; see "
-               "barimpact "
-               "--help)\n",
-               argv[1]);
+    fmt::print(
+        stderr,
+        "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, bearing, hopkinson, plot; "
+        "see "
+        "barimpact "
+        "--help)\n",
+        argv[1]);
     return exit_bad_input;
   }
   std::string exact_case, exact_out;
@@ -555,6 +592,19 @@ int main(int argc, char** argv) {
   bearing->add_option("--jobs", bearing_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
   bearing->add_flag("--no-plot", bearing_args.no_plot, "Skip bearing.png");
   add_write_flags(bearing, bearing_args.flags);
+
+  std::string hopkinson_setup, hopkinson_out;
+  WriteFlags hopkinson_flags;
+  bool hopkinson_no_plot = false;
+  auto* hopkinson = app.add_subcommand(
+      "hopkinson", "Analyse a split Hopkinson bar test's gauge signals (hopkinson.csv, summary.json, figures)");
+  hopkinson->add_option("setup", hopkinson_setup, "Setup file (TOML): bars, specimen, the two gauges' signals")
+      ->required();
+  hopkinson
+      ->add_option("--out", hopkinson_out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")
+      ->required();
+  hopkinson->add_flag("--no-plot", hopkinson_no_plot, "Skip the figures");
+  add_write_flags(hopkinson, hopkinson_flags);
 
   ConvergeArgs conv_args;
   auto* conv =
@@ -619,6 +669,8 @@ int main(int argc, char** argv) {
       return converge_command(conv_args);
     }
     if (plot->parsed()) return plot_command(plot_dir, plot_out, plot_force);
+    if (hopkinson->parsed())
+      return hopkinson_command(hopkinson_setup, hopkinson_out, hopkinson_no_plot, hopkinson_flags);
     if (bearing->parsed()) {
       bearing_args.options.interrupt = &interrupted;
       bearing_args.options.batch = false;  // Smith's soil runs on central differences

@@ -15,11 +15,17 @@ def main(argv=None):
     c.add_argument("dir")
     b = sub.add_parser("bearing-plot", help="draw bearing.png of a barimpact bearing directory")
     b.add_argument("dir")
+    h = sub.add_parser("hopkinson-plot", help="draw the figures of a barimpact hopkinson directory")
+    h.add_argument("dir")
     args = parser.parse_args(argv)
     if args.command == "bearing-plot":
         from .bearing import plot_bearing
         for path in plot_bearing(args.dir):
             print(path)
+        return 0
+    if args.command == "hopkinson-plot":
+        from .hopkinson import plot_hopkinson
+        plot_hopkinson(args.dir)  # into the staging directory: its paths would mislead
         return 0
     if args.command == "converge-plot":
         from .convergence import plot_study

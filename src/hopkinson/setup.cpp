@@ -1,0 +1,441 @@
+#include "barimpact/hopkinson/setup.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "../case/toml_input.hpp"
+#include "barimpact/case/case.hpp"
+#include "barimpact/model/input_error.hpp"
+
+namespace barimpact {
+
+namespace {
+
+struct SectionKeys {
+  std::string_view section;
+  std::vector<std::string_view> keys;
+};
+
+const std::vector<std::string_view> channel_keys{
+    "signal",          "time",      "strain",    "volts",      "gauge_factor",
+    "excitation",      "bridge",    "gain",      "polarity",   "header",
+    "sample_interval", "delimiter", "skip_rows", "full_scale", "gauge_to_specimen",
+    "start",           "end",       "run",       "gauge"};
+
+// The setup-file contract: sections and keys.
+const std::vector<SectionKeys>& contract() {
+  static const std::vector<SectionKeys> c{
+      {"bar", {"modulus", "density", "diameter", "area", "wave_speed", "poisson", "dispersion"}},
+      {"specimen", {"length", "diameter", "area", "body"}},
+      {"incident", channel_keys},
+      {"transmitted", channel_keys},
+      {"window", {"trigger"}},
+      {"fit", {"elastic", "plastic"}}};
+  return c;
+}
+
+std::string_view type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a float";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date or time";
+  }
+}
+
+// Reads the keys of one parsed setup; every message is "origin:line: section.key rule".
+class SetupReader {
+ public:
+  SetupReader(toml::table root, std::string origin) : root_(std::move(root)), origin_(std::move(origin)) {}
+
+  [[noreturn]] void fail(std::string_view section, std::string_view key, std::string_view rule) const {
+    throw InputError(fmt::format("{}: {}.{} {}", where(section, key), section, key, rule));
+  }
+
+  [[noreturn]] void fail_section(std::string_view section, std::string_view rule) const {
+    const auto* t = root_.get(section);
+    throw InputError(fmt::format("{}: [{}] {}", t ? located(*t) : origin_, section, rule));
+  }
+
+  void check_layout() const {
+    std::vector<std::string_view> names;
+    for (const auto& s : contract()) names.push_back(s.section);
+    for (auto&& [name, value] : root_) {
+      const auto it = std::find_if(contract().begin(), contract().end(),
+                                   [&](const SectionKeys& s) { return s.section == name.str(); });
+      if (it == contract().end())
+        throw InputError(
+            fmt::format("{}: unknown section [{}] (known: {})", located(value), name.str(), fmt::join(names, ", ")));
+      if (!value.is_table())
+        throw InputError(
+            fmt::format("{}: {} must be a section [{}], not a value", located(value), name.str(), name.str()));
+      for (auto&& [key, v] : *value.as_table())
+        if (std::find(it->keys.begin(), it->keys.end(), key.str()) == it->keys.end())
+          throw InputError(fmt::format("{}: unknown key {}.{} (known in [{}]: {})", located(v), name.str(), key.str(),
+                                       name.str(), fmt::join(it->keys, ", ")));
+    }
+  }
+
+  [[nodiscard]] bool has(std::string_view section, std::string_view key) const { return node(section, key); }
+  [[nodiscard]] bool has_section(std::string_view section) const { return root_.get(section) != nullptr; }
+
+  [[nodiscard]] std::optional<double> number(std::string_view section, std::string_view key) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return std::nullopt;
+    return one_number(section, key, *n);
+  }
+
+  // A number > 0 (when given).
+  [[nodiscard]] std::optional<double> positive(std::string_view section, std::string_view key) const {
+    const auto v = number(section, key);
+    if (v && !(*v > 0)) fail(section, key, fmt::format("must be > 0 (got {})", *v));
+    return v;
+  }
+
+  [[nodiscard]] std::optional<std::string> word(std::string_view section, std::string_view key) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return std::nullopt;
+    if (const auto* s = n->as_string()) return s->get();
+    fail(section, key, fmt::format("must be a string (got {})", type_name(*n)));
+  }
+
+  [[nodiscard]] std::optional<bool> boolean(std::string_view section, std::string_view key) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return std::nullopt;
+    if (const auto* b = n->as_boolean()) return b->get();
+    fail(section, key, fmt::format("must be true or false (got {})", type_name(*n)));
+  }
+
+  // A string or a non-empty array of strings.
+  [[nodiscard]] std::vector<std::string> words(std::string_view section, std::string_view key) const {
+    const auto* n = node(section, key);
+    std::vector<std::string> out;
+    if (n == nullptr) return out;
+    if (const auto* s = n->as_string()) return {s->get()};
+    const auto* a = n->as_array();
+    if (a == nullptr)
+      fail(section, key, fmt::format("must be a string or an array of strings (got {})", type_name(*n)));
+    for (const auto& e : *a) {
+      const auto* s = e.as_string();
+      if (s == nullptr) fail(section, key, fmt::format("must be an array of strings (found {})", type_name(e)));
+      if (s->get().empty()) fail(section, key, "must not hold an empty name");
+      out.push_back(s->get());
+    }
+    if (out.empty()) fail(section, key, "must name at least one");
+    return out;
+  }
+
+  // [lo, hi] with lo < hi.
+  [[nodiscard]] std::optional<std::pair<double, double>> range(std::string_view section, std::string_view key) const {
+    const auto* n = node(section, key);
+    if (n == nullptr) return std::nullopt;
+    const auto* a = n->as_array();
+    if (a == nullptr || a->size() != 2) fail(section, key, "must be [lo, hi], two numbers");
+    const double lo = one_number(section, key, (*a)[0]);
+    const double hi = one_number(section, key, (*a)[1]);
+    if (!(lo < hi)) fail(section, key, fmt::format("must have lo < hi (got [{}, {}])", lo, hi));
+    return std::pair{lo, hi};
+  }
+
+  [[nodiscard]] const std::string& origin() const { return origin_; }
+
+ private:
+  const toml::node* node(std::string_view section, std::string_view key) const {
+    const auto* t = root_.get_as<toml::table>(section);
+    return t ? t->get(key) : nullptr;
+  }
+
+  double one_number(std::string_view section, std::string_view key, const toml::node& n) const {
+    double v = 0.0;
+    if (const auto* i = n.as_integer())
+      v = static_cast<double>(i->get());
+    else if (const auto* f = n.as_floating_point())
+      v = f->get();
+    else
+      fail(section, key, fmt::format("must be a number (got {})", type_name(n)));
+    if (!std::isfinite(v)) fail(section, key, fmt::format("must be a finite number (got {})", v));
+    return v;
+  }
+
+  std::string where(std::string_view section, std::string_view key) const {
+    if (const auto* n = node(section, key)) return located(*n);
+    if (const auto* t = root_.get(section)) return located(*t);
+    return origin_;
+  }
+
+  std::string located(const toml::node& n) const {
+    const auto& src = n.source();
+    return src.begin.line == 0 ? origin_ : fmt::format("{}:{}", origin_, src.begin.line);
+  }
+
+  toml::table root_;
+  std::string origin_;
+};
+
+double circle_area(double diameter) {
+  return std::numbers::pi * diameter * diameter / 4.0;
+}
+
+// A bar's or the specimen's cross-section: `diameter` or `area`, not both.
+std::optional<double> read_area(const SetupReader& r, std::string_view section) {
+  const auto d = r.positive(section, "diameter");
+  const auto a = r.positive(section, "area");
+  if (d && a) r.fail(section, "area", "and diameter both given: give one");
+  if (d) return circle_area(*d);
+  return a;
+}
+
+// The part of a channel that a barimpact run gives: its bar and its gauge's
+// distance to the specimen, from the run's case.toml.
+struct RunGauge {
+  HopkinsonBar bar;
+  double gauge_to_specimen = 0.0;
+  double specimen_length = 0.0, specimen_area = 0.0;
+};
+
+RunGauge read_run_gauge(const SetupReader& r, const ChannelSetup& ch, const std::string& specimen_body) {
+  const std::string s = ch.section;
+  const auto case_file = ch.run / "case.toml";
+  if (!std::filesystem::is_regular_file(case_file) || !std::filesystem::is_regular_file(ch.run / "history.csv"))
+    r.fail(s, "run",
+           fmt::format("= \"{}\" holds no case.toml and history.csv (give a directory written by barimpact "
+                       "run)",
+                       ch.run.string()));
+  if (specimen_body.empty()) r.fail("specimen", "body", "must name the specimen's body of the run (given a run)");
+  Case c;
+  try {
+    c = Case::from_file(case_file);
+  } catch (const InputError& e) {
+    r.fail(s, "run", fmt::format("= \"{}\": its case.toml does not read ({})", ch.run.string(), e.what()));
+  }
+  const auto body_index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < c.bodies.size(); ++i)
+      if (c.bodies[i].name == name) return static_cast<long>(i);
+    return -1L;
+  };
+  const long sp = body_index(specimen_body);
+  if (sp < 0)
+    r.fail("specimen", "body", fmt::format("= \"{}\" is not a body of the run {}", specimen_body, ch.run.string()));
+  const auto g = std::find_if(c.gauges.begin(), c.gauges.end(), [&](const GaugeData& x) { return x.name == ch.gauge; });
+  if (g == c.gauges.end()) {
+    std::vector<std::string> names;
+    for (const auto& x : c.gauges) names.push_back(x.name);
+    r.fail(s, "gauge",
+           fmt::format("= \"{}\" is not a gauge of the run {} (its gauges: {})", ch.gauge, ch.run.string(),
+                       names.empty() ? std::string("none") : fmt::format("{}", fmt::join(names, ", "))));
+  }
+  const long gb = body_index(g->body);
+  if (gb != sp - 1 && gb != sp + 1)
+    r.fail(s, "gauge",
+           fmt::format("= \"{}\" is on body \"{}\", which does not touch the specimen \"{}\" (a bar beside it)",
+                       ch.gauge, g->body, specimen_body));
+  const auto& b = c.bodies[static_cast<std::size_t>(gb)];
+  const auto& spec = c.bodies[static_cast<std::size_t>(sp)];
+  RunGauge out;
+  out.bar.modulus = b.modulus;
+  out.bar.density = b.density;
+  out.bar.area = b.area;
+  out.bar.diameter = std::sqrt(4.0 * b.area / std::numbers::pi);
+  // A body's `at` runs from its near end (x = 0's side): the upper
+  // neighbour faces the specimen with its near end, the lower with its far end.
+  out.gauge_to_specimen = gb == sp + 1 ? g->at : b.length - g->at;
+  out.specimen_length = spec.length;
+  out.specimen_area = spec.area;
+  return out;
+}
+
+// time/sample_interval, strain/volts and the bridge's constants.
+void read_columns(const SetupReader& r, std::string_view s, ChannelSetup& ch) {
+  const auto time = r.word(s, "time");
+  if (const auto dt = r.positive(s, "sample_interval")) {
+    if (time) r.fail(s, "sample_interval", "and time both given: sample_interval is for a file without a time column");
+    ch.sample_interval = *dt;
+    ch.time_column.clear();
+  } else if (time) {
+    if (time->empty()) r.fail(s, "time", "must name a column");
+    ch.time_column = *time;
+  }
+  const auto strain = r.words(s, "strain");
+  const auto volts = r.words(s, "volts");
+  if (!strain.empty() && !volts.empty()) r.fail(s, "volts", "and strain both given: a channel is in one unit");
+  if (!volts.empty()) {
+    ch.volts = true;
+    ch.strain_columns = volts;
+    const auto gf = r.positive(s, "gauge_factor");
+    const auto ex = r.positive(s, "excitation");
+    const auto bridge = r.word(s, "bridge");
+    if (!gf) r.fail(s, "gauge_factor", "is missing: volts need the gauge factor, excitation and bridge");
+    if (!ex) r.fail(s, "excitation", "is missing: volts need the gauge factor, excitation and bridge");
+    if (!bridge) r.fail(s, "bridge", "is missing: \"quarter\", \"half\" or \"full\"");
+    if (*bridge == "quarter")
+      ch.bridge = Bridge::quarter;
+    else if (*bridge == "half")
+      ch.bridge = Bridge::half;
+    else if (*bridge == "full")
+      ch.bridge = Bridge::full;
+    else
+      r.fail(s, "bridge", fmt::format("must be \"quarter\", \"half\" or \"full\" (got \"{}\")", *bridge));
+    ch.gauge_factor = *gf;
+    ch.excitation = *ex;
+    if (const auto g = r.positive(s, "gain")) ch.gain = *g;
+  } else {
+    for (std::string_view key : {"gauge_factor", "excitation", "bridge", "gain"})
+      if (r.has(s, key)) r.fail(s, key, "applies to a signal in volts (volts = \"COLUMN\")");
+    if (!strain.empty()) ch.strain_columns = strain;
+  }
+  if (ch.files.size() > 1 && ch.strain_columns.size() != 1 && ch.strain_columns.size() != ch.files.size())
+    r.fail(s, ch.volts ? "volts" : "strain",
+           fmt::format("must name one column (in each file) or one per file ({} files, {} names)", ch.files.size(),
+                       ch.strain_columns.size()));
+}
+
+// polarity, header, delimiter, skip_rows, full_scale.
+void read_file_layout(const SetupReader& r, std::string_view s, ChannelSetup& ch) {
+  if (const auto p = r.number(s, "polarity")) {
+    if (*p != 1.0 && *p != -1.0) r.fail(s, "polarity", fmt::format("must be 1 or -1 (got {})", *p));
+    ch.polarity = *p;
+  }
+  if (const auto h = r.boolean(s, "header")) ch.header = *h;
+  if (!ch.header && !r.has(s, "strain") && !r.has(s, "volts"))
+    r.fail(s, "strain", "is missing: a file without a header names its columns \"1\", \"2\", ...");
+  if (!ch.header && !ch.time_column.empty() && !r.has(s, "time"))
+    r.fail(s, "time",
+           "is missing: a file without a header names its columns \"1\", \"2\", ... (or give "
+           "sample_interval)");
+  if (const auto d = r.word(s, "delimiter")) {
+    if (d->size() != 1 || *d == "\"" || *d == "\n" || *d == "\r")
+      r.fail(s, "delimiter", fmt::format("must be one character such as \",\", \";\" or \"\\t\" (got \"{}\")", *d));
+    ch.delimiter = (*d)[0];
+  }
+  if (const auto k = r.number(s, "skip_rows")) {
+    if (!(*k >= 0) || *k != std::floor(*k) || *k > 1e6)
+      r.fail(s, "skip_rows", fmt::format("must be a whole number of lines >= 0 (got {})", *k));
+    ch.skip_rows = static_cast<int>(*k);
+  }
+  ch.full_scale = r.positive(s, "full_scale");
+}
+
+ChannelSetup read_channel(const SetupReader& r, std::string_view s, const std::filesystem::path& base) {
+  ChannelSetup ch;
+  ch.section = std::string(s);
+  if (!r.has_section(s))
+    r.fail_section(s, "is missing: it names the gauge's signal (signal = \"FILE\", or run and gauge)");
+  const auto files = r.words(s, "signal");
+  const auto run = r.word(s, "run");
+  if (run && !files.empty()) r.fail(s, "run", "and signal both given: a channel reads a file or a run");
+  if (run) {
+    for (std::string_view key : {"time", "strain", "volts", "header", "sample_interval", "delimiter", "skip_rows",
+                                 "gauge_factor", "excitation", "bridge", "gain", "polarity", "full_scale"})
+      if (r.has(s, key)) r.fail(s, key, "does not apply to a run's gauge (its history.csv is read as written)");
+    ch.run = base / *run;
+    const auto gauge = r.word(s, "gauge");
+    if (!gauge || gauge->empty()) r.fail(s, "gauge", "must name the run's gauge (given run)");
+    ch.gauge = *gauge;
+    ch.time_column = std::string("t");  // std::string(...): GCC 12's -Wrestrict on a literal's assignment
+    ch.strain_columns = {fmt::format("gauge.{}.strain", ch.gauge)};
+    ch.files = {ch.run / "history.csv"};
+  } else {
+    if (files.empty()) r.fail(s, "signal", "is missing: a CSV file (or a list of them), or run and gauge");
+    if (r.has(s, "gauge")) r.fail(s, "gauge", "needs run (a barimpact run's gauge)");
+    for (const auto& f : files) ch.files.push_back(base / f);
+    read_columns(r, s, ch);
+    read_file_layout(r, s, ch);
+  }
+  if (const auto d = r.positive(s, "gauge_to_specimen"))
+    ch.gauge_to_specimen = *d;
+  else if (!run)
+    r.fail(s, "gauge_to_specimen", "is missing: the distance from the gauge to the specimen's face");
+  ch.start = r.number(s, "start");
+  ch.end = r.number(s, "end");
+  if (ch.start.has_value() != ch.end.has_value())
+    r.fail(s, ch.start ? "end" : "start", "must be given with the other: start and end make the pulse's window");
+  if (ch.start && !(*ch.start < *ch.end))
+    r.fail(s, "end", fmt::format("must be after start (got start = {}, end = {})", *ch.start, *ch.end));
+  return ch;
+}
+
+HopkinsonBar read_bar(const SetupReader& r, const std::optional<RunGauge>& from_run) {
+  HopkinsonBar b;
+  if (from_run) b = from_run->bar;
+  if (const auto v = r.positive("bar", "modulus")) b.modulus = *v;
+  if (const auto v = r.positive("bar", "density")) b.density = *v;
+  const auto d = r.positive("bar", "diameter");
+  if (const auto a = read_area(r, "bar")) {
+    b.area = *a;
+    b.diameter = d ? *d : std::sqrt(4.0 * *a / std::numbers::pi);
+  }
+  const std::string_view given = from_run ? " (and no run gives it)" : "";
+  if (!(b.modulus > 0)) r.fail("bar", "modulus", fmt::format("is missing: the bars' Young's modulus E{}", given));
+  if (!(b.density > 0)) r.fail("bar", "density", fmt::format("is missing: the bars' density{}", given));
+  if (!(b.area > 0)) r.fail("bar", "diameter", fmt::format("is missing: the bars' diameter (or area){}", given));
+  b.wave_speed = std::sqrt(b.modulus / b.density);
+  if (const auto c = r.positive("bar", "wave_speed")) b.wave_speed = *c;
+  if (const auto nu = r.number("bar", "poisson")) {
+    if (!(*nu > 0 && *nu < 0.5)) r.fail("bar", "poisson", fmt::format("must be in (0, 0.5) (got {})", *nu));
+    b.poisson = *nu;
+  }
+  if (const auto disp = r.boolean("bar", "dispersion")) b.dispersion = *disp;
+  if (b.dispersion && b.poisson < 0) r.fail("bar", "dispersion", "needs the bars' poisson (Pochhammer-Chree)");
+  return b;
+}
+
+}  // namespace
+
+HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::filesystem::path& base,
+                                           const std::string& origin) {
+  const SetupReader r(parse_toml(toml, origin), origin);
+  r.check_layout();
+  HopkinsonSetup s;
+  s.origin = origin;
+  if (const auto body = r.word("specimen", "body")) s.specimen.body = *body;
+  s.incident = read_channel(r, "incident", base);
+  s.transmitted = read_channel(r, "transmitted", base);
+  std::optional<RunGauge> run_i, run_t;
+  if (!s.incident.run.empty()) run_i = read_run_gauge(r, s.incident, s.specimen.body);
+  if (!s.transmitted.run.empty()) run_t = read_run_gauge(r, s.transmitted, s.specimen.body);
+  if (!run_i && !run_t && r.has("specimen", "body"))
+    r.fail("specimen", "body", "names a run's body: give run and gauge in [incident] and [transmitted]");
+  s.incident_bar = read_bar(r, run_i ? run_i : run_t);
+  s.transmitter_bar = read_bar(r, run_t ? run_t : run_i);
+  for (auto [ch, run] : {std::pair{&s.incident, &run_i}, std::pair{&s.transmitted, &run_t}})
+    if (*run && ch->gauge_to_specimen < 0) ch->gauge_to_specimen = (*run)->gauge_to_specimen;
+  const auto& any_run = run_i ? run_i : run_t;
+  if (any_run) {
+    s.specimen.length = any_run->specimen_length;
+    s.specimen.area = any_run->specimen_area;
+  }
+  if (const auto l = r.positive("specimen", "length")) s.specimen.length = *l;
+  if (const auto a = read_area(r, "specimen")) s.specimen.area = *a;
+  if (!(s.specimen.length > 0)) r.fail("specimen", "length", "is missing: the specimen's initial length");
+  if (!(s.specimen.area > 0)) r.fail("specimen", "diameter", "is missing: the specimen's initial diameter (or area)");
+  if (const auto t = r.number("window", "trigger")) {
+    if (!(*t > 0.02 && *t < 1))
+      r.fail("window", "trigger",
+             fmt::format("must be in (0.02, 1): a fraction of the incident peak above the foot's 2% (got {})", *t));
+    s.trigger = *t;
+  }
+  s.fit_elastic = r.range("fit", "elastic");
+  s.fit_plastic = r.range("fit", "plastic");
+  return s;
+}
+
+HopkinsonSetup HopkinsonSetup::from_file(const std::filesystem::path& path) {
+  const std::string text = read_input_file(path, "setup file");
+  return from_string(text, path.parent_path(), path.string());
+}
+
+}  // namespace barimpact

@@ -1,0 +1,418 @@
+// The Hopkinson bar analysis on synthetic gauge records whose waves are known
+// functions: every column against its formula, the alignment, the signal
+// layouts a laboratory's files come in, the fit, and every refusal.
+#include "barimpact/hopkinson/analysis.hpp"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+
+#include "barimpact/hopkinson/dispersion.hpp"
+#include "barimpact/model/input_error.hpp"
+
+namespace barimpact {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Bars E = 200 GPa, rho = 8000: c0 = 5000 exactly. Gauges 1 m and 0.5 m from
+// the specimen: the reflected pulse is read 400 us after the incident, the
+// transmitted 300 us. Samples every 0.1 us: both shifts are whole samples.
+constexpr double E = 200e9, rho = 8000.0, c0 = 5000.0, Ab = 3e-4, Ls = 0.005, As = 1e-4;
+constexpr double dt = 1e-7, foot = 100e-6, shift_r = 400e-6, shift_t = 300e-6;
+constexpr std::size_t samples = 12001;
+
+// A pulse of unit height: a jump to 5% half a sample after 0, a ramp to 1 at
+// 19 us, 1 to 100 us, down to 0 at 121 us (the jump and the 2% levels fall
+// between samples: no sample's value hangs on the clock's rounding).
+double shape(double tau) {
+  if (tau <= 0.05e-6 || tau >= 121e-6) return 0.0;
+  if (tau < 100e-6) return std::min(0.05 + tau / 20e-6, 1.0);
+  return (121e-6 - tau) / 21e-6;
+}
+
+// The waves at the specimen's faces, tau from the incident foot's arrival.
+double eps_i(double tau) {
+  return -1e-3 * shape(tau);
+}
+double eps_r(double tau) {
+  return 6e-4 * shape(tau - 3e-6);
+}
+double eps_t(double tau) {
+  return -4e-4 * shape(tau - 1e-6);
+}
+
+struct Records {
+  std::vector<double> t, incident, transmitted;
+};
+
+Records records(double offset_i = 0, double offset_t = 0, double clock = 0) {
+  Records r;
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    r.t.push_back(t + clock);
+    r.incident.push_back(eps_i(t - foot) + eps_r(t - foot - shift_r) + offset_i);
+    r.transmitted.push_back(eps_t(t - foot - shift_t) + offset_t);
+  }
+  return r;
+}
+
+class HopkinsonAnalysis : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / fmt::format("barimpact-hopkinson-{}-{}", ::getpid(),
+                                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  void write(const std::string& name, const std::string& text) const { std::ofstream(dir_ / name) << text; }
+
+  void write_csv(const std::string& name, const std::vector<double>& t, const std::vector<double>& v,
+                 const std::string& header = "t,strain\n") const {
+    std::string text = header;
+    for (std::size_t k = 0; k < t.size(); ++k) text += fmt::format("{},{}\n", t[k], v[k]);
+    write(name, text);
+  }
+
+  void write_records(const Records& r) const {
+    write_csv("incident.csv", r.t, r.incident);
+    write_csv("transmitted.csv", r.t, r.transmitted);
+  }
+
+  static std::string setup_text(const std::string& extra = "", const std::string& incident = "",
+                                const std::string& transmitted = "") {
+    return fmt::format(R"toml(
+[bar]
+modulus = 200e9
+density = 8000.0
+area = 3e-4
+[specimen]
+length = 0.005
+area = 1e-4
+[incident]
+{}gauge_to_specimen = 1.0
+{}
+[transmitted]
+{}gauge_to_specimen = 0.5
+{}
+{}
+)toml",
+                       // A channel given its own signal does without the default one.
+                       incident.find("signal =") == std::string::npos ? "signal = \"incident.csv\"\n" : "", incident,
+                       transmitted.find("signal =") == std::string::npos ? "signal = \"transmitted.csv\"\n" : "",
+                       transmitted, extra);
+  }
+
+  HopkinsonResult analyse(const std::string& setup) const {
+    const auto s = HopkinsonSetup::from_string(setup, dir_, "setup.toml");
+    return analyse_hopkinson(s, read_gauge_signal(s.incident), read_gauge_signal(s.transmitted));
+  }
+
+  // The one-line message of a refusal, or a failure.
+  std::string refusal(const std::string& setup) const {
+    try {
+      (void)analyse(setup);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+      return what;
+    }
+    ADD_FAILURE() << "accepted: " << setup;
+    return "";
+  }
+
+  fs::path dir_;
+};
+
+#define EXPECT_HAS(text, part) EXPECT_NE(std::string(text).find(part), std::string::npos) << (text)
+
+double scale(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v)
+    if (std::isfinite(x)) m = std::max(m, std::abs(x));
+  return m;
+}
+
+TEST_F(HopkinsonAnalysis, EveryColumnIsItsFormulaOnTheWavesAtTheFaces) {
+  write_records(records());
+  const auto r = analyse(setup_text());
+  const auto& names = hopkinson_columns();
+  ASSERT_GE(r.columns.size(), names.size());
+  for (std::size_t i = 0; i < names.size(); ++i) EXPECT_EQ(r.columns[i].name, names[i]);
+  // One row per incident sample from the foot (t = 100 us) to the window's
+  // end: the first sample after the pulse falls back to 2% (120.6 us).
+  const auto& t = r.column("t");
+  ASSERT_EQ(t.size(), 1207u);
+  EXPECT_DOUBLE_EQ(r.alignment.foot, foot);
+  EXPECT_NEAR(r.alignment.incident.end, foot + 120.6e-6, 1e-12);
+  EXPECT_NEAR(r.alignment.reflected_shift, shift_r, 1e-15);
+  EXPECT_NEAR(r.alignment.transmitted_shift, shift_t, 1e-15);
+  double strain_1w = 0.0, strain_3w = 0.0, peak_f = 0.0, peak_b = 0.0, peak_3w = 0.0;
+  for (double tau : t) {
+    peak_f = std::max(peak_f, -E * Ab * (eps_i(tau) + eps_r(tau)));
+    peak_b = std::max(peak_b, -E * Ab * eps_t(tau));
+    peak_3w = std::max(peak_3w, -E * Ab * (eps_i(tau) + eps_r(tau) + eps_t(tau)) / (2 * As));
+  }
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const double tau = t[i], ei = eps_i(tau), er = eps_r(tau), et = eps_t(tau);
+    // Strains are read at whole samples up to the clock's rounding (1e-18 s):
+    // 1e-13 of a strain, 1e-9 relative on forces of 6e4.
+    ASSERT_NEAR(r.column("incident")[i], ei, 1e-13) << tau;
+    ASSERT_NEAR(r.column("reflected")[i], er, 1e-13) << tau;
+    ASSERT_NEAR(r.column("transmitted")[i], et, 1e-13) << tau;
+    const double ff = -E * Ab * (ei + er), fb = -E * Ab * et;
+    EXPECT_NEAR(r.column("force_front")[i], ff, 1e-6);
+    EXPECT_NEAR(r.column("force_back")[i], fb, 1e-6);
+    EXPECT_NEAR(r.column("stress_1w")[i], fb / As, 1e-2);
+    EXPECT_NEAR(r.column("stress_2w")[i], ff / As, 1e-2);
+    EXPECT_NEAR(r.column("stress_3w")[i], (ff + fb) / (2 * As), 1e-2);
+    EXPECT_NEAR(r.column("strain_rate_1w")[i], 2 * c0 * er / Ls, 1e-7);
+    EXPECT_NEAR(r.column("strain_rate_3w")[i], c0 * (er + et - ei) / Ls, 1e-7);
+    if (i > 0) {
+      strain_1w += 0.5 * (t[i] - t[i - 1]) * (2 * c0 / Ls) * (er + eps_r(t[i - 1]));
+      strain_3w +=
+          0.5 * (t[i] - t[i - 1]) * (c0 / Ls) * (er + et - ei + eps_r(t[i - 1]) + eps_t(t[i - 1]) - eps_i(t[i - 1]));
+    }
+    EXPECT_NEAR(r.column("strain_1w")[i], strain_1w, 1e-12);
+    EXPECT_NEAR(r.column("strain_3w")[i], strain_3w, 1e-12);
+    // Equilibrium only where both forces pass 5% of their peaks (away from
+    // the threshold by more than the forces' round-off).
+    const double eq = r.column("equilibrium")[i];
+    if (ff > 0.05 * peak_f * (1 + 1e-9) && fb > 0.05 * peak_b * (1 + 1e-9)) {
+      EXPECT_NEAR(eq, 2 * (ff - fb) / (ff + fb), 1e-9) << tau;
+    } else if (ff < 0.05 * peak_f * (1 - 1e-9) || fb < 0.05 * peak_b * (1 - 1e-9)) {
+      EXPECT_TRUE(std::isnan(eq)) << tau;
+    }
+  }
+  EXPECT_NEAR(r.peak_stress_3w.value, peak_3w, 1e-3);
+  EXPECT_NEAR(r.peak_strain_rate_1w.value, 2 * c0 * 6e-4 / Ls, 1e-6);
+}
+
+TEST_F(HopkinsonAnalysis, BaselineOffsetsAndTheClockChangeNothingButTheAlignment) {
+  write_records(records());
+  const auto plain = analyse(setup_text());
+  write_records(records(2.5e-5, -1.5e-5, 0.0123));
+  const auto moved = analyse(setup_text());
+  EXPECT_NEAR(moved.alignment.baseline_incident, 2.5e-5, 1e-18);
+  EXPECT_NEAR(moved.alignment.baseline_transmitted, -1.5e-5, 1e-18);
+  EXPECT_NEAR(moved.alignment.foot, foot + 0.0123, 1e-12);
+  ASSERT_EQ(moved.column("t").size(), plain.column("t").size());
+  for (const auto& name : hopkinson_columns())
+    for (std::size_t i = 0; i < plain.column(name).size(); ++i) {
+      const double a = plain.column(name)[i], b = moved.column(name)[i];
+      if (std::isnan(a)) {
+        EXPECT_TRUE(std::isnan(b)) << name << " " << i;
+        continue;
+      }
+      // The offset's subtraction and the clock's shift round at 1e-16 of the
+      // offset (strain) and 1e-16 of 0.0123 s: 1e-9 of each column's scale.
+      EXPECT_NEAR(a, b, 1e-9 * scale(plain.column(name))) << name << " " << i;
+    }
+}
+
+TEST_F(HopkinsonAnalysis, SummaryStatesTheAlignmentAndTheCsvHeaderIsTheContract) {
+  write_records(records(1e-5, 0.0));
+  const auto r = analyse(setup_text());
+  const std::string csv = hopkinson_csv(r);
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "t,strain_1w,strain_rate_1w,stress_1w,strain_3w,strain_rate_3w,stress_2w,stress_3w,force_front,"
+            "force_back,equilibrium,incident,reflected,transmitted");
+  EXPECT_HAS(csv, ",nan,");  // equilibrium where the forces are small
+  const std::string json = hopkinson_summary_json(r);
+  for (const char* key : {"\"alignment\"", "\"baseline\"", "\"shift\"", "\"windows\"", "\"peak_stress\"",
+                          "\"peak_strain_rate\"", "\"equilibrium_from\""})
+    EXPECT_HAS(json, key);
+  EXPECT_EQ(json.find("\"fit\""), std::string::npos);  // no [fit], no fit
+}
+
+// A specimen with a bilinear law sigma(eps) strained at a rate that ramps up
+// and holds, in equilibrium (eps_t = eps_i + eps_r): the records follow from
+// it. The 3-wave curve is the law; the fit finds E, the 0.2% offset yield and
+// the tangent modulus.
+TEST_F(HopkinsonAnalysis, FitRecoversABilinearLawFromItsOwnRecords) {
+  const double Es = 70e9, sy = 300e6, Et = 1e9, rate = 1000.0, ramp = 20e-6;
+  auto strain = [&](double tau) {
+    if (tau <= 0) return 0.0;
+    return tau < ramp ? rate * tau * tau / (2 * ramp) : rate * (tau - ramp / 2);
+  };
+  auto stress = [&](double e) { return e <= sy / Es ? Es * e : sy + Et * (e - sy / Es); };
+  auto er = [&](double tau) { return tau <= 0 ? 0.0 : Ls * rate * std::min(tau / ramp, 1.0) / (2 * c0); };
+  auto et = [&](double tau) { return -stress(strain(tau)) * As / (E * Ab); };
+  const double end = 150e-6;
+  Records r;
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    const double tau = t - foot, back = t - foot - shift_r;
+    const double inc = tau > 0 && tau <= end ? et(tau) - er(tau) : 0.0;
+    const double ref = back > 0 && back <= end ? er(back) : 0.0;
+    r.t.push_back(t);
+    r.incident.push_back(inc + ref);
+    r.transmitted.push_back(t - foot - shift_t > 0 && t - foot - shift_t <= end ? et(t - foot - shift_t) : 0.0);
+  }
+  write_records(r);
+  const auto a = analyse(setup_text("[fit]\nelastic = [50e6, 250e6]", "start = 100e-6\nend = 250e-6"));
+  EXPECT_EQ(a.alignment.method, "windows");
+  ASSERT_TRUE(a.fit.done);
+  // The records hold the law exactly at the samples; the strain's trapezoid
+  // rule is exact for the piecewise-linear rate: 1e-9 relative.
+  EXPECT_NEAR(a.fit.modulus / Es, 1.0, 1e-9);
+  const double yield = sy + Et * 0.002 * Es / (Es - Et);  // the bilinear law's 0.2% offset stress
+  ASSERT_TRUE(a.fit.yield_stress);
+  // Between samples the offset's crossing is interpolated: 1e-6 relative.
+  EXPECT_NEAR(*a.fit.yield_stress / yield, 1.0, 1e-6);
+  ASSERT_TRUE(a.fit.hardening_modulus);
+  EXPECT_NEAR(*a.fit.hardening_modulus / Et, 1.0, 1e-6);
+  EXPECT_HAS(hopkinson_summary_json(a), "\"yield_stress\"");
+}
+
+TEST_F(HopkinsonAnalysis, ReadsTheLayoutsALaboratoryRecordsIn) {
+  const auto rec = records(1e-5, 0.0);
+  write_records(rec);
+  const auto reference = analyse(setup_text());
+  // No header, tab-separated, three lines of scope preamble, no time column.
+  std::string text = "scope X\nsample rate 10 MHz\n\n";
+  for (std::size_t k = 0; k < samples; ++k) text += fmt::format("{}\t{}\n", -rec.incident[k], 0.0);
+  write("raw.tsv", text);
+  // Volts of a half bridge: eps = 2 V / (gain excitation GF).
+  text = "time,ch1,ch2\n";
+  for (std::size_t k = 0; k < samples; ++k)
+    text += fmt::format("{},{},{}\n", rec.t[k], rec.transmitted[k] * 100 * 5 * 2.1 / 2, "x");
+  write("volts.csv", text);
+  const auto r = analyse(setup_text("",
+                                    "signal = \"raw.tsv\"\nheader = false\nstrain = \"1\"\ndelimiter = \"\\t\"\n"
+                                    "skip_rows = 3\nsample_interval = 1e-7\npolarity = -1",
+                                    "signal = \"volts.csv\"\ntime = \"time\"\nvolts = \"ch1\"\nbridge = \"half\"\n"
+                                    "gauge_factor = 2.1\nexcitation = 5.0\ngain = 100"));
+  for (const auto& name : hopkinson_columns())
+    for (std::size_t i = 0; i < reference.column(name).size(); i += 37) {
+      if (std::isnan(reference.column(name)[i])) continue;
+      // The volts' conversion and back rounds at 1e-16: 1e-8 of the column's scale.
+      EXPECT_NEAR(r.column(name)[i], reference.column(name)[i], 1e-8 * scale(reference.column(name))) << name;
+    }
+}
+
+TEST_F(HopkinsonAnalysis, AveragesAGaugePairInOneFileOrOnTwoChannels) {
+  const auto rec = records();
+  write_records(rec);
+  const auto reference = analyse(setup_text());
+  // Bending adds +b on one gauge and -b on the other: the mean is the axial strain.
+  std::string pair = "t,a,b\n", one = "t,v\n", two = "t,v\n";
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double bend = 3e-4 * std::sin(static_cast<double>(k) * 0.01);
+    pair += fmt::format("{},{},{}\n", rec.t[k], rec.incident[k] + bend, rec.incident[k] - bend);
+    one += fmt::format("{},{}\n", rec.t[k], rec.transmitted[k] + bend);
+    two += fmt::format("{},{}\n", rec.t[k], rec.transmitted[k] - bend);
+  }
+  write("pair.csv", pair);
+  write("one.csv", one);
+  write("two.csv", two);
+  const auto r = analyse(setup_text("", "signal = \"pair.csv\"\nstrain = [\"a\", \"b\"]",
+                                    "signal = [\"one.csv\", \"two.csv\"]\nstrain = \"v\""));
+  for (std::size_t i = 0; i < reference.column("stress_3w").size(); ++i)
+    EXPECT_NEAR(r.column("stress_3w")[i], reference.column("stress_3w")[i], 1e-3) << i;  // of 1e8: round-off
+}
+
+// `text` with its first `from` replaced by `to`.
+std::string with(std::string text, const std::string& from, const std::string& to) {
+  return text.replace(text.find(from), from.size(), to);
+}
+
+TEST_F(HopkinsonAnalysis, RefusesWhatCannotBeAnalysedInOneLine) {
+  write_records(records());
+  EXPECT_HAS(refusal(with(setup_text(), "transmitted.csv", "missing.csv")), "missing.csv");
+  EXPECT_HAS(refusal(setup_text("", "strain = \"eps\"")), "no column \"eps\"");
+  EXPECT_HAS(refusal(setup_text("", "time = \"time\"")), "no column \"time\"");
+  write("back.csv", "t,strain\n0,0\n1e-7,0\n0.5e-7,0\n");  // time that goes back
+  EXPECT_HAS(refusal(with(setup_text(), "\"incident.csv\"", "\"back.csv\"")), "not increasing");
+  // A silent transmitter bar: no pulse.
+  auto silent = records();
+  std::fill(silent.transmitted.begin(), silent.transmitted.end(), 0.0);
+  write_records(silent);
+  EXPECT_HAS(refusal(setup_text()), "[transmitted]");
+  EXPECT_HAS(refusal(setup_text()), "no pulse");
+  // Mains hum of amplitude 9e-5 (rms 6.4e-5): under the trigger level 1e-4,
+  // above half of it.
+  auto hum = records();
+  for (std::size_t k = 0; k < samples; ++k) hum.incident[k] += 9e-5 * std::sin(2e5 * M_PI * hum.t[k]);
+  write_records(hum);
+  EXPECT_HAS(refusal(setup_text()), "baseline noise");
+  // Clipping at full_scale (the plateau is at 1e-3).
+  write_records(records());
+  EXPECT_HAS(refusal(setup_text("", "full_scale = 9e-4")), "clips");
+  // The gauge too near the specimen: a 121 us pulse against 2 x 0.2 / c0 = 80 us.
+  EXPECT_HAS(refusal(with(setup_text(), "gauge_to_specimen = 1.0", "gauge_to_specimen = 0.2")), "pulses too close");
+  // Compression recorded positive without polarity = -1.
+  auto flipped = records();
+  for (auto& v : flipped.incident) v = -v;
+  write_records(flipped);
+  EXPECT_HAS(refusal(setup_text()), "polarity");
+}
+
+TEST_F(HopkinsonAnalysis, RefusesABadSetupNamingTheKey) {
+  write_records(records());
+  EXPECT_HAS(refusal(setup_text("[window]\ntrigger = 0.01")), "window.trigger");
+  EXPECT_HAS(refusal(setup_text("[window]\ntriger = 0.2")), "unknown key window.triger");
+  EXPECT_HAS(refusal(setup_text("", "volts = \"ch1\"")), "incident.gauge_factor");
+  EXPECT_HAS(refusal(setup_text("", "volts = \"ch1\"\ngauge_factor = 2\nexcitation = 5\nbridge = \"third\"")),
+             "incident.bridge");
+  EXPECT_HAS(refusal(setup_text("[fit]\nelastic = [3e8, 1e8]")), "fit.elastic");
+  EXPECT_HAS(refusal(setup_text("", "start = 1e-4")), "incident.end");
+  EXPECT_HAS(refusal(setup_text("[bar]\ndiameter = 0.02")), "not valid TOML");  // a second [bar]
+  EXPECT_HAS(refusal(setup_text("[cushion]\nx = 1")), "unknown section [cushion]");
+}
+
+// Pochhammer-Chree: Rayleigh's long-wave limit and the Rayleigh wave at short
+// wavelengths; a correction there and back is the identity.
+TEST(PochhammerChree, FirstModeRunsFromC0ToTheRayleighWave) {
+  for (double nu : {0.1, 0.29, 0.33}) {
+    const PochhammerChree pc(nu);
+    // c / c0 = 1 - nu^2 (k a)^2 / 4 + O((k a)^4) (Love 1944, sec. 278): at
+    // k a = 0.05 the next term is below 1e-6.
+    for (double ka : {0.02, 0.05})
+      EXPECT_NEAR(pc.ratio_at_wavenumber(ka), 1.0 - nu * nu * ka * ka / 4.0, 2e-6) << nu << " " << ka;
+    // At k a = 30 (a wavelength a fifth of the radius) the mode is within 1%
+    // of the Rayleigh wave, its limit on a surface of vanishing curvature.
+    EXPECT_NEAR(pc.ratio_at_wavenumber(30.0) / pc.rayleigh_ratio(), 1.0, 1e-2) << nu;
+    // Falling all the way to about c_R (k a = 6: a wavelength of half the diameter).
+    double last = 1.0;
+    for (double ka = 0.1; ka < 6; ka += 0.1) {
+      const double r = pc.ratio_at_wavenumber(ka);
+      EXPECT_LT(r, last) << ka;
+      last = r;
+    }
+  }
+  // Steel (nu = 0.29): Rayleigh's c_R / c_s = 0.9258 (Viktorov's fit 0.926).
+  EXPECT_NEAR(PochhammerChree(0.29).rayleigh_ratio() * std::sqrt(2 * 1.29), 0.926, 2e-3);
+}
+
+TEST(PochhammerChree, CorrectingThereAndBackIsTheIdentity) {
+  HopkinsonBar bar;
+  bar.wave_speed = 5000.0;
+  bar.diameter = 0.02;
+  bar.poisson = 0.29;
+  GaugeSignal s;
+  for (int k = 0; k < 16000; ++k) {  // 1.6 ms: the dispersed tail (< 150 us) stays inside
+    s.t.push_back(k * 1e-7);
+    s.strain.push_back(-1e-3 * std::exp(-std::pow((k * 1e-7 - 5e-4) / 5e-6, 2)));
+  }
+  auto moved = s;
+  DispersionCorrection(bar, 1.0).apply(moved);
+  double change = 0.0;
+  for (std::size_t k = 0; k < s.t.size(); ++k) change = std::max(change, std::abs(moved.strain[k] - s.strain[k]));
+  EXPECT_GT(change, 1e-5);  // a 5 us pulse in a 20 mm bar disperses over 1 m
+  DispersionCorrection(bar, -1.0).apply(moved);
+  // 1e-6 of the peak: FFT round-off, the Nyquist term's real part, and what
+  // of the tail the record's ends cut (measured 1.2e-10).
+  for (std::size_t k = 0; k < s.t.size(); ++k) EXPECT_NEAR(moved.strain[k], s.strain[k], 1e-9);
+}
+
+}  // namespace
+}  // namespace barimpact
