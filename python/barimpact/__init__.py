@@ -19,7 +19,7 @@ from ._core import Case, InputError, Result
 from ._core import exact as _exact
 from ._core import run as _run
 
-__all__ = ["Case", "Result", "InputError", "run", "exact", "exact_example1", "bearing", "plot", "load"]
+__all__ = ["Case", "Result", "InputError", "run", "exact", "exact_example1", "bearing", "hopkinson", "plot", "load"]
 
 
 def run(case, progress=None):
@@ -61,6 +61,30 @@ def bearing(case, out, capacity, toe_share=None, jobs=0, plot=True, force=False)
         values = [r[key] for r in rows]
         columns[key] = np.array(values) if not isinstance(values[0], str) else values
     return columns
+
+
+class HopkinsonTable(dict):
+    """hopkinson.csv's columns by name (numpy arrays, nan where missing), and
+    `summary`, summary.json as a dict."""
+
+    summary = None
+
+
+def hopkinson(setup):
+    """The split Hopkinson bar analysis (`barimpact hopkinson SETUP --out DIR`)
+    without writing anything: `setup` a setup file's path, or the same as a
+    dict of sections ({"bar": {...}, "incident": {...}, ...}; relative paths
+    then from the working directory). Returns hopkinson.csv's table as a dict
+    of numpy arrays (t, strain_1w, strain_rate_1w, stress_1w, strain_3w,
+    strain_rate_3w, stress_2w, stress_3w, force_front, force_back,
+    equilibrium, incident, reflected, transmitted) with `.summary`.
+    InputError (one line) for a signal it cannot analyse."""
+    import os
+    from ._core import _hopkinson
+    table, summary = _hopkinson(setup if isinstance(setup, dict) else os.fspath(setup))
+    out = HopkinsonTable(table)
+    out.summary = json.loads(summary)
+    return out
 
 
 Result.summary = property(lambda self: json.loads(self.summary_json), doc="summary.json as a dict")

@@ -13,6 +13,7 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/exact/exact.hpp"
+#include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/study/bearing.hpp"
@@ -309,6 +310,32 @@ PYBIND11_MODULE(_core, m) {
         return result;
       },
       py::arg("case"), "Tabulate the exact solution the case admits (as `barimpact exact`); InputError if none");
+
+  m.def(
+      "_hopkinson",
+      [](const py::object& setup) {
+        HopkinsonSetup s;
+        if (py::isinstance<py::dict>(setup)) {
+          std::ostringstream text;  // the file's reader checks a dict too
+          text << toml::toml_formatter(table_from_dict(setup.cast<py::dict>()));
+          s = HopkinsonSetup::from_string(text.str(), std::filesystem::current_path(), "setup");
+        } else {
+          s = HopkinsonSetup::from_file(py::str(setup).cast<std::string>());
+        }
+        HopkinsonResult r;
+        {
+          py::gil_scoped_release release;
+          r = analyse_hopkinson(s, read_gauge_signal(s.incident), read_gauge_signal(s.transmitted));
+        }
+        py::dict table;
+        for (const auto& c : r.columns) {
+          py::array_t<double> a(static_cast<py::ssize_t>(c.values.size()));
+          std::copy(c.values.begin(), c.values.end(), a.mutable_data());
+          table[py::str(c.name)] = a;
+        }
+        return py::make_tuple(table, hopkinson_summary_json(r));
+      },
+      py::arg("setup"));
 
   m.def(
       "_exact_example1",

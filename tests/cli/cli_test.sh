@@ -302,5 +302,69 @@ expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
 expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5
 
+# The Hopkinson bar: simulate, analyse the run's gauges (the contract's
+# columns first), analyse measured files; a signal that cannot be analysed
+# writes nothing.
+"$bin" run "$examples/hopkinson/shpb.toml" --out "$work/shpb" > /dev/null 2>&1 && ok || bad "shpb run"
+cat > "$work/analyse.toml" <<'TOML'
+[specimen]
+body = "specimen"
+[incident]
+run = "shpb"
+gauge = "incident"
+[transmitted]
+run = "shpb"
+gauge = "transmitted"
+[fit]
+elastic = [50e6, 200e6]
+TOML
+"$bin" hopkinson "$work/analyse.toml" --out "$work/hk" --no-plot > "$work/stdout" 2> /dev/null && ok || bad "hopkinson exit"
+[ "$(head -1 "$work/hk/hopkinson.csv" | cut -d, -f1-11)" = "t,strain_1w,strain_rate_1w,stress_1w,strain_3w,strain_rate_3w,stress_2w,stress_3w,force_front,force_back,equilibrium" ] && ok || bad "hopkinson columns"
+[ "$(sed -n 2p "$work/hk/hopkinson.csv" | cut -d, -f1-2)" = "0,0" ] && ok || bad "first row at t = 0, strain 0"
+for key in '"alignment"' '"baseline"' '"peak_stress"' '"peak_strain_rate"' '"equilibrium_from"' '"modulus"' '"yield_stress"' '"hardening_modulus"'; do
+  grep -q "$key" "$work/hk/summary.json" && ok || bad "summary.json has no $key"
+done
+grep -q "yield stress (0.2% offset)" "$work/stdout" && ok || bad "hopkinson stdout"
+# The same gauges as measured files: a file without a header, volts.
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "gauge.incident.strain") c = i; next } { print $1 "," $c }' "$work/shpb/history.csv" > "$work/inc.csv"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "gauge.transmitted.strain") c = i; next } { print $1 "," $c * 1000 }' "$work/shpb/history.csv" > "$work/tr.csv"
+cat > "$work/measured.toml" <<'TOML'
+[bar]
+modulus = 200e9
+density = 7850.0
+diameter = 0.020
+[specimen]
+length = 0.006
+diameter = 0.010
+[incident]
+signal = "inc.csv"
+header = false
+time = "1"
+strain = "2"
+gauge_to_specimen = 0.75
+[transmitted]
+signal = "tr.csv"
+header = false
+time = "1"
+volts = "2"
+bridge = "full"
+gauge_factor = 2.0
+excitation = 5.0
+gain = 100
+gauge_to_specimen = 0.75
+TOML
+"$bin" hopkinson "$work/measured.toml" --out "$work/hk-measured" --no-plot > /dev/null 2>&1 && ok || bad "measured exit"
+# volts x 1000 through a full bridge: eps = V / (100 x 5 x 2) = the strain x 1000 / 1000.
+cmp -s <(cut -d, -f1-11 "$work/hk/hopkinson.csv" | sed -n 2,50p | cut -c1-12) <(cut -d, -f1-11 "$work/hk-measured/hopkinson.csv" | sed -n 2,50p | cut -c1-12) && ok || bad "measured files differ from the run's gauges"
+sed 's/strain = "2"/strain = "3"/' "$work/measured.toml" > "$work/m1.toml"
+expect_refused "no column \"3\"" hopkinson "$work/m1.toml" --out "$work/refused"
+cp "$work/measured.toml" "$work/m2.toml" && sed -i 's/inc.csv/nothing.csv/' "$work/m2.toml"
+expect_refused "nothing.csv" hopkinson "$work/m2.toml" --out "$work/refused"
+cp "$work/measured.toml" "$work/m3.toml" && sed -i 's/gauge_to_specimen = 0.75/gauge_to_specimen = 0.3/' "$work/m3.toml"
+expect_refused "pulses too close" hopkinson "$work/m3.toml" --out "$work/refused"
+cp "$work/measured.toml" "$work/m4.toml" && sed -i 's/^gain = 100/gain = 100\nfull_scale = 0.5/' "$work/m4.toml"
+expect_refused "clips" hopkinson "$work/m4.toml" --out "$work/refused"
+expect_refused "unknown key window.trigge" hopkinson <(printf '[window]\ntrigge = 0.1\n') --out "$work/refused"
+
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]
