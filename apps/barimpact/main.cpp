@@ -465,8 +465,9 @@ int bearing_command(const BearingArgs& a) {
 // hopkinson.csv, summary.json and the figures, moved into place together.
 int hopkinson_command(const std::string& setup_path, const std::string& out, bool no_plot, const WriteFlags& flags) {
   const auto setup = barimpact::HopkinsonSetup::from_file(setup_path);
-  const auto result = barimpact::analyse_hopkinson(setup, barimpact::read_gauge_signal(setup.incident),
-                                                   barimpact::read_gauge_signal(setup.transmitted));
+  auto incident = barimpact::read_gauge_signal(setup.incident);  // the incident's errors first
+  auto transmitted = barimpact::read_gauge_signal(setup.transmitted);
+  const auto result = barimpact::analyse_hopkinson(setup, std::move(incident), std::move(transmitted));
   barimpact::RunDirectory dir(out, flags.force, "hopkinson");
   bool plotted = false;
   dir.commit([&](const std::filesystem::path& staging) {
@@ -475,13 +476,17 @@ int hopkinson_command(const std::string& setup_path, const std::string& out, boo
     plotted = !no_plot && run_python({"hopkinson-plot", staging.string()});
   });
   const auto& a = result.alignment;
-  fmt::print("hopkinson: {} rows from the incident foot at t = {:.6g} (by {}), over {:.4g}\n",
-             result.columns.front().values.size(), a.foot, a.method, a.incident.end - a.incident.start);
+  fmt::print(
+      "hopkinson: {} rows over {:.4g} from the incident foot (by {}; t = {:.6g} in its record, t = 0 at the "
+      "specimen below)\n",
+      result.columns.front().values.size(), a.incident.end - a.incident.start, a.method, a.foot);
   fmt::print("  peak stress (3-wave) {:.4g} at t = {:.4g}; peak strain rate (3-wave) {:.4g}\n",
              result.peak_stress_3w.value, result.peak_stress_3w.t, result.peak_strain_rate_3w.value);
   if (result.equilibrium_from)
-    fmt::print("  equilibrium (|2 (F_front - F_back) / (F_front + F_back)| < 0.05) from t = {:.4g}\n",
-               *result.equilibrium_from);
+    fmt::print(
+        "  equilibrium (|2 (F_front - F_back) / (F_front + F_back)| < 0.05) from t = {:.4g} to the peak (first "
+        "at {:.4g})\n",
+        *result.equilibrium_from, result.equilibrium_first.value_or(*result.equilibrium_from));
   if (result.fit.modulus > 0) {
     fmt::print("  fit (3-wave): modulus {:.4g}", result.fit.modulus);
     if (result.fit.yield_stress) fmt::print(", yield stress (0.2% offset) {:.4g}", *result.fit.yield_stress);

@@ -267,11 +267,16 @@ class Analysis {
     // transmitted back from the faces: each is moved by its own distance.
     DispersionCorrection forward(bar, di), backward(bar, -di), transmitted(setup_.transmitter_bar, -dt);
     inc_forward_ = inc_;
-    forward.apply(inc_forward_);
     inc_backward_ = inc_;
-    backward.apply(inc_backward_);
-    if (!tr_.simulated) transmitted.apply(tr_);
-    a.dispersion_terms = forward.terms();
+    if (!inc_.simulated) {  // a simulated record has no dispersion to undo
+      forward.apply(inc_forward_);
+      backward.apply(inc_backward_);
+      a.dispersion_terms = forward.terms();
+    }
+    if (!tr_.simulated) {
+      transmitted.apply(tr_);
+      a.dispersion_terms = transmitted.terms();
+    }
     a.dispersion_note = "Pochhammer-Chree phase velocity for the bars' diameter and Poisson's ratio";
     dispersed_ = true;
   }
@@ -403,6 +408,11 @@ void Analysis::measure_equilibrium() {
   for (std::size_t i = 0; i < rows_; ++i)
     if (ff[i] > equilibrium_force_fraction * pf && fb[i] > equilibrium_force_fraction * pb)
       (*eq)[i] = 2.0 * (ff[i] - fb[i]) / (ff[i] + fb[i]);
+  for (std::size_t i = 0; i < rows_; ++i)
+    if (std::abs((*eq)[i]) < equilibrium_tolerance) {
+      r_.equilibrium_first = t[i];
+      break;
+    }
   if (!std::isfinite(r_.peak_stress_3w.t)) return;
   const auto peak = static_cast<std::size_t>(std::find(t.begin(), t.end(), r_.peak_stress_3w.t) - t.begin());
   std::size_t j = peak + 1;
@@ -511,7 +521,9 @@ HopkinsonResult analyse_hopkinson(const HopkinsonSetup& setup, GaugeSignal incid
 
 HopkinsonResult analyse_hopkinson(const std::filesystem::path& setup_file) {
   const auto setup = HopkinsonSetup::from_file(setup_file);
-  return analyse_hopkinson(setup, read_gauge_signal(setup.incident), read_gauge_signal(setup.transmitted));
+  auto incident = read_gauge_signal(setup.incident);  // the incident's errors first
+  auto transmitted = read_gauge_signal(setup.transmitted);
+  return analyse_hopkinson(setup, std::move(incident), std::move(transmitted));
 }
 
 }  // namespace barimpact

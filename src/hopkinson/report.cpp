@@ -102,6 +102,7 @@ std::string hopkinson_summary_json(const HopkinsonResult& r) {
                 {"strain_rate_1w", peak(r.peak_strain_rate_1w)},
                 {"strain_rate_3w", peak(r.peak_strain_rate_3w)}};
   j["equilibrium_from"] = number(r.equilibrium_from);
+  j["equilibrium_first"] = number(r.equilibrium_first);
   j["equilibrium_tolerance"] = 0.05;
   if (r.fit.done) j["fit"] = fit(r.fit);
   auto bar = [](const HopkinsonBar& b) {

@@ -430,6 +430,8 @@ HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::f
   }
   s.fit_elastic = r.range("fit", "elastic");
   s.fit_plastic = r.range("fit", "plastic");
+  if (s.fit_plastic && !s.fit_elastic)
+    r.fail("fit", "plastic", "needs fit.elastic: the yield, where the plastic range starts, comes from the modulus");
   return s;
 }
 

@@ -367,6 +367,7 @@ TEST_F(HopkinsonAnalysis, RefusesABadSetupNamingTheKey) {
   EXPECT_HAS(refusal(setup_text("", "start = 1e-4")), "incident.end");
   EXPECT_HAS(refusal(setup_text("[bar]\ndiameter = 0.02")), "not valid TOML");  // a second [bar]
   EXPECT_HAS(refusal(setup_text("[cushion]\nx = 1")), "unknown section [cushion]");
+  EXPECT_HAS(refusal(setup_text("[fit]\nplastic = [0.01, 0.1]")), "fit.plastic needs fit.elastic");
 }
 
 // Pochhammer-Chree: Rayleigh's long-wave limit and the Rayleigh wave at short

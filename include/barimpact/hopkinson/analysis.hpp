@@ -90,7 +90,8 @@ struct HopkinsonResult {
   std::vector<HopkinsonColumn> columns;  ///< hopkinson.csv's, in order; the contract's 11 first
   HopkinsonAlignment alignment;
   HopkinsonPeak peak_stress_1w, peak_stress_2w, peak_stress_3w, peak_strain_rate_1w, peak_strain_rate_3w;
-  std::optional<double> equilibrium_from;  ///< from then to the 3-wave peak stress, |equilibrium| < 0.05
+  std::optional<double> equilibrium_from;   ///< from then to the 3-wave peak stress, |equilibrium| < 0.05
+  std::optional<double> equilibrium_first;  ///< the first time |equilibrium| < 0.05
   HopkinsonFit fit;
   std::vector<std::string> warnings;
 
