@@ -75,8 +75,9 @@ class SetupReader {
     std::vector<std::string_view> names;
     for (const auto& s : contract()) names.push_back(s.section);
     for (auto&& [name, value] : root_) {
+      const std::string_view section = name.str();  // clang 14 cannot capture a structured binding
       const auto it = std::find_if(contract().begin(), contract().end(),
-                                   [&](const SectionKeys& s) { return s.section == name.str(); });
+                                   [&](const SectionKeys& s) { return s.section == section; });
       if (it == contract().end())
         throw InputError(
             fmt::format("{}: unknown section [{}] (known: {})", located(value), name.str(), fmt::join(names, ", ")));
