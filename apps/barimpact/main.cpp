@@ -464,10 +464,7 @@ int bearing_command(const BearingArgs& a) {
 // hopkinson: the analysis first (a signal it refuses writes nothing), then
 // hopkinson.csv, summary.json and the figures, moved into place together.
 int hopkinson_command(const std::string& setup_path, const std::string& out, bool no_plot, const WriteFlags& flags) {
-  const auto setup = barimpact::HopkinsonSetup::from_file(setup_path);
-  auto incident = barimpact::read_gauge_signal(setup.incident);  // the incident's errors first
-  auto transmitted = barimpact::read_gauge_signal(setup.transmitted);
-  const auto result = barimpact::analyse_hopkinson(setup, std::move(incident), std::move(transmitted));
+  const auto result = barimpact::analyse_hopkinson(std::filesystem::path(setup_path));
   barimpact::RunDirectory dir(out, flags.force, "hopkinson");
   bool plotted = false;
   dir.commit([&](const std::filesystem::path& staging) {

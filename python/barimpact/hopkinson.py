@@ -4,15 +4,9 @@ rate against strain, and the specimen's equilibrium against time."""
 import json
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from .plot import DPI  # noqa: E402
-
-FIGURES = ("waves", "stress_strain", "strain_rate", "equilibrium")
+from .plot import _figure, _save
 
 
 def read_hopkinson(directory):
@@ -27,21 +21,14 @@ def read_hopkinson(directory):
     return table, summary
 
 
-def _save(fig, directory, name, formats, written):
-    for fmt in formats:
-        path = Path(directory) / f"{name}.{fmt}"
-        fig.savefig(path, dpi=DPI)
-        written.append(str(path))
-    plt.close(fig)
-
-
 def plot_hopkinson(directory, formats=("png", "svg")):
     """Draws the four figures into the directory; returns their paths."""
     h, s = read_hopkinson(directory)
     t = h["t"]
+    out = Path(directory)
     written = []
 
-    fig, ax = plt.subplots(figsize=(7.5, 4.5), dpi=DPI, layout="constrained")
+    fig, ax = _figure("The three waves, moved to the specimen's faces")
     for name, label in (("incident", "incident"), ("reflected", "reflected"), ("transmitted", "transmitted")):
         if name in h:
             ax.plot(t, h[name], lw=1.2, label=label)
@@ -50,12 +37,10 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     ax.axhline(0, color="0.6", lw=0.6)
     ax.set_xlabel("t (0: the incident foot at the specimen)")
     ax.set_ylabel("gauge strain (tension > 0)")
-    ax.set_title("The three waves, moved to the specimen's faces")
-    ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    _save(fig, directory, "waves", formats, written)
+    _save(fig, out, "waves", formats, written)
 
-    fig, ax = plt.subplots(figsize=(7.5, 4.5), dpi=DPI, layout="constrained")
+    fig, ax = _figure("Specimen stress-strain")
     ax.plot(h["strain_1w"], h["stress_1w"], lw=1.2, label="1-wave: transmitted force, reflected strain")
     ax.plot(h["strain_3w"], h["stress_2w"], lw=1.2, label="2-wave: front-face force (3-wave strain)")
     ax.plot(h["strain_3w"], h["stress_3w"], "k", lw=1.6, label="3-wave: mean force, faces' velocities")
@@ -71,24 +56,20 @@ def plot_hopkinson(directory, formats=("png", "svg")):
                     label=f"yield {fit['yield_stress']:.4g}")
     ax.set_xlabel("engineering strain (compression > 0)")
     ax.set_ylabel("engineering stress (compression > 0)")
-    ax.set_title("Specimen stress-strain")
     ax.set_xlim(left=min(0.0, np.nanmin(h["strain_3w"])))
     ax.set_ylim(bottom=min(0.0, np.nanmin(h["stress_3w"])))
-    ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    _save(fig, directory, "stress_strain", formats, written)
+    _save(fig, out, "stress_strain", formats, written)
 
-    fig, ax = plt.subplots(figsize=(7.5, 4.5), dpi=DPI, layout="constrained")
+    fig, ax = _figure("Strain rate")
     ax.plot(h["strain_1w"], h["strain_rate_1w"], lw=1.2, label="1-wave: 2 c0 eps_r / L_s")
     ax.plot(h["strain_3w"], h["strain_rate_3w"], "k", lw=1.4, label="3-wave: c0 (eps_r + eps_t - eps_i) / L_s")
     ax.set_xlabel("engineering strain (compression > 0)")
     ax.set_ylabel("strain rate")
-    ax.set_title("Strain rate")
-    ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    _save(fig, directory, "strain_rate", formats, written)
+    _save(fig, out, "strain_rate", formats, written)
 
-    fig, ax = plt.subplots(figsize=(7.5, 4.5), dpi=DPI, layout="constrained")
+    fig, ax = _figure("Specimen equilibrium (where both forces pass 5% of their peak)")
     ax.plot(t, h["equilibrium"], "k", lw=1.2, label="2 (F_front - F_back) / (F_front + F_back)")
     ax.axhspan(-0.05, 0.05, color="tab:green", alpha=0.15, label="within 5%")
     if s.get("equilibrium_from") is not None:
@@ -96,8 +77,6 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     ax.set_ylim(-0.5, 0.5)
     ax.set_xlabel("t")
     ax.set_ylabel("equilibrium")
-    ax.set_title("Specimen equilibrium (where both forces pass 5% of their peak)")
-    ax.grid(True, alpha=0.3)
     ax2 = ax.twinx()
     ax2.plot(t, h["force_front"], color="tab:blue", lw=0.8, alpha=0.6, label="force front")
     ax2.plot(t, h["force_back"], color="tab:orange", lw=0.8, alpha=0.6, label="force back")
@@ -105,5 +84,5 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     lines = ax.get_legend_handles_labels()
     lines2 = ax2.get_legend_handles_labels()
     ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=8, loc="lower right")
-    _save(fig, directory, "equilibrium", formats, written)
+    _save(fig, out, "equilibrium", formats, written)
     return written

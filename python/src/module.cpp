@@ -325,9 +325,7 @@ PYBIND11_MODULE(_core, m) {
         HopkinsonResult r;
         {
           py::gil_scoped_release release;
-          auto incident = read_gauge_signal(s.incident);  // the incident's errors first
-          auto transmitted = read_gauge_signal(s.transmitted);
-          r = analyse_hopkinson(s, std::move(incident), std::move(transmitted));
+          r = analyse_hopkinson(s);
         }
         py::dict table;
         for (const auto& c : r.columns) {

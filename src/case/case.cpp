@@ -175,7 +175,7 @@ class Reader {
     else if (const auto* f = n->as_floating_point())
       v = f->get();
     else
-      fail(section, key, fmt::format("must be a number (got {})", type_name(*n)));
+      fail(section, key, fmt::format("must be a number (got {})", toml_type_name(*n)));
     if (!std::isfinite(v)) fail(section, key, fmt::format("must be a finite number (got {})", v));
     return v;
   }
@@ -184,14 +184,14 @@ class Reader {
     const auto* n = node(section, key);
     if (n == nullptr) return fallback;
     if (const auto* i = n->as_integer()) return i->get();
-    fail(section, key, fmt::format("must be an integer (got {})", type_name(*n)));
+    fail(section, key, fmt::format("must be an integer (got {})", toml_type_name(*n)));
   }
 
   std::string word(std::string_view section, std::string_view key, std::string_view fallback) const {
     const auto* n = node(section, key);
     if (n == nullptr) return std::string(fallback);
     if (const auto* s = n->as_string()) return s->get();
-    fail(section, key, fmt::format("must be a string (got {})", type_name(*n)));
+    fail(section, key, fmt::format("must be a string (got {})", toml_type_name(*n)));
   }
 
   // An expression: a string, or a number written without quotes.
@@ -204,7 +204,7 @@ class Reader {
       if (!std::isfinite(f->get())) fail(section, key, "must be finite");
       return fmt::format("{}", f->get());
     }
-    fail(section, key, fmt::format("must be an expression in x and t (got {})", type_name(*n)));
+    fail(section, key, fmt::format("must be an expression in x and t (got {})", toml_type_name(*n)));
   }
 
   std::vector<double> numbers(std::string_view section, std::string_view key) const {
@@ -217,7 +217,7 @@ class Reader {
         if (!std::isfinite(f->get())) fail(section, key, "must hold finite numbers");
         return f->get();
       }
-      fail(section, key, fmt::format("must be an array of numbers (found {})", type_name(e)));
+      fail(section, key, fmt::format("must be an array of numbers (found {})", toml_type_name(e)));
     };
     if (const auto* a = n->as_array()) {
       for (const auto& e : *a) out.push_back(one(e));
@@ -228,25 +228,6 @@ class Reader {
   }
 
  private:
-  static std::string_view type_name(const toml::node& n) {
-    switch (n.type()) {
-      case toml::node_type::string:
-        return "a string";
-      case toml::node_type::integer:
-        return "an integer";
-      case toml::node_type::floating_point:
-        return "a float";
-      case toml::node_type::boolean:
-        return "a boolean";
-      case toml::node_type::array:
-        return "an array";
-      case toml::node_type::table:
-        return "a table";
-      default:
-        return "a date or time";
-    }
-  }
-
   toml::table root_;
   std::string origin_;
   std::map<std::string, std::string> overridden_;

@@ -24,6 +24,9 @@ namespace barimpact {
 /// (one line) for text toml++ rejects or must not be shown.
 [[nodiscard]] toml::table parse_toml(std::string_view text, std::string_view origin);
 
+/// What a value is, for messages: "a string", "an integer", "a float", ...
+[[nodiscard]] std::string_view toml_type_name(const toml::node& node);
+
 /// A value as TOML text ("[ 0.5, 'x' ]", "{ a = 1 }"), written without
 /// toml++'s formatter, which sizes float arrays with size_t(log10(|x|)),
 /// undefined for |x| < 1 (tomlplusplus#276).

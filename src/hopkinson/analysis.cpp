@@ -265,18 +265,14 @@ class Analysis {
     const double di = setup_.incident.gauge_to_specimen, dt = setup_.transmitted.gauge_to_specimen;
     // The incident pulse travels forward to the face, the reflected and the
     // transmitted back from the faces: each is moved by its own distance.
-    DispersionCorrection forward(bar, di), backward(bar, -di), transmitted(setup_.transmitter_bar, -dt);
     inc_forward_ = inc_;
     inc_backward_ = inc_;
     if (!inc_.simulated) {  // a simulated record has no dispersion to undo
-      forward.apply(inc_forward_);
-      backward.apply(inc_backward_);
-      a.dispersion_terms = forward.terms();
+      const DispersionCorrection incident(bar);
+      a.dispersion_terms = incident.apply(inc_forward_, di);
+      incident.apply(inc_backward_, -di);
     }
-    if (!tr_.simulated) {
-      transmitted.apply(tr_);
-      a.dispersion_terms = transmitted.terms();
-    }
+    if (!tr_.simulated) a.dispersion_terms = DispersionCorrection(setup_.transmitter_bar).apply(tr_, -dt);
     a.dispersion_note = "Pochhammer-Chree phase velocity for the bars' diameter and Poisson's ratio";
     dispersed_ = true;
   }
@@ -520,7 +516,10 @@ HopkinsonResult analyse_hopkinson(const HopkinsonSetup& setup, GaugeSignal incid
 }
 
 HopkinsonResult analyse_hopkinson(const std::filesystem::path& setup_file) {
-  const auto setup = HopkinsonSetup::from_file(setup_file);
+  return analyse_hopkinson(HopkinsonSetup::from_file(setup_file));
+}
+
+HopkinsonResult analyse_hopkinson(const HopkinsonSetup& setup) {
   auto incident = read_gauge_signal(setup.incident);  // the incident's errors first
   auto transmitted = read_gauge_signal(setup.transmitted);
   return analyse_hopkinson(setup, std::move(incident), std::move(transmitted));

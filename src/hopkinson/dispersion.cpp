@@ -118,10 +118,10 @@ double PochhammerChree::ratio_at_frequency(double w) const {
   return table_ratio_[j - 1] + f * (table_ratio_[j] - table_ratio_[j - 1]);
 }
 
-DispersionCorrection::DispersionCorrection(const HopkinsonBar& bar, double distance)
-    : curve_(bar.poisson), radius_(bar.diameter / 2.0), wave_speed_(bar.wave_speed), distance_(distance) {}
+DispersionCorrection::DispersionCorrection(const HopkinsonBar& bar)
+    : curve_(bar.poisson), radius_(bar.diameter / 2.0), wave_speed_(bar.wave_speed) {}
 
-void DispersionCorrection::apply(GaugeSignal& s) const {
+int DispersionCorrection::apply(GaugeSignal& s, double distance) const {
   const std::size_t n = s.t.size();
   const double dt = (s.t.back() - s.t.front()) / static_cast<double>(n - 1);
   for (std::size_t k = 1; k < n; ++k)
@@ -144,11 +144,11 @@ void DispersionCorrection::apply(GaugeSignal& s) const {
     const double index = k <= size / 2 ? static_cast<double>(k) : static_cast<double>(k) - static_cast<double>(size);
     const double omega = 2.0 * std::numbers::pi * index / (static_cast<double>(size) * dt);
     const double c = wave_speed_ * curve_.ratio_at_frequency(std::abs(omega) * radius_ / wave_speed_);
-    spectrum[k] *= std::polar(1.0, -omega * distance_ * (1.0 / c - 1.0 / wave_speed_));
+    spectrum[k] *= std::polar(1.0, -omega * distance * (1.0 / c - 1.0 / wave_speed_));
   }
   kissfft<double>(size, true).transform(spectrum.data(), x.data());
   for (std::size_t k = 0; k < n; ++k) s.strain[k] = x[k].real() / static_cast<double>(size);
-  terms_ = static_cast<int>(size);
+  return static_cast<int>(size);
 }
 
 }  // namespace barimpact

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "../study/csv_cells.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 
 namespace barimpact {
@@ -11,12 +12,6 @@ namespace barimpact {
 namespace {
 
 using nlohmann::ordered_json;
-
-std::string cell(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  return fmt::format("{}", v);
-}
 
 // A number, or null where there is none.
 ordered_json number(double v) {
@@ -81,7 +76,7 @@ std::string hopkinson_csv(const HopkinsonResult& r) {
   for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t c = 0; c < r.columns.size(); ++c) {
       if (c) out += ',';
-      out += cell(r.columns[c].values[i]);
+      out += detail::csv_number(r.columns[c].values[i]);
     }
     out += '\n';
   }

@@ -38,25 +38,6 @@ const std::vector<SectionKeys>& contract() {
   return c;
 }
 
-std::string_view type_name(const toml::node& n) {
-  switch (n.type()) {
-    case toml::node_type::string:
-      return "a string";
-    case toml::node_type::integer:
-      return "an integer";
-    case toml::node_type::floating_point:
-      return "a float";
-    case toml::node_type::boolean:
-      return "a boolean";
-    case toml::node_type::array:
-      return "an array";
-    case toml::node_type::table:
-      return "a table";
-    default:
-      return "a date or time";
-  }
-}
-
 // Reads the keys of one parsed setup; every message is "origin:line: section.key rule".
 class SetupReader {
  public:
@@ -111,14 +92,14 @@ class SetupReader {
     const auto* n = node(section, key);
     if (n == nullptr) return std::nullopt;
     if (const auto* s = n->as_string()) return s->get();
-    fail(section, key, fmt::format("must be a string (got {})", type_name(*n)));
+    fail(section, key, fmt::format("must be a string (got {})", toml_type_name(*n)));
   }
 
   [[nodiscard]] std::optional<bool> boolean(std::string_view section, std::string_view key) const {
     const auto* n = node(section, key);
     if (n == nullptr) return std::nullopt;
     if (const auto* b = n->as_boolean()) return b->get();
-    fail(section, key, fmt::format("must be true or false (got {})", type_name(*n)));
+    fail(section, key, fmt::format("must be true or false (got {})", toml_type_name(*n)));
   }
 
   // A string or a non-empty array of strings.
@@ -129,10 +110,10 @@ class SetupReader {
     if (const auto* s = n->as_string()) return {s->get()};
     const auto* a = n->as_array();
     if (a == nullptr)
-      fail(section, key, fmt::format("must be a string or an array of strings (got {})", type_name(*n)));
+      fail(section, key, fmt::format("must be a string or an array of strings (got {})", toml_type_name(*n)));
     for (const auto& e : *a) {
       const auto* s = e.as_string();
-      if (s == nullptr) fail(section, key, fmt::format("must be an array of strings (found {})", type_name(e)));
+      if (s == nullptr) fail(section, key, fmt::format("must be an array of strings (found {})", toml_type_name(e)));
       if (s->get().empty()) fail(section, key, "must not hold an empty name");
       out.push_back(s->get());
     }
@@ -167,7 +148,7 @@ class SetupReader {
     else if (const auto* f = n.as_floating_point())
       v = f->get();
     else
-      fail(section, key, fmt::format("must be a number (got {})", type_name(n)));
+      fail(section, key, fmt::format("must be a number (got {})", toml_type_name(n)));
     if (!std::isfinite(v)) fail(section, key, fmt::format("must be a finite number (got {})", v));
     return v;
   }

@@ -160,17 +160,17 @@ void check_clipping(const ChannelSetup& ch, const std::filesystem::path& file, c
 }
 
 // The channels of several files must be one clock's samples.
-void check_same_clock(const ChannelSetup& ch, const FileColumns& first, const FileColumns& other,
+void check_same_clock(const ChannelSetup& ch, const std::vector<double>& first, const FileColumns& other,
                       const std::filesystem::path& file) {
-  if (other.t.size() != first.t.size())
+  if (other.t.size() != first.size())
     throw InputError(fmt::format("{}: {} has {} samples and {} has {}: the files of a channel must share one clock",
-                                 ch.section, file.string(), other.t.size(), ch.files.front().string(), first.t.size()));
-  const double spacing = first.t.size() > 1 ? (first.t.back() - first.t.front()) / double(first.t.size() - 1) : 0.0;
-  for (std::size_t k = 0; k < first.t.size(); ++k)
-    if (std::abs(other.t[k] - first.t[k]) > 0.01 * spacing)
+                                 ch.section, file.string(), other.t.size(), ch.files.front().string(), first.size()));
+  const double spacing = first.size() > 1 ? (first.back() - first.front()) / double(first.size() - 1) : 0.0;
+  for (std::size_t k = 0; k < first.size(); ++k)
+    if (std::abs(other.t[k] - first[k]) > 0.01 * spacing)
       throw InputError(fmt::format("{}:{}: {}: t = {} where {} has t = {}: the files of a channel must share one clock",
                                    file.string(), other.lines[k], ch.section, other.t[k], ch.files.front().string(),
-                                   first.t[k]));
+                                   first[k]));
 }
 
 }  // namespace
@@ -180,19 +180,16 @@ GaugeSignal read_gauge_signal(const ChannelSetup& ch) {
   s.simulated = !ch.run.empty();
   s.label = fmt::format("[{}] {}", ch.section, ch.files.front().string());
   std::vector<std::vector<double>> channels;
-  FileColumns first;
   for (std::size_t i = 0; i < ch.files.size(); ++i) {
     std::vector<std::string> names = ch.strain_columns;
     if (ch.files.size() > 1 && names.size() == ch.files.size()) names = {ch.strain_columns[i]};
     auto f = ColumnReader(ch, ch.files[i], names).read();
     if (ch.full_scale)
       for (std::size_t c = 0; c < names.size(); ++c) check_clipping(ch, ch.files[i], names[c], f, f.data[c]);
-    if (i == 0) {
-      s.t = f.t;
-      first = f;
-    } else {
-      check_same_clock(ch, first, f, ch.files[i]);
-    }
+    if (i == 0)
+      s.t = std::move(f.t);  // the channel's clock
+    else
+      check_same_clock(ch, s.t, f, ch.files[i]);
     for (auto& d : f.data) channels.push_back(std::move(d));
   }
   // Volts through the bridge (linearised): eps = n V / (gain excitation gauge_factor).

@@ -4,7 +4,6 @@
 // its gauges as a user would (`run = ...` in the setup).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -12,6 +11,7 @@
 #include <random>
 
 #include "../support/run_case.hpp"
+#include "../support/scratch_directory.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/output.hpp"
 
@@ -25,14 +25,6 @@ constexpr double E_specimen = 70e9, yield = 300e6, tangent = 1e9;
 
 class SimulatedHopkinson : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / fmt::format("barimpact-shpb-{}-{}", ::getpid(),
-                                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // Runs the example with `sets`, writes its run directory, analyses its gauges.
   HopkinsonResult simulate_and_analyse(const std::vector<std::string>& sets, const std::string& fit) {
     const Case c = example("hopkinson/shpb.toml", sets);
@@ -74,7 +66,8 @@ gauge = "transmitted"
     return suv / suu;
   }
 
-  fs::path dir_;
+  testing::ScratchDirectory scratch_{"barimpact-shpb"};
+  const fs::path& dir_ = scratch_.path();
   RunResult result_;
 };
 

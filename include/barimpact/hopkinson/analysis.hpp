@@ -108,6 +108,9 @@ struct HopkinsonResult {
 [[nodiscard]] HopkinsonResult analyse_hopkinson(const HopkinsonSetup& setup, GaugeSignal incident,
                                                 GaugeSignal transmitted);
 
+/// Reads the setup's two signals (the incident's errors first) and analyses them.
+[[nodiscard]] HopkinsonResult analyse_hopkinson(const HopkinsonSetup& setup);
+
 /// Reads the setup file and its signals and analyses them.
 [[nodiscard]] HopkinsonResult analyse_hopkinson(const std::filesystem::path& setup_file);
 

@@ -38,22 +38,20 @@ class PochhammerChree {
   std::vector<double> table_omega_, table_ratio_;
 };
 
-/// Moves a gauge record by `distance` along the bar (> 0: the way the wave
-/// travels, gauge to face; < 0: face to gauge) at the dispersive speeds,
-/// re-referenced to c0 so that the analysis's travel-time shifts still apply.
+/// Moves gauge records along one bar at the dispersive speeds, re-referenced
+/// to c0 so that the analysis's travel-time shifts still apply.
 class DispersionCorrection {
  public:
-  DispersionCorrection(const HopkinsonBar& bar, double distance);
-  /// Corrects the signal in place. Throws InputError when its samples are not
-  /// uniformly spaced (within 1%): the Fourier series needs one interval.
-  void apply(GaugeSignal& s) const;
-  /// The Fourier terms of the last record corrected.
-  [[nodiscard]] int terms() const { return terms_; }
+  explicit DispersionCorrection(const HopkinsonBar& bar);
+  /// Corrects the signal in place for `distance` (> 0: the way the wave
+  /// travels, gauge to face; < 0: face to gauge); returns the Fourier terms.
+  /// Throws InputError when its samples are not uniformly spaced (within
+  /// 1%): the Fourier series needs one interval.
+  int apply(GaugeSignal& s, double distance) const;
 
  private:
   PochhammerChree curve_;
-  double radius_, wave_speed_, distance_;
-  mutable int terms_ = 0;
+  double radius_, wave_speed_;
 };
 
 }  // namespace barimpact
