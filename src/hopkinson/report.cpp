@@ -50,9 +50,10 @@ ordered_json alignment(const HopkinsonAlignment& a) {
 ordered_json fit(const HopkinsonFit& f) {
   ordered_json j;
   j["modulus"] = f.modulus > 0 ? ordered_json(f.modulus) : ordered_json(nullptr);
-  j["yield_stress"] = number(f.yield_stress);
-  j["hardening_modulus"] = number(f.hardening_modulus);
-  j["yield_strain"] = number(f.yield_strain);
+  // yield_stress and hardening_modulus only for a yielding specimen, as the contract has them.
+  if (f.yield_stress) j["yield_stress"] = *f.yield_stress;
+  if (f.hardening_modulus) j["hardening_modulus"] = *f.hardening_modulus;
+  if (f.yield_strain) j["yield_strain"] = *f.yield_strain;
   j["strain_intercept"] = f.modulus > 0 ? ordered_json(f.strain_intercept) : ordered_json(nullptr);
   j["elastic_range"] = {f.elastic_range.first, f.elastic_range.second};
   j["elastic_points"] = f.elastic_points;

@@ -240,6 +240,15 @@ RunGauge read_run_gauge(const SetupReader& r, const ChannelSetup& ch, const std:
   return out;
 }
 
+// A relative path from the setup file's directory; if nothing is there and
+// something is in the working directory, that (a run's `out/...` named from
+// where the commands are typed).
+std::filesystem::path relative_to(const std::filesystem::path& base, const std::string& name) {
+  const std::filesystem::path p(name);
+  if (p.is_absolute() || std::filesystem::exists(base / p) || !std::filesystem::exists(p)) return base / p;
+  return p;
+}
+
 // time/sample_interval, strain/volts and the bridge's constants.
 void read_columns(const SetupReader& r, std::string_view s, ChannelSetup& ch) {
   const auto time = r.word(s, "time");
@@ -323,7 +332,7 @@ ChannelSetup read_channel(const SetupReader& r, std::string_view s, const std::f
     for (std::string_view key : {"time", "strain", "volts", "header", "sample_interval", "delimiter", "skip_rows",
                                  "gauge_factor", "excitation", "bridge", "gain", "polarity", "full_scale"})
       if (r.has(s, key)) r.fail(s, key, "does not apply to a run's gauge (its history.csv is read as written)");
-    ch.run = base / *run;
+    ch.run = relative_to(base, *run);
     const auto gauge = r.word(s, "gauge");
     if (!gauge || gauge->empty()) r.fail(s, "gauge", "must name the run's gauge (given run)");
     ch.gauge = *gauge;
@@ -333,7 +342,7 @@ ChannelSetup read_channel(const SetupReader& r, std::string_view s, const std::f
   } else {
     if (files.empty()) r.fail(s, "signal", "is missing: a CSV file (or a list of them), or run and gauge");
     if (r.has(s, "gauge")) r.fail(s, "gauge", "needs run (a barimpact run's gauge)");
-    for (const auto& f : files) ch.files.push_back(base / f);
+    for (const auto& f : files) ch.files.push_back(relative_to(base, f));
     read_columns(r, s, ch);
     read_file_layout(r, s, ch);
   }

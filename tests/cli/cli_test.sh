@@ -325,6 +325,11 @@ for key in '"alignment"' '"baseline"' '"peak_stress"' '"peak_strain_rate"' '"equ
   grep -q "$key" "$work/hk/summary.json" && ok || bad "summary.json has no $key"
 done
 grep -q "yield stress (0.2% offset)" "$work/stdout" && ok || bad "hopkinson stdout"
+# A run named from the working directory when nothing of that name is beside the setup.
+mkdir -p "$work/setups" && cp "$work/analyse.toml" "$work/setups/"
+abs_bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
+(cd "$work" && "$abs_bin" hopkinson setups/analyse.toml --out hk-cwd --no-plot > /dev/null 2>&1) && ok || bad "run relative to the working directory"
+cmp -s "$work/hk/hopkinson.csv" "$work/hk-cwd/hopkinson.csv" && ok || bad "the same analysis from the working directory"
 # The same gauges as measured files: a file without a header, volts.
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "gauge.incident.strain") c = i; next } { print $1 "," $c }' "$work/shpb/history.csv" > "$work/inc.csv"
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "gauge.transmitted.strain") c = i; next } { print $1 "," $c * 1000 }' "$work/shpb/history.csv" > "$work/tr.csv"

@@ -79,6 +79,7 @@ TEST_F(SimulatedHopkinson, ElasticSpecimenGivesItsModulus) {
   ASSERT_TRUE(r.fit.done);
   EXPECT_NEAR(r.fit.modulus / E_specimen, 1.0, 0.02);
   EXPECT_FALSE(r.fit.yield_stress);
+  EXPECT_EQ(hopkinson_summary_json(r).find("\"yield_stress\""), std::string::npos);  // only for a yielding specimen
   ASSERT_TRUE(r.equilibrium_from);
   const double from = *r.equilibrium_from;
   double worst = 0.0;  // the largest |equilibrium| the analysis reports over those rows

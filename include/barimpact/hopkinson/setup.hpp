@@ -70,7 +70,8 @@ struct HopkinsonSetup {
   std::optional<std::pair<double, double>> fit_plastic;  ///< [fit] plastic: a strain range
 
   /// Reads and validates a setup file; relative paths in it are relative to
-  /// its directory. A section that names a `run` takes the gauge's distance,
+  /// its directory (or, when nothing is there but something is in the
+  /// working directory, to that). A section that names a `run` takes the gauge's distance,
   /// and [bar] and [specimen] (keys the setup gives win), from the run's
   /// case.toml. Throws InputError naming the key and the rule.
   static HopkinsonSetup from_file(const std::filesystem::path& path);
