@@ -21,6 +21,7 @@ constexpr double pulse_peak_fraction = 0.01;         // ... and 1% of the incide
 constexpr double equilibrium_force_fraction = 0.05;  // equilibrium is shown where both forces pass 5% of their peak
 constexpr double equilibrium_tolerance = 0.05;
 constexpr double offset_strain = 0.002;  // the 0.2% offset yield
+constexpr int max_rounds = 50;           // of baseline and foot, and of the first pulse's peak
 
 [[noreturn]] void refuse(const GaugeSignal& s, const std::string& rule) {
   throw InputError(fmt::format("{}: {}", s.label, rule));
@@ -120,7 +121,7 @@ class Analysis {
       std::nth_element(head.begin(), head.begin() + static_cast<long>(head.size() / 2), head.end());
       a.baseline_incident = head[head.size() / 2];
       std::size_t last_foot = n;
-      for (a.iterations = 1; a.iterations <= 50; ++a.iterations) {
+      for (a.iterations = 1; a.iterations <= max_rounds; ++a.iterations) {
         compression(a.baseline_incident);
         if (a.iterations == 1) check_polarity();
         trigger_window();
@@ -128,9 +129,10 @@ class Analysis {
         last_foot = foot_;
         a.baseline_incident = mean_rms(inc_.strain, foot_).first;
       }
-      if (a.iterations > 50) {
-        a.iterations = 50;
-        r_.warnings.push_back("the incident foot did not settle in 50 rounds of baseline and foot: check the window");
+      if (a.iterations > max_rounds) {
+        a.iterations = max_rounds;
+        r_.warnings.push_back(fmt::format(
+            "the incident foot did not settle in {} rounds of baseline and foot: check the window", max_rounds));
       }
     }
     a.noise_incident = mean_rms(inc_.strain, foot_).second;
@@ -185,7 +187,7 @@ class Analysis {
     double peak = *std::max_element(c_.begin(), c_.end());
     if (!(peak > 0)) refuse(inc_, "holds no compression pulse (the incident pulse is negative: tension is positive)");
     std::size_t cross = 0, down = n;
-    for (int round = 0; round < 50; ++round) {  // the first pulse's peak, not a later pulse's
+    for (int round = 0; round < max_rounds; ++round) {  // the first pulse's peak, not a later pulse's
       const double level = setup_.trigger * peak;
       cross = static_cast<std::size_t>(std::find_if(c_.begin(), c_.end(), [&](double v) { return v >= level; }) -
                                        c_.begin());
@@ -200,10 +202,8 @@ class Analysis {
     r_.alignment.incident_peak = peak;
     std::size_t k = cross;
     while (k > 0 && c_[k] > foot_fraction * peak) --k;
-    if (k == 0 && c_[0] > foot_fraction * peak)
+    if (k == 0)  // the pulse, or its foot, is the first sample
       refuse(inc_, "the incident pulse starts at the record's first sample: a baseline needs samples before it");
-    if (k == 0)
-      refuse(inc_, "the incident pulse's foot is the record's first sample: a baseline needs samples before it");
     foot_ = k;
     k = down;
     while (k < n && c_[k] > foot_fraction * peak) ++k;
@@ -305,10 +305,8 @@ class Analysis {
                       tr_.t.back(), a.transmitted.end));
   }
 
-  HopkinsonColumn& add(const std::string& name) {
-    r_.columns.push_back({name, std::vector<double>(rows_, nan)});
-    return r_.columns.back();
-  }
+  void add(const std::string& name) { r_.columns.push_back({name, std::vector<double>(rows_, nan)}); }
+  std::vector<double>& column(const std::string& name) { return r_.column(name); }
 
   void tabulate();
   void measure_peaks();
@@ -330,12 +328,7 @@ void Analysis::tabulate() {
   rows_ = end_ - foot_ + 1;
   for (const auto& name : hopkinson_columns()) add(name);
   for (const char* name : {"incident", "reflected", "transmitted"}) add(name);
-  auto col = [&](const std::string& name) -> std::vector<double>& {
-    for (auto& c : r_.columns)
-      if (c.name == name) return c.values;
-    throw std::logic_error("no column " + name);
-  };
-  auto &t = col("t"), &ei = col("incident"), &er = col("reflected"), &et = col("transmitted");
+  auto &t = column("t"), &ei = column("incident"), &er = column("reflected"), &et = column("transmitted");
   const GaugeSignal& front = dispersed_ ? inc_forward_ : inc_;
   const GaugeSignal& back = dispersed_ ? inc_backward_ : inc_;
   Interpolant reflected(back, back.t.front(), back.t.back());
@@ -352,9 +345,9 @@ void Analysis::tabulate() {
   const auto& bi = setup_.incident_bar;
   const auto& bt = setup_.transmitter_bar;
   const double ls = setup_.specimen.length, as = setup_.specimen.area;
-  auto &ff = col("force_front"), &fb = col("force_back");
-  auto &s1 = col("stress_1w"), &s2 = col("stress_2w"), &s3 = col("stress_3w");
-  auto &r1 = col("strain_rate_1w"), &r3 = col("strain_rate_3w");
+  auto &ff = column("force_front"), &fb = column("force_back");
+  auto &s1 = column("stress_1w"), &s2 = column("stress_2w"), &s3 = column("stress_3w");
+  auto &r1 = column("strain_rate_1w"), &r3 = column("strain_rate_3w");
   for (std::size_t i = 0; i < rows_; ++i) {
     ff[i] = -bi.modulus * bi.area * (ei[i] + er[i]);
     fb[i] = -bt.modulus * bt.area * et[i];
@@ -368,8 +361,8 @@ void Analysis::tabulate() {
   // Strains: the trapezoidal integrals of the rates from t = 0.
   for (const auto& [rate, strain] :
        {std::pair{"strain_rate_1w", "strain_1w"}, std::pair{"strain_rate_3w", "strain_3w"}}) {
-    const auto& rv = col(rate);
-    auto& sv = col(strain);
+    const auto& rv = column(rate);
+    auto& sv = column(strain);
     sv[0] = 0.0;
     for (std::size_t i = 1; i < rows_; ++i) sv[i] = sv[i - 1] + 0.5 * (t[i] - t[i - 1]) * (rv[i] + rv[i - 1]);
   }
@@ -397,9 +390,7 @@ void Analysis::measure_equilibrium() {
   const auto& t = r_.column("t");
   const auto& ff = r_.column("force_front");
   const auto& fb = r_.column("force_back");
-  std::vector<double>* eq = nullptr;
-  for (auto& c : r_.columns)
-    if (c.name == "equilibrium") eq = &c.values;
+  auto* eq = &column("equilibrium");
   const double pf = largest(ff, t).value, pb = largest(fb, t).value;
   for (std::size_t i = 0; i < rows_; ++i)
     if (ff[i] > equilibrium_force_fraction * pf && fb[i] > equilibrium_force_fraction * pb)
@@ -498,10 +489,14 @@ void Analysis::fit() {
 
 }  // namespace
 
-const std::vector<double>& HopkinsonResult::column(const std::string& name) const {
-  for (const auto& c : columns)
+std::vector<double>& HopkinsonResult::column(const std::string& name) {
+  for (auto& c : columns)
     if (c.name == name) return c.values;
   throw std::out_of_range("hopkinson: no column " + name);
+}
+
+const std::vector<double>& HopkinsonResult::column(const std::string& name) const {
+  return const_cast<HopkinsonResult&>(*this).column(name);  // the search only: nothing is written
 }
 
 const std::vector<std::string>& hopkinson_columns() {

@@ -95,7 +95,9 @@ struct HopkinsonResult {
   HopkinsonFit fit;
   std::vector<std::string> warnings;
 
+  /// A column by name; throws std::out_of_range for a name it does not have.
   [[nodiscard]] const std::vector<double>& column(const std::string& name) const;
+  [[nodiscard]] std::vector<double>& column(const std::string& name);
 };
 
 /// The contract's columns of hopkinson.csv, in order.
