@@ -38,6 +38,7 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
+#include "barimpact/run/check.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/schemes/scheme.hpp"
@@ -497,6 +498,20 @@ int hopkinson_command(const std::string& setup_path, const std::string& out, boo
   return 0;
 }
 
+// Validates a case and reports what to know before running it (run/check.hpp).
+int check_command(const std::string& case_path, const std::vector<std::string>& sets) {
+  std::vector<barimpact::Case::Override> overrides;
+  for (const auto& s : sets) overrides.push_back({s});
+  const auto c = barimpact::Case::from_file(case_path, overrides);
+  const auto k = barimpact::check_case(c);
+  fmt::print("{}: valid\n{}", case_path, barimpact::check_text(c, k));
+  if (!k.trouble.empty()) {
+    fmt::print(stderr, "barimpact: {} (in the first {} steps)\n", k.trouble, k.timed_steps);
+    return exit_non_finite;
+  }
+  return 0;
+}
+
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
   // The figures' directory follows the output rule too, and is marked as
@@ -550,17 +565,23 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
 
-  const std::vector<std::string_view> commands{"run", "exact", "converge", "sweep", "bearing", "hopkinson", "plot"};
+  const std::vector<std::string_view> commands{"run",   "check",   "exact",     "converge",
+                                               "sweep", "bearing", "hopkinson", "plot"};
   if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
     fmt::print(
         stderr,
-        "barimpact: error: unknown command \"{}\" (commands: run, exact, sweep, converge, bearing, hopkinson, plot; "
-        "see "
-        "barimpact "
-        "--help)\n",
+        "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, hopkinson, "
+        "plot; see barimpact --help)\n",
         argv[1]);
     return exit_bad_input;
   }
+  std::string check_case;
+  std::vector<std::string> check_sets;
+  auto* check = app.add_subcommand(
+      "check", "Validate a case without running it: steps, stable step, penalty time constants, a time estimate");
+  check->add_option("case", check_case, "Case file (TOML)")->required();
+  check->add_option("--set", check_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
+
   std::string exact_case, exact_out;
   std::vector<std::string> exact_sets;
   auto* exact = app.add_subcommand("exact", "Tabulate the exact solution the case admits (same files as run)");
@@ -655,6 +676,7 @@ int main(int argc, char** argv) {
   install_signal_handlers();
   try {
     if (run->parsed()) return run_command(case_path, out_dir, sets, false, run_flags);
+    if (check->parsed()) return check_command(check_case, check_sets);
     if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true, exact_flags);
     if (sweep->parsed()) {
       sweep_options.batch = !no_batch;

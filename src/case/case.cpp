@@ -36,8 +36,8 @@ struct SectionKeys {
 };
 
 // The case-file contract: sections and keys, in file order.
-const std::array<SectionKeys, 9>& contract() {
-  static const std::array<SectionKeys, 9> c{{
+const std::array<SectionKeys, 10>& contract() {
+  static const std::array<SectionKeys, 10> c{{
       {"bar",
        {"length", "density", "stiffness", "viscosity", "elements", "far_end", "material", "yield_stress",
         "hardening_modulus", "hardening"}},
@@ -51,6 +51,7 @@ const std::array<SectionKeys, 9>& contract() {
       {"blow", {"gauge", "ram", "pile"}},
       {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution"}},
       {"output", {"every", "fields_at"}},
+      {"units", {"system"}},
   }};
   return c;
 }
@@ -486,6 +487,13 @@ void read_output(const Reader& r, Case& c) {
   if (c.step_count() / every > 100'000'000)
     r.fail("output", "every",
            fmt::format("gives {} history rows; at most 1e8 (raise output.every)", c.step_count() / every));
+}
+
+// [units] system: how figures label the case's numbers; the solver is unit-free.
+void read_units(const Reader& r, Case& c) {
+  c.units = r.word("units", "system", c.units);
+  if (c.units != "SI" && c.units != "none")
+    r.fail("units", "system", fmt::format("must be \"SI\" or \"none\" (got \"{}\")", c.units));
 }
 
 void check_bar_expressions(const Reader& r, const Case& c) {
@@ -925,6 +933,7 @@ Case read_case(Reader& r) {
   if (c.single_bar && c.near_end.law == JointLaw::rigid && c.near_end.restitution_given)
     c.time.restitution = c.near_end.restitution;
   read_output(r, c);
+  read_units(r, c);
   if (c.single_bar && !line)
     check_bar_expressions(r, c);
   else
@@ -1188,7 +1197,8 @@ std::string Case::to_toml() const {
       toml_float(time.theta), toml_float(time.restitution));
   std::string times;
   for (double t : output.fields_at) times += (times.empty() ? "" : ", ") + toml_float(t);
-  out += fmt::format("[output]\nevery = {}\nfields_at = [{}]\n", output.every, times);
+  out += fmt::format("[output]\nevery = {}\nfields_at = [{}]\n\n", output.every, times);
+  out += fmt::format("[units]\nsystem = {}\n", toml_string(units));
   return out;
 }
 

@@ -37,6 +37,47 @@ double energy_scale(const std::vector<HistoryRow>& history) {
   return scale;
 }
 
+std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c) {
+  std::vector<PenaltyTimeConstant> out;
+  if (c.single_bar) {
+    const auto kind = c.obstacle.kind;
+    if ((kind == ObstacleKind::elastic || kind == ObstacleKind::viscoelastic) && c.obstacle.stiffness > 0.0)
+      out.push_back({"obstacle", std::sqrt(c.bar.density * c.bar.stiffness) / c.obstacle.stiffness, "Z/k"});
+    return out;
+  }
+  const Line line = build_line(c);
+  const std::vector<double> m = line.lumped_mass();
+  // The impedance A sqrt(E rho) of the element a node ends, or 0 at a point mass.
+  auto impedance = [&](std::size_t node) {
+    for (std::size_t j : {node, node - 1})  // the element above the node, else the one below
+      if (j < line.bonds.size() && line.bonds[j].kind == BondKind::element)
+        return std::sqrt(line.bonds[j].axial * line.bonds[j].mass / line.bonds[j].h);
+    return 0.0;
+  };
+  for (const auto& l : line.links) {
+    if (l.law.rigid() || !(l.law.stiffness > 0.0)) continue;
+    const double k = l.law.stiffness;
+    std::vector<double> z, mass;  // the faces' impedances; masses where a face is a point mass
+    for (std::size_t node : {l.a, l.b}) {
+      if (node == Link::ground) continue;
+      const double zn = impedance(node);
+      if (zn > 0.0)
+        z.push_back(zn);
+      else
+        mass.push_back(m[node]);
+    }
+    if (z.size() == 2)  // two bars: their impedances in series
+      out.push_back({l.name, z[0] * z[1] / (z[0] + z[1]) / k, "Z1 Z2/((Z1 + Z2) k)"});
+    else if (z.size() == 1)
+      out.push_back({l.name, z[0] / k, "Z/k"});
+    else if (mass.size() == 2)
+      out.push_back({l.name, std::sqrt(mass[0] * mass[1] / (mass[0] + mass[1]) / k), "sqrt(m1 m2/((m1 + m2) k))"});
+    else if (mass.size() == 1)
+      out.push_back({l.name, std::sqrt(mass[0] / k), "sqrt(m/k)"});
+  }
+  return out;
+}
+
 namespace {
 
 void check_energy(const Case& c, const Summary& s, const std::vector<HistoryRow>& history,
@@ -52,40 +93,12 @@ void check_energy(const Case& c, const Summary& s, const std::vector<HistoryRow>
 }
 
 void check_penalty(const Case& c, std::vector<std::string>& out) {
-  const auto kind = c.obstacle.kind;
-  if (kind != ObstacleKind::elastic && kind != ObstacleKind::viscoelastic) return;
-  if (!(c.obstacle.stiffness > 0.0)) return;
-  const double impedance = std::sqrt(c.bar.density * c.bar.stiffness);  // Z = rho c
-  const double tau = impedance / c.obstacle.stiffness;
-  if (tau < c.time.step)
-    out.push_back(fmt::format(
-        "penalty-unresolved: the obstacle's time constant Z/k = {:.3g} is below time.step = {:.3g}, so its force is "
-        "not resolved in time (take time.step below {:.3g}, or a rigid obstacle)",
-        tau, c.time.step, tau));
-}
-
-// A line's penalty links: the time constant of each, Z/k beside a bar
-// element (Z = A sqrt(E rho), the impedance of the node's element), or
-// sqrt(m/k) on a point mass, the smaller of the two faces'.
-void check_line_penalties(const Case& c, const Line& line, std::vector<std::string>& out) {
-  const std::vector<double> m = line.lumped_mass();
-  auto time_constant = [&](std::size_t node, double k) {
-    for (std::size_t j : {node, node - 1})  // the node's elements: bond node (above), node - 1 (below)
-      if (j < line.bonds.size() && line.bonds[j].kind == BondKind::element && (j == node || j + 1 == node))
-        return std::sqrt(line.bonds[j].axial * line.bonds[j].mass / line.bonds[j].h) / k;
-    return std::sqrt(m[node] / k);
-  };
-  for (const auto& l : line.links) {
-    if (l.law.rigid() || !(l.law.stiffness > 0.0)) continue;
-    double tau = std::numeric_limits<double>::infinity();
-    for (std::size_t node : {l.a, l.b})
-      if (node != Link::ground) tau = std::min(tau, time_constant(node, l.law.stiffness));
-    if (tau < c.time.step)
+  for (const auto& p : penalty_time_constants(c))
+    if (p.tau < c.time.step)
       out.push_back(fmt::format(
-          "penalty-unresolved: {}'s time constant {:.3g} (Z/k, or sqrt(m/k) on a mass) is below time.step = {:.3g}, "
-          "so its force is not resolved in time (take time.step below {:.3g}, or a rigid law)",
-          l.name, tau, c.time.step, tau));
-  }
+          "penalty-unresolved: {}'s time constant {} = {:.3g} is below time.step = {:.3g}, so its force is not "
+          "resolved in time (take time.step below {:.3g}, or a rigid law)",
+          p.link, p.basis, p.tau, c.time.step, p.tau));
 }
 
 // omega_max^2, the largest eigenvalue of K x = omega^2 M x (consistent mass,
@@ -121,11 +134,9 @@ double largest_frequency_squared(const Case& c) {
   return lambda;
 }
 
-// The implicit schemes below the trapezoidal rule are only conditionally
-// stable: Newmark (gamma >= 1/2) needs omega_max dt <= (gamma/2 - beta)^(-1/2),
-// the paper's alpha-scheme the same with beta = alpha, gamma = 1/2 (its shift
-// lambda and the explicit half of its penalty aside).
-void check_stability(const Case& c, std::vector<std::string>& out) {
+}  // namespace
+
+std::optional<double> conditional_stable_step(const Case& c) {
   double beta = 0.0, gamma = 0.5;
   if (c.time.scheme == "paper") {
     beta = c.time.alpha;
@@ -133,15 +144,23 @@ void check_stability(const Case& c, std::vector<std::string>& out) {
     beta = c.time.beta;
     gamma = c.time.gamma;
   } else {
-    return;  // the explicit schemes are refused beyond their limit before the run
+    return std::nullopt;
   }
-  if (gamma < 0.5 || 2.0 * beta >= gamma) return;  // unconditionally stable (or not this family's rule)
-  const double limit = 1.0 / std::sqrt(largest_frequency_squared(c) * (0.5 * gamma - beta));
-  if (c.time.step > limit)
+  if (gamma < 0.5 || 2.0 * beta >= gamma) return std::nullopt;  // unconditionally stable (or not this family's rule)
+  return 1.0 / std::sqrt(largest_frequency_squared(c) * (0.5 * gamma - beta));
+}
+
+namespace {
+
+// The implicit schemes below the trapezoidal rule are only conditionally
+// stable (conditional_stable_step).
+void check_stability(const Case& c, std::vector<std::string>& out) {
+  const auto limit = conditional_stable_step(c);
+  if (limit && c.time.step > *limit)
     out.push_back(fmt::format(
         "unstable-step: time.step = {:.3g} is above {}'s stable step {:.3g} for this mesh and obstacle (with these "
         "parameters the scheme is only conditionally stable)",
-        c.time.step, c.time.scheme, limit));
+        c.time.step, c.time.scheme, *limit));
 }
 
 void check_chatter(const Case& c, const Summary& s, std::vector<std::string>& out) {
@@ -184,10 +203,7 @@ std::vector<std::string> check_health(const Case& c, const Summary& s, const std
   std::vector<std::string> out;
   if (s.method == "exact") return out;
   check_energy(c, s, history, out);
-  if (c.single_bar)
-    check_penalty(c, out);
-  else
-    check_line_penalties(c, build_line(c), out);
+  check_penalty(c, out);
   check_stability(c, out);
   check_chatter(c, s, out);
   return out;

@@ -29,6 +29,7 @@ RunDirectory::RunDirectory(fs::path target, bool force, std::string command, boo
   // Beside someone else's files, the staging goes inside the target: nothing is made outside it.
   const fs::path parent = beside_ ? target_ : target_.parent_path();
   const std::string name = beside_ ? std::string("barimpact") : target_.filename().string();
+  if (!beside_) parents_ = std::make_unique<MadeParents>(target_);
   if (remove_stale) remove_stale_staging(parent, name);
   staging_ = parent / fmt::format(".{}.partial-{}", name, ::getpid());
   fs::remove_all(staging_, ec);
@@ -131,6 +132,7 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
   if (ec)
     throw InputError(fmt::format("--out {}: cannot move the results into place: {}", shown_.string(), ec.message()));
   committed_ = true;
+  if (parents_) parents_->keep();
   if (!old.empty()) fs::remove_all(old, ec);  // barimpact's own files only (written_by_barimpact)
 }
 
@@ -156,6 +158,7 @@ void RunDirectory::move_beside() {
   std::error_code ec;
   fs::remove_all(staging_, ec);
   committed_ = true;
+  if (parents_) parents_->keep();
 }
 
 namespace {
@@ -331,9 +334,20 @@ std::string summary_json(const Case& c, const Summary& s) {
   return j.dump(2) + "\n";
 }
 
+namespace {
+
+// A signed number to 4 digits, or what it is when it is not one (a velocity
+// not measured is nan: it reads "not measured", never "+nan").
+std::string signed_number(double v) {
+  return std::isfinite(v) ? fmt::format("{:+.4g}", v) : std::string(std::isnan(v) ? "not measured" : "infinite");
+}
+
+}  // namespace
+
 std::string summary_text(const Case& c, const Summary& s) {
-  std::string out = fmt::format("{}: {} steps of dt = {} on {} elements, t = 0 .. {}{}\n", s.method, s.steps_done,
-                                c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
+  std::string out =
+      fmt::format("{}: {} steps of dt = {:.6g} on {} elements, t = 0 .. {:.6g}{}\n", s.method, s.steps_done,
+                  c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
   // The near end's obstacle, when it has one (a line's ends may be free, held or loaded).
   const bool obstacle = std::find(s.link_names.begin(), s.link_names.end(), "near_end") != s.link_names.end() ||
                         (c.single_bar && c.obstacle.kind != ObstacleKind::none);
@@ -343,8 +357,8 @@ std::string summary_text(const Case& c, const Summary& s) {
     const auto& ci = s.contacts[i];
     if (ci.closed)
       out += fmt::format(
-          "  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {:+.4g} (end {:+.4g})\n",
-          i + 1, ci.start, ci.end, ci.max_reaction, ci.rebound_velocity, ci.exit_velocity);
+          "  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {} (end {})\n", i + 1,
+          ci.start, ci.end, ci.max_reaction, signed_number(ci.rebound_velocity), signed_number(ci.exit_velocity));
     else
       out += fmt::format("  contact {}: t = {:.6g} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
                          ci.max_reaction);
@@ -382,9 +396,11 @@ std::string summary_text(const Case& c, const Summary& s) {
                                    : std::string("the pile had not come to rest"));
   }
   if (std::isfinite(s.energy_initial))
-    out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g} ({:.2g}% of initial)\n",
-                       s.energy_initial, s.energy_final, s.energy_error_max,
-                       s.energy_initial != 0.0 ? 100.0 * s.energy_error_max / std::abs(s.energy_initial) : 0.0);
+    out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g}{}\n", s.energy_initial,
+                       s.energy_final, s.energy_error_max,
+                       s.energy_initial != 0.0
+                           ? fmt::format(" ({:.2g}% of initial)", 100.0 * s.energy_error_max / std::abs(s.energy_initial))
+                           : std::string());
   else
     out += "  energy: not known for this solution\n";
   out += fmt::format("  run time {:.3f} s\n", s.run_seconds);

@@ -148,8 +148,12 @@ OutputMode check_output_directory(const fs::path& target, bool force, std::strin
     refuse("is your home directory; barimpact never writes its results there (choose a new directory inside it)");
   if (is_parent_of(full, cwd)) refuse("is a parent of the working directory; barimpact never writes its results there");
   if (!fs::exists(full, ec)) {
-    if (!fs::is_directory(full.parent_path(), ec))
-      refuse(fmt::format("the parent directory {} does not exist", full.parent_path().string()));
+    // Missing parents are made when the results are written (MadeParents);
+    // the nearest existing one must be a directory barimpact may write in.
+    fs::path above = full.parent_path();
+    while (!fs::exists(above, ec) && above != above.root_path()) above = above.parent_path();
+    if (!fs::is_directory(above, ec)) refuse(fmt::format("{} is not a directory", above.string()));
+    if (::access(above.c_str(), W_OK | X_OK) != 0) refuse(fmt::format("{} is not writable", above.string()));
     return OutputMode::create;
   }
   if (!fs::is_directory(full, ec)) refuse("exists and is not a directory");
@@ -220,6 +224,21 @@ void remove_stale_staging(const fs::path& parent, const std::string& name) {
       if (fs::exists(path / staging_flag, ec) || written_by_barimpact(path)) fs::remove_all(path, ec);
     }
   }
+}
+
+MadeParents::MadeParents(const fs::path& target) {
+  std::error_code ec;
+  for (fs::path p = resolved(target).parent_path(); !fs::exists(p, ec) && p != p.root_path(); p = p.parent_path())
+    made_.push_back(p);
+  std::reverse(made_.begin(), made_.end());
+  for (const auto& p : made_)
+    if (!fs::create_directory(p, ec) && ec)
+      throw InputError(fmt::format("--out {}: cannot create {} ({})", target.string(), p.string(), ec.message()));
+}
+
+MadeParents::~MadeParents() {
+  std::error_code ec;
+  for (auto p = made_.rbegin(); p != made_.rend(); ++p) fs::remove(*p, ec);  // empty ones only
 }
 
 void prepare_output_directory(const fs::path& target, std::string_view command, const std::vector<std::string>& entries,

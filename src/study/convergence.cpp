@@ -334,8 +334,15 @@ Study converge(const Case& base, const StudyOptions& o) {
 }
 
 namespace {
+// A CSV cell: nan where the level defines no value (a reader's float()
+// takes it).
 std::string cell(double v, const char* spec = "{:.6g}") {
   return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : std::string("nan");
+}
+// A Markdown table's cell to its digits; a value the level does not define
+// (the first level's order, an error without a reference) is a dash.
+std::string md_cell(double v, const char* spec) {
+  return std::isfinite(v) ? fmt::format(fmt::runtime(spec), v) : std::string("-");
 }
 std::string quoted(const std::string& s) {
   std::string out = "\"";
@@ -371,12 +378,12 @@ std::string study_markdown(const Study& study, const std::string& command) {
           "|\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
           r.scheme, r.value.empty() ? "h" : "value");
     }
-    const std::string abscissa = r.value.empty() ? cell(r.h, "{:.4g}") : r.value;
+    const std::string abscissa = r.value.empty() ? md_cell(r.h, "{:.4g}") : r.value;
     out += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", r.level, abscissa,
-                       r.elements, cell(r.step, "{:.4g}"), cell(r.error_U_max, "{:.3e}"), cell(r.order_U, "{:.2f}"),
-                       cell(r.error_R_l1, "{:.3e}"), cell(r.order_R, "{:.2f}"), cell(r.energy_error_end, "{:.2e}"),
-                       cell(r.first_contact, "{:.4f}"), cell(r.lift_off, "{:.4f}"), r.contact_episodes,
-                       cell(r.cpu_seconds, "{:.3f}"), r.status);
+                       r.elements, md_cell(r.step, "{:.4g}"), md_cell(r.error_U_max, "{:.3e}"),
+                       md_cell(r.order_U, "{:.2f}"), md_cell(r.error_R_l1, "{:.3e}"), md_cell(r.order_R, "{:.2f}"),
+                       md_cell(r.energy_error_end, "{:.2e}"), md_cell(r.first_contact, "{:.4f}"),
+                       md_cell(r.lift_off, "{:.4f}"), r.contact_episodes, md_cell(r.cpu_seconds, "{:.3f}"), r.status);
   }
   return out;
 }

@@ -68,7 +68,16 @@ expect_refused "initial.velocity" run "$ex1" --out "$work/refused" --set 'initia
 expect_refused 'unknown name "z"' run "$ex1" --out "$work/refused" --set 'load.body_force=z'
 expect_refused "finite" run "$ex1" --out "$work/refused" --set 'initial.displacement=log(x)'
 expect_refused "no such case file" run "$work/nope.toml" --out "$work/refused"
-expect_refused "--out" run "$ex1" --out "$work/no/such/dir"
+# --out's missing parents are made when the results are written, and a
+# refusal leaves none behind.
+"$bin" run "$ex1" --out "$work/new/parents/ex1" > /dev/null 2>&1 && [ -s "$work/new/parents/ex1/history.csv" ] && ok || bad "run into new parents"
+"$bin" run "$ex1" --out "$work/made/ex1" --set time.step=-1 > /dev/null 2>&1
+[ $? -eq 2 ] && [ ! -e "$work/made" ] && ok || bad "a refused run left its --out parents"
+"$bin" exact "$examples/clamped-periodic.toml" --out "$work/new/exact/e" > /dev/null 2>&1 && [ -s "$work/new/exact/e/history.csv" ] && ok || bad "exact into new parents"
+"$bin" converge "$ex1" --out "$work/new/study/c" --levels 2 > /dev/null 2>&1 && [ -s "$work/new/study/c/convergence.csv" ] && ok || bad "converge into new parents"
+"$bin" plot "$work/new/parents/ex1" --out "$work/new/figs/f" > /dev/null 2>&1 && [ -s "$work/new/figs/f/displacement.png" ] && ok || bad "plot --out into new parents"
+: > "$work/plainfile"
+expect_refused "is not a directory" run "$ex1" --out "$work/plainfile/dir"
 expect_refused "--out" run "$ex1" --out "$ex1"
 expect_refused "--out" run "$ex1" --out /proc/barimpact-cannot-write-here
 expect_refused "--set" run "$ex1" --out "$work/refused" --set nodot
@@ -370,6 +379,25 @@ expect_refused "pulses too close" hopkinson "$work/m3.toml" --out "$work/refused
 cp "$work/measured.toml" "$work/m4.toml" && sed -i 's/^gain = 100/gain = 100\nfull_scale = 0.5/' "$work/m4.toml"
 expect_refused "clips" hopkinson "$work/m4.toml" --out "$work/refused"
 expect_refused "unknown key window.trigge" hopkinson <(printf '[window]\ntrigge = 0.1\n') --out "$work/refused"
+
+# barimpact check: validates without running or writing, prints what to know first.
+mkdir -p "$work/check-cwd"
+absolute() { echo "$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"; }
+abs_bin=$(absolute "$bin") abs_ex1=$(absolute "$ex1")
+(cd "$work/check-cwd" && "$abs_bin" check "$abs_ex1" > "$work/check.out" 2> "$work/check.err") && ok || bad "check exit $?"
+[ -z "$(ls -A "$work/check-cwd")" ] && ok || bad "check wrote files"
+grep -qx "steps: 400 (dt = 0.01 to t = 4, 101 nodes)" "$work/check.out" && ok || bad "check steps: $(cat "$work/check.out")"
+grep -qx "penalty: tau = 0.01, dt/tau = 1 (obstacle, Z/k)" "$work/check.out" && ok || bad "check penalty: $(cat "$work/check.out")"
+grep -q "^time estimate: " "$work/check.out" && ok || bad "check time estimate"
+"$bin" check "$ex1" --set obstacle.stiffness=1e4 --set time.step=0.001 | grep -qx "penalty: tau = 0.0001, dt/tau = 10 not resolved (obstacle, Z/k)" && ok || bad "check: not resolved"
+"$bin" check "$examples/paper-example1-rigid.toml" --set time.scheme=central-difference --set time.step=0.005 | grep -qx "stable step: 0.01 (lumped mass); dt is 0.5 of it" && ok || bad "check: stable step"
+"$bin" check "$examples/paper-example1-rigid.toml" --set time.scheme=paoli-schatzman --set time.step=0.005 | grep -q "^stable step: 0.005774 (consistent mass)" && ok || bad "check: consistent mass"
+"$bin" check "$examples/lines/hopkinson.toml" | grep -q "^penalty: tau = 9.936e-08, dt/tau = 0.503 (joint.transmitter-specimen, Z1 Z2/((Z1 + Z2) k))" && ok || bad "check: two bars"
+"$bin" check "$ex1" --set time.alpha=0.1 > /dev/null 2>&1; [ $? -eq 3 ] && ok || bad "check of a run that blows up: not exit 3"
+expect_refused "time.step" check "$ex1" --set time.step=0
+expect_refused "no such case file" check "$work/nope.toml"
+expect_refused "unknown section [extra]" check "$work/section.toml"
+! "$bin" run "$ex1" --out "$work/console-numbers" | grep -q "nan" && ok || bad "nan on the console"
 
 echo "$passed passed, $failed failed"
 [ $failed -eq 0 ]

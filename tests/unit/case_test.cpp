@@ -43,6 +43,16 @@ TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_EQ(c.time.restitution, 0.0);
 }
 
+TEST(Case, UnitsSystemIsSIOrNoneAndIsWrittenBack) {
+  EXPECT_EQ(case_from("").units, "none");
+  const Case si = case_from("[units]\nsystem = \"SI\"\n");
+  EXPECT_EQ(si.units, "SI");
+  EXPECT_NE(si.to_toml().find("[units]\nsystem = \"SI\""), std::string::npos);
+  EXPECT_EQ(Case::from_string(si.to_toml(), {}, "again").units, "SI");
+  EXPECT_REFUSED("[units]\nsystem = \"imperial\"", "units.system", "\"SI\" or \"none\"");
+  EXPECT_REFUSED("[units]\nlength = \"m\"", "unknown key units.length");
+}
+
 TEST(Case, RefusesSchemesThatDoNotFitAndNamesThoseThatDo) {
   EXPECT_REFUSED("[obstacle]\nkind = \"rigid\"", "time.scheme", "does not handle obstacle.kind = \"rigid\"",
                  "central-difference, mass-redistribution, paoli-schatzman, moreau-jean, characteristic");

@@ -148,6 +148,8 @@ struct Case {
   LoadData load;
   TimeData time;
   OutputData output;
+  /// [units] system: "SI" (figures label N, m, s, Pa, J) or "none" (unit-free numbers).
+  std::string units = "none";
 
   /// True when the line is one uniform bar whose near end meets today's
   /// obstacle kinds (none, elastic, viscoelastic, rigid) and whose far end is

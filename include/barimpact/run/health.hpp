@@ -15,6 +15,7 @@
 // (scheme.hpp).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,26 @@ namespace barimpact {
 /// |E_total(0)| and |W_ext| over the rows, or, when both are zero, the
 /// largest stored energy E_kin + E_strain + E_obstacle.
 [[nodiscard]] double energy_scale(const std::vector<HistoryRow>& history);
+
+/// A penalty law's own time constant: how long its spring takes to stop
+/// what it meets. tau = Z/k against a bar (Z = rho c A), Z1 Z2/((Z1 + Z2) k)
+/// between two bars (their impedances in series), sqrt(m/k) against a point
+/// mass (m1 m2/(m1 + m2) between two). A step above tau does not resolve the
+/// contact's force.
+struct PenaltyTimeConstant {
+  std::string link;   ///< "obstacle" on a single bar, else the link's name (near_end, a joint, far_end)
+  double tau;         ///< the time constant
+  std::string basis;  ///< the formula that gave it, e.g. "Z/k"
+};
+
+/// Every penalty law's time constant (rigid and welded links have none).
+[[nodiscard]] std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c);
+
+/// The largest stable step of the paper scheme with alpha < 1/4, or Newmark
+/// with 2 beta < gamma (gamma >= 1/2): omega_max dt <= (gamma/2 - beta)^(-1/2),
+/// omega_max of the consistent mass with every penalty as a spring; nothing
+/// for a scheme that is unconditionally stable or explicit.
+[[nodiscard]] std::optional<double> conditional_stable_step(const Case& c);
 
 /// Warnings as one CSV cell: joined by " | ", which no message holds.
 [[nodiscard]] std::string join_warnings(const std::vector<std::string>& warnings);

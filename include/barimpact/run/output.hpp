@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -14,6 +15,8 @@
 #include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
+
+class MadeParents;
 
 class RunDirectory {
  public:
@@ -42,6 +45,7 @@ class RunDirectory {
   void move_beside();
 
   std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
+  std::unique_ptr<MadeParents> parents_;            // --out's missing parents, made for the staging
   std::string command_;
   bool beside_ = false;  // --force on someone else's directory
   bool committed_ = false;

@@ -60,6 +60,21 @@ void write_output_marker(const std::filesystem::path& dir, std::string_view comm
 /// barimpact did not make, stay.
 void remove_stale_staging(const std::filesystem::path& parent, const std::string& name);
 
+/// The directories above a checked `--out` that did not exist: made by the
+/// constructor, removed again (innermost first, while empty) by the
+/// destructor unless `keep()` was called once the results are in place.
+class MadeParents {
+ public:
+  explicit MadeParents(const std::filesystem::path& target);
+  ~MadeParents();
+  MadeParents(const MadeParents&) = delete;
+  MadeParents& operator=(const MadeParents&) = delete;
+  void keep() { made_.clear(); }
+
+ private:
+  std::vector<std::filesystem::path> made_;  // outermost first
+};
+
 /// For a command that fills its directory bit by bit and resumes (sweep,
 /// converge): checks `target` (check_output_directory), creates it if need
 /// be and marks it as the command's, listing `entries` (the names it will

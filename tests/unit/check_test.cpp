@@ -1,0 +1,127 @@
+// barimpact check: the penalty time constants (Z/k, impedances in series,
+// sqrt(m/k)), the stable steps it reports, and its timing run.
+#include "barimpact/run/check.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "barimpact/schemes/scheme.hpp"
+#include "../support/run_case.hpp"
+
+namespace barimpact {
+namespace {
+
+using testing::case_from;
+
+constexpr const char* two_bars = R"(
+[[body]]
+name = "left"
+length = 1.0
+elements = 10
+modulus = 1.0
+density = 1.0
+[[body]]
+name = "right"
+length = 1.0
+elements = 10
+modulus = 4.0
+density = 1.0
+velocity = "-1"
+[[joint]]
+between = ["left", "right"]
+law = "elastic"
+stiffness = 10.0
+gap = 0.01
+[time]
+end = 1.0
+step = 0.01
+scheme = "central-difference"
+)";
+
+TEST(Check, SingleBarPenaltyIsImpedanceOverStiffness) {
+  // Z = sqrt(rho a) = sqrt(2 * 8) = 4, k = 100: tau = 0.04.
+  const Case c = case_from("[bar]\ndensity = 2.0\nstiffness = 8.0\n[obstacle]\nstiffness = 100.0\n");
+  const auto p = penalty_time_constants(c);
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NEAR(p[0].tau, 0.04, 1e-15);  // one division: round-off only
+  EXPECT_EQ(p[0].basis, "Z/k");
+}
+
+TEST(Check, JointBetweenBarsTakesImpedancesInSeries) {
+  // Z1 = A sqrt(E rho) = 1, Z2 = sqrt(4) = 2: Z1 Z2/(Z1 + Z2) = 2/3, tau = 2/30.
+  const auto p = penalty_time_constants(case_from(two_bars));
+  ASSERT_EQ(p.size(), 1U);
+  EXPECT_NEAR(p[0].tau, 2.0 / 30.0, 1e-15);
+  EXPECT_EQ(p[0].link, "joint.left-right");
+}
+
+TEST(Check, MassesTakeTheirReducedMass) {
+  const Case c = case_from(R"(
+[[body]]
+name = "anvil"
+kind = "mass"
+mass = 3.0
+[[body]]
+name = "hammer"
+kind = "mass"
+mass = 6.0
+velocity = -1
+[[joint]]
+between = ["anvil", "hammer"]
+law = "elastic"
+stiffness = 50.0
+[near_end]
+law = "elastic"
+stiffness = 12.0
+[time]
+end = 1.0
+step = 0.01
+scheme = "central-difference"
+)");
+  const auto p = penalty_time_constants(c);
+  ASSERT_EQ(p.size(), 2U);
+  EXPECT_NEAR(p[0].tau, std::sqrt(3.0 / 12.0), 1e-15);              // the near end: the anvil alone
+  EXPECT_NEAR(p[1].tau, std::sqrt(3.0 * 6.0 / 9.0 / 50.0), 1e-15);  // m1 m2/(m1 + m2) = 2
+}
+
+TEST(Check, ReportsTheExplicitSchemesStableStepWithItsMass) {
+  const Case lumped = case_from("[time]\nscheme = \"central-difference\"\nstep = 0.005\n");
+  const auto k = check_case(lumped);
+  ASSERT_TRUE(k.stable_step);
+  EXPECT_EQ(*k.stable_step, stable_step(lumped, false));
+  EXPECT_EQ(k.mass, "lumped");
+  const Case consistent =
+      case_from("[time]\nscheme = \"paoli-schatzman\"\nstep = 0.001\n[obstacle]\nkind = \"rigid\"\n");
+  const auto kc = check_case(consistent);
+  ASSERT_TRUE(kc.stable_step);
+  EXPECT_EQ(*kc.stable_step, stable_step(consistent, true));
+  EXPECT_EQ(kc.mass, "consistent");
+  // The paper's scheme at alpha = 1/4 is unconditionally stable: no limit.
+  EXPECT_FALSE(check_case(case_from("")).stable_step);
+  EXPECT_TRUE(check_case(case_from("[time]\nalpha = 0.1\n")).stable_step);
+}
+
+TEST(Check, TimesAShortStretchAndScalesItToTheRun) {
+  const Case c = case_from("[bar]\nelements = 1000\n[time]\nend = 10.0\nstep = 0.001\n");  // 10^4 steps
+  const auto k = check_case(c, 1e5);                                                       // 100 steps of 1001 nodes
+  EXPECT_EQ(k.steps, 10000);
+  EXPECT_EQ(k.timed_steps, 99);
+  EXPECT_GT(k.timed_seconds, 0.0);
+  EXPECT_DOUBLE_EQ(k.estimate_seconds, k.timed_seconds * 10000.0 / 99.0);
+  EXPECT_TRUE(k.trouble.empty());
+  const std::string text = check_text(c, k);
+  EXPECT_NE(text.find("steps: 10000"), std::string::npos) << text;
+  EXPECT_NE(text.find("time estimate: "), std::string::npos) << text;
+}
+
+TEST(Check, SaysWhenTheStepDoesNotResolveThePenalty) {
+  const Case c = case_from("[obstacle]\nstiffness = 1e4\n[time]\nstep = 0.001\n");
+  const std::string text = check_text(c, check_case(c));
+  EXPECT_NE(text.find("penalty: tau = 0.0001, dt/tau = 10 not resolved"), std::string::npos) << text;
+  const Case resolved = case_from("[obstacle]\nstiffness = 1e4\n[time]\nstep = 5e-5\n");
+  EXPECT_EQ(check_text(resolved, check_case(resolved)).find("not resolved"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace barimpact
