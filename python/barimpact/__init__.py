@@ -1,93 +1,508 @@
-"""barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979).
+"""barimpact: bodies hitting each other along a line (Do, Raupp & Feijoo 1979).
 
     import barimpact
     case = barimpact.Case("examples/paper-example1.toml", set={"time.lambda": 0.25})
     result = barimpact.run(case)
-    result.t, result.U, result.R          # numpy views of the history, no copy
+    result.t, result.U, result["R"]       # numpy views of the history, no copy
     result.u                              # field snapshots, shape (snapshots, nodes)
     result.summary                        # the summary.json dict
+    result.to_pandas()                    # the history as a DataFrame (with pandas)
     barimpact.plot(result, "figures")     # PNG and SVG
+
+Every command of `barimpact` has its function, with the command's options
+as keywords (--toe-share is toe_share=...):
+
+    barimpact run CASE --out DIR        barimpact.run(case, out=DIR)
+    barimpact exact CASE --out DIR      barimpact.exact(case, out=DIR)
+    barimpact converge CASE --out DIR   barimpact.converge(case, out=DIR, levels=3)
+    barimpact sweep SWEEP --out DIR     barimpact.sweep(sweep, out=DIR, jobs=4)
+    barimpact bearing CASE --out DIR    barimpact.bearing(case, DIR, capacity=(1e6, 5e7, 10))
+    barimpact hopkinson SETUP --out DIR barimpact.hopkinson(setup, out=DIR)
+    barimpact plot DIR                  barimpact.plot(DIR)
+
+They write the same files by the same rules (the output directory, resuming,
+--force), return the table the command writes (convergence.csv, sweep.csv,
+bearing.csv, hopkinson.csv) as a `Table`, release the GIL while they run,
+and stop on Ctrl-C after writing what is done, as the command does. The
+health checks' warnings are `HealthWarning`s; strict=True raises
+`StrictError` after writing, where the command exits 4.
 
 Every number comes from the C++ library (barimpact._core): the same code as
 the `barimpact` command line, so the same case gives the same bits.
 """
+import csv
+import io
 import json
+import numbers
+import os
+import warnings
+from pathlib import Path as _Path
 
 import numpy as np
 
+# The submodules first: importing one later would rebind the package's name
+# (barimpact.bearing, barimpact.hopkinson, barimpact.plot) from the function
+# to the module.
+from . import bearing as _bearing_figures
+from . import convergence as _convergence_figures
+from . import hopkinson as _hopkinson_figures
+from . import plot as _figures
+from . import _core
 from ._core import Case, InputError, Result
-from ._core import exact as _exact
-from ._core import run as _run
 
-__all__ = ["Case", "Result", "InputError", "run", "exact", "exact_example1", "bearing", "hopkinson", "plot", "load"]
+InputError.__module__ = "barimpact"  # tracebacks say barimpact.InputError, where users catch it
+from .plot import RunData, load
 
-
-def run(case, progress=None):
-    """Run a case: a `Case`, or anything `Case` accepts (a path, TOML text, a
-    dict). The GIL is released while it runs. `progress`, if given, is called
-    about twice a second with a dict (step, steps, t, t_end, elapsed);
-    returning False stops the run (the result is then marked incomplete)."""
-    if not isinstance(case, Case):
-        case = Case(case)
-    return _run(case, progress)
+__all__ = ["Case", "Result", "InputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable", "RunData",
+           "run", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
+           "exact_example1"]
 
 
-def exact(case):
-    """The exact solution the case admits, tabulated on its grid like a run
-    (`barimpact exact`): rigid impact with gap, with a constant load, elastic
-    obstacle, or the clamped periodic benchmark. InputError if none."""
-    if not isinstance(case, Case):
-        case = Case(case)
-    return _exact(case)
+class HealthWarning(UserWarning):
+    """A run's health checks warned (the command's `barimpact: warning:`
+    lines): energy balance, an unresolved penalty and the like. The results
+    are kept. Silence them with
+    `warnings.simplefilter("ignore", barimpact.HealthWarning)`; a study's
+    notes (runs that did not complete) come as HealthWarning too."""
 
 
-def bearing(case, out, capacity, toe_share=None, jobs=0, plot=True, force=False):
-    """The bearing graph (`barimpact bearing CASE --out OUT --capacity FROM:TO:COUNT`):
-    `case` a case file with Smith's soil, `capacity` (from, to, count) in N,
-    `toe_share` R_toe / capacity (None: the case's). Runs every capacity on
-    `jobs` threads (0: all cores; resumes a bearing directory), writes
-    bearing.csv (and bearing.png unless plot=False) and returns its columns as
-    a dict of numpy arrays (blow counts inf where the hammer cannot move the pile)."""
-    import os
-    from ._core import _bearing
-    lo, hi, count = capacity
-    _bearing(os.fspath(case), os.fspath(out), float(lo), float(hi), int(count), toe_share, int(jobs), force)
-    from .bearing import plot_bearing, read_bearing
-    rows = read_bearing(out)
-    if plot:
-        plot_bearing(out)
-    columns = {}
-    for key in rows[0] if rows else []:
-        values = [r[key] for r in rows]
-        columns[key] = np.array(values) if not isinstance(values[0], str) else values
-    return columns
+class StrictError(RuntimeError):
+    """strict=True and the health checks warned: the command's exit status 4.
+    The results were written all the same; `result` holds what the call
+    would have returned, `warnings` the warnings (one string each)."""
+
+    def __init__(self, message, result, warnings):
+        super().__init__(message)
+        self.result = result
+        self.warnings = list(warnings)
 
 
-class HopkinsonTable(dict):
-    """hopkinson.csv's columns by name (numpy arrays, nan where missing), and
-    `summary`, summary.json as a dict."""
+def _pandas(what):
+    try:
+        import pandas
+    except ImportError as e:
+        raise ImportError(f"{what} needs pandas, which is not installed here (Debian: apt-get install python3-pandas; "
+                          "elsewhere: pip install pandas). Without it the columns are numpy arrays: "
+                          "dict(table) or result[name].") from e
+    return pandas
+
+
+class Table(dict):
+    """A results table (convergence.csv, sweep.csv, bearing.csv,
+    hopkinson.csv): its columns by name, in the file's order, as numpy arrays
+    (floats with nan where a cell is missing and inf where the file says inf;
+    integers; booleans; text as str arrays, so `t.status == "complete"` is a
+    mask). A dict: t["status"]; and by attribute where the name allows it:
+    t.status. `summary` holds what the file does not (a dict, or None)."""
 
     summary = None
 
+    def __init__(self, columns=(), summary=None):
+        super().__init__(columns)
+        if summary is not None:
+            self.summary = summary
 
-def hopkinson(setup):
-    """The split Hopkinson bar analysis (`barimpact hopkinson SETUP --out DIR`)
-    without writing anything: `setup` a setup file's path, or the same as a
-    dict of sections ({"bar": {...}, "incident": {...}, ...}; relative paths
-    then from the working directory). Returns hopkinson.csv's table as a dict
-    of numpy arrays (t, strain_1w, strain_rate_1w, stress_1w, strain_3w,
-    strain_rate_3w, stress_2w, stress_3w, force_front, force_back,
-    equilibrium, incident, reflected, transmitted) with `.summary`.
-    InputError (one line) for a signal it cannot analyse."""
-    import os
-    from ._core import _hopkinson
-    table, summary = _hopkinson(setup if isinstance(setup, dict) else os.fspath(setup))
-    out = HopkinsonTable(table)
-    out.summary = json.loads(summary)
-    return out
+    def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)  # copy, pickle and friends probe dunders
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(f"{type(self).__name__} has no column or attribute {name!r} "
+                                 f"(columns: {', '.join(self)})") from None
+
+    def __dir__(self):
+        return sorted(set(super().__dir__()) | {name for name in self if name.isidentifier()})
+
+    @property
+    def columns(self):
+        """The column names, in the file's order."""
+        return tuple(self)
+
+    @property
+    def rows(self):
+        """The number of rows."""
+        return len(next(iter(self.values()))) if self else 0
+
+    def row(self, i):
+        """Row `i` as a dict of Python scalars."""
+        return {name: values[i].item() if isinstance(values[i], np.generic) else values[i]
+                for name, values in self.items()}
+
+    def to_pandas(self):
+        """The table as a pandas DataFrame, the same columns in the same
+        order. ImportError (saying so) without pandas."""
+        pandas = _pandas("Table.to_pandas")
+        return pandas.DataFrame({name: np.asarray(values) for name, values in self.items()})
+
+    def __repr__(self):
+        return f"<barimpact.{type(self).__name__}: {self.rows} rows, columns {', '.join(self)}>"
+
+
+class HopkinsonTable(Table):
+    """hopkinson.csv's columns by name (numpy arrays, nan where missing), and
+    `summary`, summary.json as a dict."""
+
+
+# The columns whose type the name fixes; the others (a sweep's axes,
+# convergence's value, hopkinson's) are numbers when every cell is one.
+_INTEGER = frozenset({"level", "elements", "contact_episodes", "steps_done", "contacts"})
+_BOOLEAN = frozenset({"finished"})
+_TEXT = frozenset({"id", "scheme", "status", "message", "warnings"})
+
+
+def _column(name, cells):
+    if name in _TEXT:
+        return np.array(cells, dtype=str)
+    if name in _INTEGER:
+        return np.array([int(c) for c in cells], dtype=np.int64)
+    if name in _BOOLEAN:
+        return np.array([c == "true" for c in cells], dtype=bool)
+    if cells and all(c == "" for c in cells):
+        return np.array(cells, dtype=str)  # convergence.csv's value without --vary
+    try:
+        return np.array([float(c) if c != "" else np.nan for c in cells], dtype=float)
+    except ValueError:
+        return np.array(cells, dtype=str)  # an axis of words: schemes, laws
+
+
+def _table_from_csv(text, summary=None, table=Table):
+    """A table from the text of a CSV that barimpact wrote."""
+    reader = csv.reader(io.StringIO(text))
+    header = next(reader, [])
+    rows = list(reader)
+    cells = [[row[i] for row in rows] for i in range(len(header))]
+    return table({name: _column(name, c) for name, c in zip(header, cells)}, summary)
+
+
+_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "hopkinson.csv")
+
+
+def read_table(path):
+    """A table the command wrote, as a `Table`: `path` a CSV file or a
+    directory holding one (convergence.csv, sweep.csv, bearing.csv,
+    hopkinson.csv). A Hopkinson directory's table is a `HopkinsonTable` with
+    summary.json as `summary`."""
+    p = _Path(os.fspath(path))
+    if p.is_dir():
+        found = [p / name for name in _TABLES if (p / name).is_file()]
+        if not found:
+            raise InputError(f"{path}: holds none of {', '.join(_TABLES)} (give a directory barimpact wrote)")
+        p = found[0]
+    if p.name == "hopkinson.csv":
+        summary_file = p.with_name("summary.json")
+        summary = json.loads(summary_file.read_text()) if summary_file.is_file() else None
+        return _table_from_csv(p.read_text(), summary, HopkinsonTable)
+    return _table_from_csv(p.read_text())
+
+
+def _result_to_pandas(self):
+    """The history as a pandas DataFrame: one column per history.csv column,
+    in its order (copies). ImportError (saying so) without pandas."""
+    pandas = _pandas("Result.to_pandas")
+    return pandas.DataFrame({name: np.array(self[name]) for name in self.keys()})
+
+
+def _fields_table(self):
+    """fields.csv's columns as a `Table`, one row per snapshot and node:
+    t, x, u, v, sigma, eps_p, body (views where numpy allows)."""
+    nodes, snapshots = self.x.size, self.field_t.size
+    return Table({"t": np.repeat(self.field_t, nodes), "x": np.tile(self.x, snapshots), "u": self.u.ravel(),
+                  "v": self.v.ravel(), "sigma": self.sigma.ravel(), "eps_p": self.eps_p.ravel(),
+                  "body": np.tile(np.array(self.field_body, dtype=str), snapshots)})
+
+
+def _fields_to_pandas(self):
+    """fields.csv as a pandas DataFrame (long form: t, x, u, v, sigma, eps_p,
+    body; one row per snapshot and node). ImportError without pandas."""
+    _pandas("Result.fields_to_pandas")
+    return self.fields_table().to_pandas()
+
+
+def _result_repr(self):
+    s = self.summary
+    return (f"<barimpact.Result {s.get('status', '?')}: {self.t.size} rows, {len(self)} history columns, "
+            f"{self.field_t.size} snapshots>")
 
 
 Result.summary = property(lambda self: json.loads(self.summary_json), doc="summary.json as a dict")
+Result.to_pandas = _result_to_pandas
+Result.fields_table = _fields_table
+Result.fields_to_pandas = _fields_to_pandas
+Result.__repr__ = _result_repr
+
+
+# ---- shared by the commands' functions
+
+
+def _case(case, set):
+    if isinstance(case, Case):
+        return case if set is None else Case(case.to_toml(), set=set)
+    return Case(case, set=set)
+
+
+def _jobs(jobs):
+    """--jobs: None or 0 for every core, else 1 .. 1024."""
+    if jobs is None or jobs == 0:
+        return 0
+    if not isinstance(jobs, numbers.Integral) or not 1 <= jobs <= 1024:
+        raise InputError(f"--jobs: must be 1 .. 1024, or None for every core (got {jobs!r})")
+    return int(jobs)
+
+
+def _out(out):
+    return None if out is None else os.fspath(out)
+
+
+def _warn(lines, stacklevel=3):
+    """Warnings pointing at the line that called the public function."""
+    for line in lines:
+        warnings.warn(line, HealthWarning, stacklevel=stacklevel)
+
+
+def _study_warnings(pairs, report, shown=20):
+    """The runs' warnings, the first 20 of them as the command prints them
+    (a large sweep would bury the output); the CSV's warnings column has all."""
+    lines = [f"{run_id}: {w}" for run_id, w in pairs]
+    _warn(lines[:shown], stacklevel=4)
+    if len(lines) > shown:
+        _warn([f"... {len(lines) - shown} more (the warnings column of {report})"], stacklevel=4)
+    return lines
+
+
+def _strict(strict, lines, result, what):
+    """--strict: the results are written; then the warnings are an error."""
+    if strict and lines:
+        raise StrictError(f"strict: {what} warned ({len(lines)} warning{'s' if len(lines) != 1 else ''}; the results "
+                          "are written)", result, lines)
+
+
+def _call_text(name, args, options, defaults):
+    """The call as Python, for convergence.md's first line (the command puts
+    its command line there): the options that differ from the defaults."""
+    def show(v):
+        return repr(os.fspath(v)) if isinstance(v, os.PathLike) else repr(v)
+
+    def given(k, v):
+        try:
+            return bool(v != defaults.get(k))
+        except ValueError:  # an array: shown
+            return True
+    parts = [show(a) for a in args] + [f"{k}={show(v)}" for k, v in options.items() if given(k, v)]
+    return f"barimpact.{name}({', '.join(parts)})"
+
+
+def _toml_text(value):
+    """A value as the command line writes it after key=."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    if isinstance(value, numbers.Real):
+        return repr(float(value))
+    return str(value)
+
+
+def _finish_run(result, out, force, strict, what):
+    if out is not None:
+        result.write(os.fspath(out), force=force)
+    lines = result.summary.get("warnings", [])
+    _warn(lines, stacklevel=4)
+    _strict(strict, lines, result, what)
+    return result
+
+
+# ---- the commands
+
+
+def run(case, progress=None, *, out=None, set=None, force=False, strict=False):
+    """Run a case (`barimpact run CASE [--out DIR] [--set ...]`): `case` a
+    `Case`, or anything `Case` accepts (a path, TOML text, a dict); `set`
+    overrides keys ({"bar.elements": 200} or ["bar.elements=200"]). The GIL is
+    released while it runs; Ctrl-C stops it, raising KeyboardInterrupt.
+    `progress`, if given, is called about twice a second with a dict (step,
+    steps, t, t_end, elapsed); returning False stops the run (the result is
+    then marked incomplete). With `out`, writes history.csv, fields.csv,
+    case.toml and summary.json there by the command's output rule (`force` as
+    --force). The health checks' warnings are `HealthWarning`s; strict=True
+    raises `StrictError` after writing instead (the command's exit 4)."""
+    result = _core.run(_case(case, set), progress)
+    return _finish_run(result, out, force, strict, "the run")
+
+
+def exact(case, *, out=None, set=None, force=False, strict=False):
+    """The exact solution the case admits, tabulated on its grid like a run
+    (`barimpact exact CASE [--out DIR]`): rigid impact with gap, with a
+    constant load, elastic obstacle, or the clamped periodic benchmark.
+    InputError if none. `out`, `set`, `force`, `strict` as for `run`."""
+    result = _core.exact(_case(case, set))
+    return _finish_run(result, out, force, strict, "the exact solution")
+
+
+_CONVERGE_DEFAULTS = dict(out=None, set=None, levels=4, ratio=2, refine=None, vary=None, schemes=None,
+                          reference="auto", jobs=None, no_plot=False, force=False, strict=False)
+
+
+def _vary_text(vary):
+    """--vary: "key=v1,v2,..." | "key=a:b:n" | "key=log:a:b:n", or (key,
+    [values]), or (key, "a:b:n")."""
+    if vary is None or isinstance(vary, str):
+        return vary
+    key, values = vary
+    spec = values if isinstance(values, str) else ",".join(_toml_text(v) for v in values)
+    return f"{key}={spec}"
+
+
+def _scheme_list(schemes):
+    if schemes is None:
+        return []
+    return schemes.split(",") if isinstance(schemes, str) else [str(s) for s in schemes]
+
+
+def converge(case, out=None, *, set=None, levels=4, ratio=2, refine=None, vary=None, schemes=None, reference="auto",
+             jobs=None, no_plot=False, force=False, strict=False):
+    """A convergence and work-precision study (`barimpact converge CASE --out
+    DIR`): the case run at `levels` refinements (2 .. 12), h and/or dt divided
+    by `ratio` (2 .. 16) per level as `refine` says ("both", the default, "h",
+    "dt", "none"), or along `vary` ("key=v1,v2,..." | "key=a:b:n" |
+    "key=log:a:b:n", or (key, [values]); refine then defaults to "none"), for
+    each of `schemes` ("a,b" or a list; default the case's), each run measured
+    against `reference` ("auto": the exact solution if the case admits one,
+    else the finest run; "rigid"; "finest"). `case` anything `Case` accepts,
+    `set` its overrides; `jobs` threads (None: every core).
+
+    With `out` the study goes there as the command's: runs/<scheme>-<level>/,
+    convergence.csv, convergence.md and, unless no_plot, convergence.png and
+    work_precision.png (a rerun resumes; `force` as --force). Without it
+    nothing is written. Returns convergence.csv's table with `summary`
+    {"reference", "abscissa", "markdown", "directory"}. Ctrl-C stops the runs
+    under way, writes what is done and raises KeyboardInterrupt. Warnings are
+    `HealthWarning`s; strict=True raises `StrictError` after writing."""
+    options = dict(out=out, set=set, levels=levels, ratio=ratio, refine=refine, vary=vary, schemes=schemes,
+                   reference=reference, jobs=jobs, no_plot=no_plot, force=force, strict=strict)
+    command = _call_text("converge", [case], options, _CONVERGE_DEFAULTS)
+    done = _core._converge(_case(case, set), _out(out), int(levels), int(ratio), refine, _vary_text(vary),
+                           _scheme_list(schemes), reference, _jobs(jobs), bool(force), command)
+    table = _table_from_csv(done["csv"], {"reference": done["reference"], "abscissa": done["abscissa"],
+                                          "markdown": done["markdown"], "directory": _out(out)})
+    if out is not None and not no_plot and done["results"] > 0:
+        _convergence_figures.plot_study(out)
+    lines = _study_warnings(done["warnings"], "convergence.csv")
+    if done["results"] < done["runs"]:
+        _warn([f"{done['runs'] - done['results']} of {done['runs']} runs did not complete; see their rows"])
+    _strict(strict, lines, table, "the study's runs")
+    return table
+
+
+def _nested(keys):
+    """{"time.step": 0.1} -> {"time": {"step": 0.1}}: a sweep's [set] as TOML nests it."""
+    out = {}
+    for key, value in keys.items():
+        *sections, last = str(key).split(".")
+        d = out
+        for s in sections:
+            d = d.setdefault(s, {})
+        d[last] = _nested(value) if isinstance(value, dict) else value
+    return out
+
+
+def sweep(sweep, out, *, jobs=None, no_batch=False, force=False, strict=False):
+    """Every case of a sweep (`barimpact sweep SWEEP --out DIR`): `sweep` a
+    sweep file, or the same as a dict ({"case": "paper-example1.toml", "set":
+    {"time.end": 2.0}, "axis": [{"key": "obstacle.stiffness", "values": [100.0,
+    1000.0]}], "zip": [[...]]}; `case` then from the working directory).
+    Writes runs/<id>/ and sweep.csv into `out` (a rerun resumes: cases whose
+    run is there are read back, not run); `jobs` threads (None: every core),
+    `no_batch` runs every case alone (no SIMD batches), `force` as --force.
+    Returns sweep.csv's table (the axes' values as numbers where they are)
+    with `summary` {"cases", "run", "batched", "resumed", "complete",
+    "directory"}. Ctrl-C stops the cases under way, writes sweep.csv and
+    raises KeyboardInterrupt; a rerun finishes them. Warnings are
+    `HealthWarning`s; strict=True raises `StrictError` after writing."""
+    if isinstance(sweep, dict):
+        sweep = {k: _nested(v) if k == "set" and isinstance(v, dict) else v for k, v in sweep.items()}
+    done = _core._sweep(sweep, os.fspath(out), _jobs(jobs), not no_batch, bool(force))
+    summary = {k: done[k] for k in ("cases", "run", "batched", "resumed")}
+    table = _table_from_csv(done["csv"], summary)
+    summary.update(complete=int(np.sum(table["status"] == "complete")), directory=os.fspath(out))
+    lines = _study_warnings(done["warnings"], "sweep.csv")
+    if summary["complete"] == 0 and summary["cases"] > 0:
+        _warn(["no case produced a result; see the status and message columns of sweep.csv"])
+    _strict(strict, lines, table, "the sweep's cases")
+    return table
+
+
+def bearing(case, out, capacity, toe_share=None, jobs=None, plot=True, force=False, *, no_plot=False, strict=False):
+    """The bearing graph (`barimpact bearing CASE --out OUT --capacity
+    FROM:TO:COUNT`): `case` a case file with Smith's soil, `capacity`
+    "FROM:TO:COUNT" or (from, to, count), in N, `toe_share` R_toe / capacity
+    in [0, 1] (None: the case's). Runs every capacity on `jobs` threads (None:
+    every core; resumes a bearing directory), writes bearing.csv and, unless
+    no_plot (or plot=False, the older spelling), bearing.png. Returns
+    bearing.csv's table (blow counts inf where the hammer cannot move the
+    pile) with `summary` {"toe_share", "from", "to", "count", "directory"}.
+    Ctrl-C writes what is done and raises KeyboardInterrupt. Warnings are
+    `HealthWarning`s; strict=True raises `StrictError` after writing."""
+    if not isinstance(capacity, str):
+        lo, hi, count = capacity
+        capacity = f"{float(lo)!r}:{float(hi)!r}:{int(count)}"
+    done = _core._bearing(case, os.fspath(out), capacity, toe_share, _jobs(jobs), bool(force))
+    summary = {k: done[k] for k in ("toe_share", "from", "to", "count")}
+    summary["directory"] = os.fspath(out)
+    table = _table_from_csv(done["csv"], summary)
+    if plot and not no_plot and np.any(table["status"] == "complete"):
+        _bearing_figures.plot_bearing(out)
+    lines = _study_warnings(done["warnings"], "bearing.csv")
+    _strict(strict, lines, table, "the capacities' runs")
+    return table
+
+
+def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
+    """The split Hopkinson bar analysis (`barimpact hopkinson SETUP --out
+    DIR`): `setup` a setup file's path, or the same as a dict of sections
+    ({"bar": {...}, "incident": {...}, ...}; relative paths then from the
+    working directory). Returns hopkinson.csv's table (t, strain_1w,
+    strain_rate_1w, stress_1w, strain_3w, strain_rate_3w, stress_2w,
+    stress_3w, force_front, force_back, equilibrium, incident, reflected,
+    transmitted) with `summary`, summary.json as a dict. With `out`, writes
+    hopkinson.csv, summary.json and (unless no_plot) the figures there, moved
+    into place together by the command's output rule (`force` as --force);
+    without it nothing is written. InputError (one line) for a signal it
+    cannot analyse. Warnings are `HealthWarning`s; strict=True raises
+    `StrictError` after writing."""
+    draw = None if no_plot or out is None else _hopkinson_figures.plot_hopkinson
+    table, summary, lines = _core._hopkinson(setup, _out(out), bool(force), draw)
+    result = HopkinsonTable(table, json.loads(summary))
+    _warn(lines)
+    _strict(strict, lines, result, "the analysis")
+    return result
+
+
+# What plot.py may draw (main.cpp's list, and a blow's figures): the names
+# the figures' directory is marked with before it fills.
+_FIGURES = ("displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces", "gauges",
+            "masses", "plastic_map", "plastic_snapshots", "blow_head", "blow_toe", "blow_envelopes")
+
+
+def plot(source, out=None, *, force=False, formats=("png", "svg")):
+    """The figures of a run, PNG and SVG (`barimpact plot DIR [--out
+    FIGURES]`). `source` a run directory (written by `barimpact run` or
+    `Result.write`): the figures go to DIR/figures, or `out`, by the
+    command's output rule (a new or empty directory, or one barimpact wrote;
+    `force` as --force), and DIR/figures is listed as the run's. Or `source`
+    a `Result` (or `RunData`): the figures go to `out` (default ./figures) as
+    they are. Returns the paths written."""
+    if not isinstance(source, (str, os.PathLike)):
+        return _figures.plot(source, out, formats)
+    run_dir = _Path(os.fspath(source))
+    if not (run_dir / "history.csv").is_file():
+        raise InputError(f"plot: {os.fspath(source)} holds no history.csv (give a directory written by barimpact run)")
+    target = run_dir / "figures" if out is None else _Path(os.fspath(out))
+    ours = out is None and _core._written_by_barimpact(run_dir)  # asked before figures/ is there
+    _core._prepare_output_directory(target, "plot", [f"{f}.{e}" for f in _FIGURES for e in formats], bool(force))
+    if ours:
+        _core._mark_entries(run_dir, ["figures"])  # DIR/figures belongs to its run directory
+    return _figures.plot(load(run_dir), target, formats)
 
 
 def exact_example1(x, t, length=1.0, stiffness=1.0, density=1.0, v0=-1.0):
@@ -95,10 +510,6 @@ def exact_example1(x, t, length=1.0, stiffness=1.0, density=1.0, v0=-1.0):
     undeformed, moving at v0 < 0 towards x = 0. Returns a dict of arrays u, v,
     strain, R, broadcast over x and t."""
     xb, tb = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(t, dtype=float))
-    u, v, strain, R = _core_exact(xb.ravel(), tb.ravel(), length, stiffness, density, v0)
+    u, v, strain, R = _core._exact_example1(xb.ravel(), tb.ravel(), length, stiffness, density, v0)
     shape = xb.shape
     return {"u": u.reshape(shape), "v": v.reshape(shape), "strain": strain.reshape(shape), "R": R.reshape(shape)}
-
-
-from ._core import _exact_example1 as _core_exact  # noqa: E402
-from .plot import load, plot  # noqa: E402

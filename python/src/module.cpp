@@ -7,16 +7,25 @@
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <exception>
 #include <filesystem>
+#include <future>
+#include <optional>
 #include <sstream>
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/output.hpp"
+#include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/scheme.hpp"
 #include "barimpact/study/bearing.hpp"
+#include "barimpact/study/convergence.hpp"
+#include "barimpact/study/sweep.hpp"
 
 namespace py = pybind11;
 using namespace barimpact;
@@ -27,6 +36,7 @@ namespace {
 struct PyResult {
   Case c;
   RunResult r;
+  std::string command = "run";  // what wrote it: "run" or "exact" (the directory's marker says so)
 };
 
 // One table's keys: numbers, strings, booleans, lists of them.
@@ -134,6 +144,310 @@ py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<p
 constexpr std::array<const char*, 11> columns{"t",          "U",     "V",      "R",         "E_kin",    "E_strain",
                                               "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic"};
 
+// Any nested value as TOML (a sweep file's top level: case, zip, [set],
+// [[axis]]): dicts are tables, lists arrays, numpy scalars numbers.
+toml::table nested_table(const py::dict& d);
+toml::array nested_array(const py::handle& items);
+
+// Hands `put` the value as its TOML type (tables and arrays through the two
+// functions above, so that this template is not instantiated without end).
+template <class Put>
+void put_value(const py::handle& value, Put&& put) {
+  if (py::isinstance<py::dict>(value)) {
+    put(nested_table(value.cast<py::dict>()));
+  } else if (py::isinstance<py::bool_>(value)) {
+    put(value.cast<bool>());
+  } else if (py::isinstance<py::int_>(value)) {
+    put(value.cast<long long>());
+  } else if (py::isinstance<py::float_>(value)) {
+    put(value.cast<double>());
+  } else if (py::isinstance<py::str>(value)) {
+    put(value.cast<std::string>());
+  } else if (py::hasattr(value, "__fspath__")) {
+    put(py::str(value.attr("__fspath__")()).cast<std::string>());
+  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) || py::isinstance<py::array>(value)) {
+    put(nested_array(value));
+  } else if (py::hasattr(value, "__index__")) {
+    put(value.attr("__index__")().cast<long long>());
+  } else if (py::hasattr(value, "__float__")) {
+    put(value.cast<double>());
+  } else {
+    put(py::str(value).cast<std::string>());
+  }
+}
+
+toml::array nested_array(const py::handle& items) {
+  toml::array a;
+  for (auto item : items) put_value(item, [&a](auto&& x) { a.push_back(std::forward<decltype(x)>(x)); });
+  return a;
+}
+
+toml::table nested_table(const py::dict& d) {
+  toml::table t;
+  for (auto [key, value] : d) {
+    const auto k = py::str(key).cast<std::string>();
+    put_value(value, [&t, &k](auto&& x) { t.insert(k, std::forward<decltype(x)>(x)); });
+  }
+  return t;
+}
+
+std::string fspath(const py::handle& path) {
+  return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
+}
+
+// Runs `work` on a thread of its own while this one, without the GIL, looks
+// every 0.1 s for a signal: Python's handlers run on the main thread only, so
+// without this Ctrl-C would wait for a whole study. On a signal `stop` is
+// set (the library ends the runs under way after their step and starts no
+// other) and the exception (KeyboardInterrupt) is kept in `signal`, to be
+// raised once what was done is written, as the command exits 130 after
+// writing.
+template <class Work>
+auto interruptible(Work work, std::atomic<bool>& stop, std::optional<py::error_already_set>& signal) {
+  auto future = std::async(std::launch::async, std::move(work));
+  for (;;) {
+    {
+      py::gil_scoped_release release;
+      if (future.wait_for(std::chrono::milliseconds(100)) == std::future_status::ready) break;
+    }
+    if (!signal && PyErr_CheckSignals() != 0) {
+      signal.emplace();  // fetches and clears the pending KeyboardInterrupt
+      stop.store(true);
+    }
+  }
+  return future.get();
+}
+
+// A study's warnings as (run id, warning) pairs, every one: Python shows
+// the first few, as the command does.
+template <class Rows>
+py::list study_warnings(const Rows& rows) {
+  py::list out;
+  for (const auto& r : rows)
+    for (const auto& w : r.warnings) out.append(py::make_tuple(r.id, w));
+  return out;
+}
+
+template <class Rows>
+long count_status(const Rows& rows, std::initializer_list<std::string_view> statuses) {
+  return static_cast<long>(std::count_if(rows.begin(), rows.end(), [&](const auto& r) {
+    return std::find(statuses.begin(), statuses.end(), r.status) != statuses.end();
+  }));
+}
+
+// ---- converge: the steps of main.cpp's converge_command, by the same
+// library calls (the two should share one library function; see the report).
+
+struct ConvergeArgs {
+  int levels = 4, ratio = 2, jobs = 0;
+  std::optional<std::string> refine, vary;
+  std::vector<std::string> schemes;
+  std::string reference = "auto";
+};
+
+StudyOptions study_options(const ConvergeArgs& a) {
+  StudyOptions o;
+  o.levels = a.levels;
+  o.ratio = a.ratio;
+  o.jobs = a.jobs;
+  if (a.ratio > 16) throw InputError(fmt::format("--ratio: must be 2 .. 16 (got {})", a.ratio));
+  if (a.refine) {
+    const std::string& r = *a.refine;
+    if (r != "both" && r != "h" && r != "dt" && r != "none")
+      throw InputError(fmt::format("--refine: must be both, h, dt or none (got \"{}\")", r));
+    o.refine = r == "h" ? Refine::h : r == "dt" ? Refine::dt : r == "none" ? Refine::none : Refine::both;
+  }
+  if (a.vary) {
+    o.vary = Variation::parse(*a.vary);
+    if (!a.refine) o.refine = Refine::none;  // a variation alone changes only its key
+  }
+  const auto known = scheme_names();
+  for (const auto& s : a.schemes) {
+    if (std::find(known.begin(), known.end(), s) == known.end())
+      throw InputError(fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
+    o.schemes.push_back(s);
+  }
+  if (a.reference != "auto" && a.reference != "rigid" && a.reference != "finest")
+    throw InputError(fmt::format("--reference: must be auto, rigid or finest (got \"{}\")", a.reference));
+  o.reference = a.reference == "rigid"    ? Reference::rigid
+                : a.reference == "finest" ? Reference::finest
+                                          : Reference::automatic;
+  return o;
+}
+
+// What converge writes into its directory (its marker lists them), as main.cpp's study_entries.
+const std::vector<std::string> study_entries{"runs",
+                                             "convergence.csv",
+                                             "convergence.md",
+                                             "convergence.png",
+                                             "convergence.svg",
+                                             "work_precision.png",
+                                             "work_precision.svg"};
+
+// Run directories in runs/ that barimpact wrote for an earlier, other study
+// (as main.cpp's remove_other_runs): a run of the user's kept there stays.
+void remove_other_runs(const std::filesystem::path& runs, const Study& study) {
+  for (const auto& name : directory_entries(runs)) {
+    const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
+    std::error_code ec;
+    if (!ours && output_command(runs / name) == "converge" && written_by_barimpact(runs / name))
+      std::filesystem::remove_all(runs / name, ec);
+  }
+}
+
+py::dict converge_binding(const Case& c, const std::optional<std::string>& out, const ConvergeArgs& args, bool force,
+                          const std::string& command) {
+  auto o = study_options(args);
+  check_study(c, o);  // bad options refused before the directory is touched
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> signal;
+  o.interrupt = &stop;
+  if (out) {
+    prepare_output_directory(*out, "converge", study_entries, force);
+    o.runs = std::filesystem::path(*out) / "runs";
+  }
+  const Study study = interruptible([&] { return converge(c, o); }, stop, signal);
+  const std::string markdown = study_markdown(study, command);
+  const std::string csv = study_csv(study);
+  if (out) {
+    const std::filesystem::path dir(*out);
+    remove_other_runs(o.runs, study);
+    replace_text(dir / "convergence.csv", csv);
+    replace_text(dir / "convergence.md", markdown);
+  }
+  if (signal) throw *signal;
+  py::dict d;
+  d["csv"] = csv;
+  d["markdown"] = markdown;
+  d["reference"] = study.reference;
+  d["abscissa"] = study.abscissa;
+  d["warnings"] = study_warnings(study.runs);
+  d["runs"] = study.runs.size();
+  d["results"] = count_status(study.runs, {"complete", "reference"});
+  d["stopped"] = count_status(study.runs, {"interrupted"});
+  return d;
+}
+
+// ---- sweep: the steps of main.cpp's sweep_command without MPI.
+
+SweepPlan sweep_plan(const py::object& sweep) {
+  if (py::isinstance<py::dict>(sweep)) {
+    std::ostringstream text;  // the file's reader checks a dict too; `case` from the working directory
+    text << toml::toml_formatter(nested_table(sweep.cast<py::dict>()));
+    return SweepPlan::from_string(text.str(), "sweep", std::filesystem::current_path());
+  }
+  return SweepPlan::from_file(fspath(sweep));
+}
+
+py::dict sweep_binding(const py::object& sweep, const std::string& out, int jobs, bool batch, bool force) {
+  const SweepPlan plan = sweep_plan(sweep);
+  const std::filesystem::path dir(out);
+  prepare_output_directory(dir, "sweep", {"runs", "sweep.csv"}, force);
+  std::error_code ec;
+  std::filesystem::create_directories(dir / "runs", ec);
+  if (ec) throw InputError(fmt::format("--out {}: cannot create it ({})", out, ec.message()));
+  remove_stale_staging(dir / "runs", "");  // what a killed sweep left
+  remove_stale_staging(dir, "");
+  std::vector<SweepRow> rows(plan.points().size());
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < plan.points().size(); ++i)
+    if (!read_row(plan, dir, i, rows[i])) todo.push_back(i);
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> signal;
+  SweepOptions o;
+  o.jobs = jobs;
+  o.batch = batch;
+  o.interrupt = &stop;
+  const auto done = interruptible([&] { return run_sweep(plan, dir, todo, o); }, stop, signal);
+  for (const auto& r : done) rows[static_cast<std::size_t>(std::stoll(r.id))] = r;
+  const std::string csv = sweep_csv(plan, rows);
+  replace_text(dir / "sweep.csv", csv);
+  if (signal) throw *signal;
+  py::dict d;
+  d["csv"] = csv;
+  d["cases"] = rows.size();
+  d["run"] = done.size();
+  d["batched"] = std::count_if(done.begin(), done.end(), [](const auto& r) { return r.batched; });
+  d["resumed"] = rows.size() - todo.size();
+  d["warnings"] = study_warnings(rows);
+  return d;
+}
+
+py::dict bearing_binding(const py::object& case_file, const std::string& out, const std::string& capacity,
+                         const py::object& toe_share, int jobs, bool force) {
+  BearingOptions o;
+  parse_capacity(capacity, o);  // the command's rules
+  if (!toe_share.is_none()) {
+    const auto share = toe_share.cast<double>();
+    if (!(share >= 0.0 && share <= 1.0)) throw InputError(fmt::format("--toe-share: must be 0 .. 1 (got {})", share));
+    o.toe_share = share;
+  }
+  const BearingPlan plan(fspath(case_file), o);
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> signal;
+  SweepOptions options;
+  options.jobs = jobs;
+  options.batch = false;  // Smith's soil runs on central differences
+  options.interrupt = &stop;
+  const auto rows = interruptible([&] { return write_bearing(plan, out, options, force); }, stop, signal);
+  if (signal) throw *signal;
+  std::vector<SweepRow> runs;
+  for (const auto& r : rows) runs.push_back(r.run);
+  py::dict d;
+  d["csv"] = bearing_csv(rows);
+  d["toe_share"] = plan.toe_share();
+  d["from"] = o.from;
+  d["to"] = o.to;
+  d["count"] = o.count;
+  d["warnings"] = study_warnings(runs);
+  return d;
+}
+
+HopkinsonSetup hopkinson_setup(const py::object& setup) {
+  if (py::isinstance<py::dict>(setup)) {
+    std::ostringstream text;  // the file's reader checks a dict too
+    text << toml::toml_formatter(table_from_dict(setup.cast<py::dict>()));
+    return HopkinsonSetup::from_string(text.str(), std::filesystem::current_path(), "setup");
+  }
+  return HopkinsonSetup::from_file(fspath(setup));
+}
+
+// The analysis, then (with `out`) hopkinson.csv, summary.json and what
+// `draw(staging)` adds, moved into place together as the command does.
+py::tuple hopkinson_binding(const py::object& setup, const std::optional<std::string>& out, bool force,
+                            const py::object& draw) {
+  const HopkinsonSetup s = hopkinson_setup(setup);
+  HopkinsonResult r;
+  {
+    py::gil_scoped_release release;
+    r = analyse_hopkinson(s);
+  }
+  if (out) {
+    RunDirectory dir(*out, force, "hopkinson");
+    dir.commit([&](const std::filesystem::path& staging) {
+      write_text(staging / "hopkinson.csv", hopkinson_csv(r));
+      write_text(staging / "summary.json", hopkinson_summary_json(r));
+      if (!draw.is_none()) draw(staging.string());
+    });
+  }
+  py::dict table;
+  for (const auto& c : r.columns) {
+    py::array_t<double> a(static_cast<py::ssize_t>(c.values.size()));
+    std::copy(c.values.begin(), c.values.end(), a.mutable_data());
+    table[py::str(c.name)] = a;
+  }
+  py::list warnings;
+  for (const auto& w : r.warnings) warnings.append(w);
+  return py::make_tuple(table, hopkinson_summary_json(r), warnings);
+}
+
+py::list history_names(const PyResult& p) {
+  py::list names;
+  for (const char* c : columns) names.append(py::str(c));
+  for (const auto& c : p.r.columns) names.append(py::str(c));
+  return names;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -151,14 +465,29 @@ PYBIND11_MODULE(_core, m) {
                std::to_string(c.step_count()) + " steps>";
       });
 
-  auto result = py::class_<PyResult>(m, "Result");
-  result
-      .def_property_readonly_static("columns",
-                                    [](py::object) {
-                                      py::tuple names(columns.size());
-                                      for (std::size_t i = 0; i < columns.size(); ++i) names[i] = py::str(columns[i]);
-                                      return names;
-                                    })
+  auto result_class = py::class_<PyResult>(m, "Result");
+  result_class
+      .def_property_readonly(
+          "columns", [](const PyResult& p) { return py::tuple(history_names(p)); },
+          "Every column of history.csv by name, in its order (what r[name] takes): the budget's, then joints, far "
+          "end, masses, gauges")
+      .def(
+          "keys", [](const PyResult& p) { return history_names(p); }, "The history's column names, as `columns`")
+      .def(
+          "__iter__", [](const PyResult& p) { return py::iter(history_names(p)); },
+          "Iterates over the history's column names (so dict(r) is the history)")
+      .def(
+          "__contains__",
+          [](const PyResult& p, const py::object& name) {
+            if (!py::isinstance<py::str>(name)) return false;
+            const auto n = name.cast<std::string>();
+            return std::find(columns.begin(), columns.end(), n) != columns.end() ||
+                   std::find(p.r.columns.begin(), p.r.columns.end(), n) != p.r.columns.end();
+          },
+          py::arg("name"), "Whether the history has a column of that name")
+      .def(
+          "__len__", [](const PyResult& p) { return columns.size() + p.r.columns.size(); },
+          "The number of history columns")
       .def_property_readonly(
           "history",
           [](py::object self) {
@@ -170,14 +499,8 @@ PYBIND11_MODULE(_core, m) {
           },
           "The budget's history rows, shape (rows, 10), columns as the first ten of history.csv (a view, no copy)")
       .def_property_readonly(
-          "history_columns",
-          [](const PyResult& p) {
-            py::list names;
-            for (const char* c : columns) names.append(py::str(c));
-            for (const auto& c : p.r.columns) names.append(py::str(c));
-            return names;
-          },
-          "Every column of history.csv, in its order: the budget's, then joints, far end, masses, gauges")
+          "history_columns", [](const PyResult& p) { return history_names(p); },
+          "Every column of history.csv, in its order (a list; `columns` as a tuple)")
       .def(
           "__getitem__",
           [](py::object self, const std::string& name) -> py::object {
@@ -201,23 +524,31 @@ PYBIND11_MODULE(_core, m) {
             return names;
           },
           "The body of each field row (fields.csv's `body` column)")
-      .def_property_readonly("x",
-                             [](py::object self) {
-                               const auto& f = self.cast<const PyResult&>().r.fields;
-                               return view(f.x.data(), {static_cast<py::ssize_t>(f.x.size())}, {sizeof(double)}, self);
-                             })
-      .def_property_readonly("field_t",
-                             [](py::object self) {
-                               const auto& f = self.cast<const PyResult&>().r.fields;
-                               return view(f.t.data(), {static_cast<py::ssize_t>(f.t.size())}, {sizeof(double)}, self);
-                             })
-      .def_property_readonly("summary_json", [](const PyResult& p) { return summary_json(p.c, p.r.summary); })
-      .def_property_readonly("complete", [](const PyResult& p) { return p.r.summary.complete; })
-      .def_property_readonly("case", [](const PyResult& p) { return p.c; })
+      .def_property_readonly(
+          "x",
+          [](py::object self) {
+            const auto& f = self.cast<const PyResult&>().r.fields;
+            return view(f.x.data(), {static_cast<py::ssize_t>(f.x.size())}, {sizeof(double)}, self);
+          },
+          "The field rows' positions (fields.csv's `x` of one snapshot)")
+      .def_property_readonly(
+          "field_t",
+          [](py::object self) {
+            const auto& f = self.cast<const PyResult&>().r.fields;
+            return view(f.t.data(), {static_cast<py::ssize_t>(f.t.size())}, {sizeof(double)}, self);
+          },
+          "The snapshots' times")
+      .def_property_readonly(
+          "summary_json", [](const PyResult& p) { return summary_json(p.c, p.r.summary); }, "summary.json's text")
+      .def_property_readonly(
+          "complete", [](const PyResult& p) { return p.r.summary.complete; },
+          "False when the run stopped early (non-finite state, stopped by the callback, interrupted)")
+      .def_property_readonly(
+          "case", [](const PyResult& p) { return p.c; }, "The case that produced it (every default filled in)")
       .def(
           "write",
           [](const PyResult& p, const std::string& dir, bool force) {
-            RunDirectory out(dir, force);
+            RunDirectory out(dir, force, p.command);
             out.commit(p.c, p.r);
           },
           py::arg("dir"), py::kw_only(), py::arg("force") = false,
@@ -226,7 +557,7 @@ PYBIND11_MODULE(_core, m) {
           "else's files and deletes none of them");
 
   for (std::size_t i = 0; i < columns.size(); ++i) {
-    result.def_property_readonly(
+    result_class.def_property_readonly(
         columns[i],
         [i](py::object self) {
           const auto& h = self.cast<const PyResult&>().r.history;
@@ -237,7 +568,7 @@ PYBIND11_MODULE(_core, m) {
   }
   for (const auto& [name, member] : {std::pair{"u", &Fields::u}, std::pair{"v", &Fields::v},
                                      std::pair{"sigma", &Fields::sigma}, std::pair{"eps_p", &Fields::eps_p}}) {
-    result.def_property_readonly(
+    result_class.def_property_readonly(
         name,
         [member](py::object self) {
           const auto& f = self.cast<const PyResult&>().r.fields;
@@ -283,59 +614,63 @@ PYBIND11_MODULE(_core, m) {
       "returning False stops the run. Ctrl-C stops it too, raising KeyboardInterrupt.");
 
   m.def(
-      "_bearing",
-      [](const std::string& case_file, const std::string& out, double from, double to, int count,
-         const py::object& toe_share, int jobs, bool force) {
-        BearingOptions o;
-        o.from = from;
-        o.to = to;
-        o.count = count;
-        parse_capacity(fmt::format("{}:{}:{}", from, to, count), o);  // the command's rules
-        if (!toe_share.is_none()) o.toe_share = toe_share.cast<double>();
-        const BearingPlan plan(case_file, o);
-        SweepOptions options;
-        options.jobs = jobs;
-        options.batch = false;
-        py::gil_scoped_release release;
-        (void)write_bearing(plan, out, options, force);
-      },
-      py::arg("case"), py::arg("out"), py::arg("capacity_from"), py::arg("capacity_to"), py::arg("count"),
-      py::arg("toe_share") = py::none(), py::arg("jobs") = 0, py::arg("force") = false);
-
-  m.def(
       "exact",
       [](const Case& c) {
-        auto result = std::make_unique<PyResult>(PyResult{c, {}});
+        auto result = std::make_unique<PyResult>(PyResult{c, {}, "exact"});
         result->r = run_exact(c);
         return result;
       },
       py::arg("case"), "Tabulate the exact solution the case admits (as `barimpact exact`); InputError if none");
 
   m.def(
-      "_hopkinson",
-      [](const py::object& setup) {
-        HopkinsonSetup s;
-        if (py::isinstance<py::dict>(setup)) {
-          std::ostringstream text;  // the file's reader checks a dict too
-          text << toml::toml_formatter(table_from_dict(setup.cast<py::dict>()));
-          s = HopkinsonSetup::from_string(text.str(), std::filesystem::current_path(), "setup");
-        } else {
-          s = HopkinsonSetup::from_file(py::str(setup).cast<std::string>());
-        }
-        HopkinsonResult r;
-        {
-          py::gil_scoped_release release;
-          r = analyse_hopkinson(s);
-        }
-        py::dict table;
-        for (const auto& c : r.columns) {
-          py::array_t<double> a(static_cast<py::ssize_t>(c.values.size()));
-          std::copy(c.values.begin(), c.values.end(), a.mutable_data());
-          table[py::str(c.name)] = a;
-        }
-        return py::make_tuple(table, hopkinson_summary_json(r));
+      "_converge",
+      [](const Case& c, const std::optional<std::string>& out, int levels, int ratio,
+         const std::optional<std::string>& refine, const std::optional<std::string>& vary,
+         const std::vector<std::string>& schemes, const std::string& reference, int jobs, bool force,
+         const std::string& command) {
+        ConvergeArgs args;
+        args.levels = levels;
+        args.ratio = ratio;
+        args.refine = refine;
+        args.vary = vary;
+        args.schemes = schemes;
+        args.reference = reference;
+        args.jobs = jobs;
+        return converge_binding(c, out, args, force, command);
       },
-      py::arg("setup"));
+      py::arg("case"), py::arg("out"), py::arg("levels"), py::arg("ratio"), py::arg("refine"), py::arg("vary"),
+      py::arg("schemes"), py::arg("reference"), py::arg("jobs"), py::arg("force"), py::arg("command"),
+      "converge's study (main.cpp's converge_command without the figures); use barimpact.converge");
+
+  m.def("_sweep", &sweep_binding, py::arg("sweep"), py::arg("out"), py::arg("jobs"), py::arg("batch"), py::arg("force"),
+        "A sweep into `out` (main.cpp's sweep_command without MPI); use barimpact.sweep");
+
+  m.def("_bearing", &bearing_binding, py::arg("case"), py::arg("out"), py::arg("capacity"), py::arg("toe_share"),
+        py::arg("jobs"), py::arg("force"),
+        "write_bearing (the bearing command without its figure); use barimpact.bearing");
+
+  m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,
+        py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");
+
+  m.def(
+      "_prepare_output_directory",
+      [](const py::object& target, const std::string& command, const std::vector<std::string>& entries, bool force) {
+        prepare_output_directory(fspath(target), command, entries, force);
+      },
+      py::arg("target"), py::arg("command"), py::arg("entries"), py::arg("force"),
+      "The output rule for a directory filled bit by bit (output_directory.hpp): checks, creates, marks");
+
+  m.def(
+      "_written_by_barimpact", [](const py::object& dir) { return written_by_barimpact(fspath(dir)); }, py::arg("dir"),
+      "Whether barimpact wrote `dir` (its marker lists everything in it)");
+
+  m.def(
+      "_mark_entries",
+      [](const py::object& dir, const std::vector<std::string>& entries) {
+        const std::filesystem::path d(fspath(dir));
+        write_output_marker(d, output_command(d), entries);
+      },
+      py::arg("dir"), py::arg("entries"), "Adds `entries` to the marker of a directory barimpact wrote");
 
   m.def(
       "_exact_example1",
