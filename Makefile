@@ -1,6 +1,7 @@
 # Quick start on a fresh Debian machine (as root, or with sudo):
 #   make demo   installs what is missing, builds in Release, runs both paper examples into out/ with figures
-#   make test   the same set-up, then the whole test suite (Release, then ASan + UBSan, then a bounded fuzzing run)
+#   make test   the same set-up, then the whole test suite (Release, an install to a scratch prefix with a
+#               consumer project and the build tree moved away, then ASan + UBSan, then a bounded fuzzing run)
 #   make fuzz   only the fuzzing run: the input layer's libFuzzer targets (clang), FUZZ_SECONDS each
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
             nlohmann-json3-dev libkissfft-dev libgtest-dev libbenchmark-dev \
@@ -43,6 +44,7 @@ test: deps
 	cmake --preset ci
 	cmake --build --preset ci -j $(JOBS)
 	ctest --preset ci -j $(JOBS)
+	bash tests/install/install_test.sh build/ci
 	cmake --preset dev
 	cmake --build --preset dev -j $(JOBS)
 	ctest --preset dev -j $(JOBS)

@@ -153,12 +153,44 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   return 0;
 }
 
+// The directory holding the Python package (figures), found beside this
+// executable: python/ in a build tree, BARIMPACT_PYTHON_FROM_BIN once
+// installed (a prefix, or a virtual environment's bin/). Empty if neither.
+std::filesystem::path python_package_dir() {
+  std::error_code ec;
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  for (const auto& dir : {exe.parent_path() / "python", exe.parent_path() / BARIMPACT_PYTHON_FROM_BIN})
+    if (std::filesystem::is_regular_file(dir / "barimpact" / "__init__.py", ec)) return dir.lexically_normal();
+  return {};
+}
+
+// The interpreter for the figures: a virtual environment's own when the
+// command was installed into one (its packages and the system's), else the
+// one it was built for, else Debian's.
+std::string python_interpreter() {
+  std::error_code ec;
+  const auto bin = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path();
+  if (!ec && std::filesystem::exists(bin.parent_path() / "pyvenv.cfg", ec) &&
+      std::filesystem::exists(bin / "python3", ec))
+    return (bin / "python3").string();
+  if (std::filesystem::exists(BARIMPACT_PYTHON, ec)) return BARIMPACT_PYTHON;
+  return "/usr/bin/python3";
+}
+
+// PYTHONPATH for the child: the package's directory first.
+std::string python_path() {
+  std::string path = python_package_dir().string();
+  if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0')
+    path += (path.empty() ? "" : ":") + std::string(old);
+  return path;
+}
+
 // Runs the Python package (figures) as a child; false if it is not there or fails.
 bool run_python(std::vector<std::string> args) {
-  if (!std::filesystem::exists(std::filesystem::path(BARIMPACT_PYTHON_DIR) / "barimpact" / "__init__.py")) return false;
-  std::string path = BARIMPACT_PYTHON_DIR;
-  if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0') path += std::string(":") + old;
-  args.insert(args.begin(), {BARIMPACT_PYTHON, "-m", "barimpact"});
+  if (python_package_dir().empty()) return false;
+  const std::string path = python_path();
+  args.insert(args.begin(), {python_interpreter(), "-m", "barimpact"});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -514,6 +546,10 @@ int check_command(const std::string& case_path, const std::vector<std::string>& 
 
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
+  if (python_package_dir().empty())
+    throw barimpact::InputError(
+        "plot: the Python package barimpact is not installed beside this command (python/ in a build tree, " +
+        std::string(BARIMPACT_PYTHON_FROM_BIN) + " from its bin/)");
   // The figures' directory follows the output rule too, and is marked as
   // barimpact's before the Python package fills it.
   const std::filesystem::path target =
@@ -530,10 +566,8 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   // DIR/figures belongs to the run directory it is in, drawn or not.
   if (figures.empty() && barimpact::written_by_barimpact(run_dir))
     barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
-  std::string path = BARIMPACT_PYTHON_DIR;
-  if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0') path += std::string(":") + old;
-  setenv("PYTHONPATH", path.c_str(), 1);
-  std::vector<std::string> args{BARIMPACT_PYTHON, "-m", "barimpact", "plot", run_dir};
+  setenv("PYTHONPATH", python_path().c_str(), 1);
+  std::vector<std::string> args{python_interpreter(), "-m", "barimpact", "plot", run_dir};
   if (!figures.empty()) {
     args.emplace_back("--out");
     args.push_back(figures);
@@ -542,7 +576,7 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   execv(argv[0], argv.data());
-  fmt::print(stderr, "barimpact: error: plot: cannot start {} ({})\n", BARIMPACT_PYTHON, std::strerror(errno));
+  fmt::print(stderr, "barimpact: error: plot: cannot start {} ({})\n", args.front(), std::strerror(errno));
   return exit_bad_input;
 }
 
