@@ -299,7 +299,7 @@ def _exact_case(source, case):
                 raise
             # A reader that does not know [units] yet: it changes no number.
             source = Case(_without_table(Path(source).read_text(), "units"))
-    every = -(-source.steps // EXACT_ROWS)
+    every = -(-getattr(source, "steps", 0) // EXACT_ROWS)
     if every > case.get("output", {}).get("every", 1):
         source = Case(source.to_toml(), set={"output.every": every})
     return source
