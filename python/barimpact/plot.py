@@ -470,7 +470,7 @@ def _energy_figure(data, exact, out, formats, written):
     balance = (h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0) +
                h.get("D_plastic", 0.0))
     ts = units.axis("t", "time", h["t"])
-    es = units.axis("energy", "energy", [np.nanmax(np.abs(h[n])) if h[n].size else 0 for n, _ in ENERGIES if n in h])
+    es = units.axis("energy", "energy", np.concatenate([h[n] for n, _ in ENERGIES if n in h]))
     fig, ax = _figure("Energy budget")
     exact_drawn = False
     for name, label in ENERGIES:
@@ -501,7 +501,8 @@ def _map_figure(data, field, name, title, symbol, quantity, cmap, out, formats, 
     """A field over x and t, one map per bar body (the gaps between them stay
     blank), reduced to about a cell per pixel and rasterized."""
     units = data.units
-    limit = float(np.nanmax(np.abs(field))) or 1.0
+    finite = np.abs(field[np.isfinite(field)])
+    limit = float(finite.max()) if finite.size and finite.max() > 0 else 1.0
     xs, ts = units.axis("x", "length", data.x), units.axis("t", "time", data.field_t)
     vs = units.axis(symbol, quantity, limit)
     fig, ax = _figure(title, grid=False)
