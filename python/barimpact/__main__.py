@@ -1,15 +1,40 @@
-"""python3 -m barimpact plot DIR [--out FIGURES] (what `barimpact plot` runs)."""
+"""python3 -m barimpact plot DIR [DIR ...] [--out FIGURES] (what `barimpact plot` runs).
+
+DIR is a run directory (history.csv: the run's figures) or a sweep
+directory (sweep.csv: each output against the swept keys, and the runs'
+U(t) and R(t) overlaid); several run directories draw one comparison."""
 import argparse
 import sys
+from pathlib import Path
 
-from .plot import load, mark_figures, plot
+from .plot import compare, load, mark_figures, plot
+
+
+def _plot(dirs, out):
+    """The figures of one run or sweep directory, or the comparison of several runs."""
+    if len(dirs) > 1:
+        if out is None:
+            raise ValueError("several directories: give --out for their comparison")
+        return compare([load(d) for d in dirs], out)
+    d = Path(dirs[0])
+    target = Path(out) if out else d / "figures"
+    if (d / "history.csv").is_file():
+        written = plot(load(d), target)
+    elif (d / "sweep.csv").is_file():
+        from .convergence import plot_sweep
+        written = plot_sweep(d, target)
+    else:
+        raise ValueError(f"{d}: no history.csv or sweep.csv (not a directory written by barimpact run or sweep)")
+    if not out:
+        mark_figures(d)
+    return written
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="barimpact")
     sub = parser.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("plot", help="draw the figures of a run directory")
-    p.add_argument("dir")
+    p = sub.add_parser("plot", help="draw the figures of a run or sweep directory, or compare runs")
+    p.add_argument("dir", nargs="+")
     p.add_argument("--out", default=None, help="where the figures go (default: DIR/figures)")
     c = sub.add_parser("converge-plot", help="draw the plots of a barimpact converge directory")
     c.add_argument("dir")
@@ -33,14 +58,12 @@ def main(argv=None):
             print(path)
         return 0
     try:
-        data = load(args.dir)
+        written = _plot(args.dir, args.out)
     except (OSError, ValueError) as e:
         print(f"barimpact: error: plot: {e}", file=sys.stderr)
         return 2
-    for path in plot(data, args.out if args.out else f"{args.dir}/figures"):
+    for path in written:
         print(path)
-    if not args.out:
-        mark_figures(args.dir)
     return 0
 
 

@@ -1,21 +1,39 @@
 """Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
 directory written by `barimpact run`:
 
-- displacement: U(t), with the exact rigid-obstacle solution when the case is
-  the paper's Example 1 family (its Figure 3);
-- reaction: R(t), likewise with the exact reaction;
+- displacement: U(t), with the case's exact solution when it admits one
+  (`barimpact.exact`), and the rigid-obstacle limit for the paper's Example 1
+  family with a penalty obstacle (its Figure 3);
+- reaction: R(t), likewise;
 - energy: the budget E_kin, E_strain, E_obstacle, W_ext, D_visc and the
-  balance E_kin + E_strain + E_obstacle - W_ext + D_visc;
+  balance E_kin + E_strain + E_obstacle - W_ext + D_visc (exact energies
+  dashed where known);
 - stress_map: sigma(x, t) over the field snapshots, where the waves and their
   reflections show;
 - snapshots: u(x) at up to eight snapshot times (the paper's Figure 2);
 - impacts: U and R with every contact episode shaded (Example 2's second
-  impact, the paper's Figure 4).
+  impact, the paper's Figure 4);
+- a line's joint_forces, gauges and masses, a yielding bar's plastic_map and
+  plastic_snapshots, a pile blow's blow_head, blow_toe and blow_envelopes.
+
+Large runs stay fast and small: curves are thinned to what an axis can show
+(the smallest and largest point of each pixel column, so peaks stay), the
+space-time maps are reduced to about one cell per pixel (each keeping its
+largest magnitude) and rasterized in the SVG.
+
+Axis labels follow the case's `[units] system`: "SI" adds units (N, m, m/s,
+s, Pa, J, with a prefix that keeps the numbers readable), "none" (the
+default) leaves the bare names.
+
+`compare(sources, out)` draws several runs in one figure, each curve named
+by the case keys that differ between the runs.
 """
-import csv
 import json
 import os
+import re
 import tomllib
+import warnings
+from itertools import islice
 from pathlib import Path
 
 import matplotlib
@@ -27,59 +45,217 @@ import numpy as np  # noqa: E402
 COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic")
 FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
 DPI = 120
+SCREEN_COLUMNS = 1000  # pixel columns of an axis, a little more than its width at FIGSIZE and DPI
+MAP_ROWS = 600  # snapshot rows a space-time map keeps at most (the axis is about 450 pixels high)
+EXACT_ROWS = 20000  # history rows of the exact solution at most: far more than a screen shows
+
+
+# --- units -----------------------------------------------------------------
+
+UNITS = {"time": "s", "length": "m", "velocity": "m/s", "acceleration": "m/s²", "force": "N", "stress": "Pa",
+         "energy": "J", "strain": "-", "strain_rate": "1/s", "stiffness": "N/m", "area": "m²", "mass": "kg",
+         "density": "kg/m³", "line_density": "kg/m"}
+_PREFIXED = {"s", "m", "N", "Pa", "J"}  # the units a prefix (ms, kN, MPa) suits
+_PREFIXES = {-9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
+
+# The quantity of a case key, by its last part ([bar]'s stiffness is E A, a
+# force, and its density a mass per unit length).
+KEY_QUANTITIES = {"length": "length", "gap": "length", "at": "length", "velocity": "velocity", "end": "time",
+                  "step": "time", "modulus": "stress", "yield_stress": "stress", "hardening_modulus": "stress",
+                  "area": "area", "mass": "mass", "density": "density", "gravity": "acceleration",
+                  "stiffness": "stiffness"}
+
+
+def key_quantity(key):
+    """The physical quantity of a dotted case key ("obstacle.stiffness"), or None."""
+    parts = key.split(".")
+    if parts[0] == "bar" and parts[-1] in ("stiffness", "density"):
+        return "force" if parts[-1] == "stiffness" else "line_density"
+    return KEY_QUANTITIES.get(parts[-1])
+
+
+class Scale:
+    """An axis' label and the factor its numbers are drawn with: scale(values) -> drawn values."""
+
+    def __init__(self, label, factor=1.0, unit=""):
+        self.label, self.factor, self.unit = label, factor, unit
+
+    def __call__(self, values):
+        return np.asarray(values, dtype=float) * self.factor if self.factor != 1.0 else values
+
+
+def _prefix(unit, values):
+    """(factor, prefixed unit) for `values`: none while their largest
+    magnitude is in [0.1, 1000), else the prefix putting it in [1, 1000)."""
+    if unit not in _PREFIXED or values is None:
+        return 1.0, unit
+    a = np.abs(np.asarray(values, dtype=float).ravel())
+    a = a[np.isfinite(a)]
+    if not a.size or a.max() == 0 or 0.1 <= a.max() < 1000:
+        return 1.0, unit
+    e = int(np.floor(np.log10(a.max() * 1.001) / 3) * 3)  # 0.9999 ms stays 1 ms, not 999.9 µs
+    e = min(max(e, -9), 0 if unit == "s" else 9)  # no kiloseconds
+    return 10.0 ** -e, _PREFIXES[e] + unit
+
+
+class Units:
+    """Labels in a unit system: "SI" names the unit of each axis, "none"
+    (nondimensional or unstated units) leaves the bare names."""
+
+    def __init__(self, system="none"):
+        self.system = str(system)
+        self.si = self.system.upper() == "SI"
+
+    def axis(self, name, quantity, values=None):
+        """The Scale of an axis showing `name`, a `quantity` of UNITS; with
+        `values`, SI picks a prefix for them (none on log axes: give None)."""
+        unit = UNITS.get(quantity) if self.si and quantity else None
+        if not unit:
+            return Scale(name)
+        factor, unit = _prefix(unit, values)
+        return Scale(f"{name} ({unit})", factor, unit)
+
+    def value(self, number, quantity):
+        """A number with its unit, for legends and titles: "100 N/m"."""
+        text = f"{number:.4g}" if isinstance(number, (int, float)) else str(number)
+        unit = UNITS.get(quantity) if self.si and quantity else None
+        return f"{text} {unit}" if unit and unit != "-" else text
+
+
+def units_of(case):
+    """The Units of a case (a dict of its TOML): its `[units] system`, "none" when absent."""
+    return Units((case or {}).get("units", {}).get("system", "none"))
+
+
+# --- reading -----------------------------------------------------------------
+
+def read_numbers(path, usecols=None):
+    """A CSV file of numbers under a one-line header, as a 2-D array.
+    numpy's loadtxt (C parser since numpy 1.23) reads about 80 MB/s here,
+    faster than np.fromstring or genfromtxt on the same file."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UserWarning)  # a header without rows: an empty table, not a warning
+        return np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, usecols=usecols, dtype=float)
 
 
 class RunData:
-    """What the figures need: history columns, field snapshots, case, summary."""
+    """What the figures need: history columns, field snapshots, case, summary.
+    `case_source` is what builds a `barimpact.Case` for the exact solution
+    (a case.toml path or a Case), None when unknown."""
 
-    def __init__(self, history, x, field_t, u, sigma, case, summary, body=None, eps_p=None):
+    def __init__(self, history, x, field_t, u, sigma, case, summary, body=None, eps_p=None, case_source=None):
         self.history = history  # dict column -> 1-D array
         self.x, self.field_t, self.u, self.sigma = x, field_t, u, sigma
         self.case, self.summary = case, summary
         self.body = body  # the body of each field row (None: one bar)
         self.eps_p = eps_p  # plastic strain at each snapshot and row (None: not written)
+        self.case_source = case_source
+        self.units = units_of(case)
 
 
-def load(run_dir):
-    """Read a directory written by `barimpact run`."""
+def _read_fields(path):
+    """fields.csv as (x, field_t, {column: (snapshots, nodes) array}, body):
+    rows are snapshot after snapshot, each over the same nodes."""
+    with open(path) as stream:
+        header = stream.readline().strip().split(",")
+    numbers = [i for i, name in enumerate(header) if name != "body"]
+    f = read_numbers(path, usecols=numbers)
+    if not f.size:
+        return np.empty(0), np.empty(0), {}, None
+    col = {header[i]: k for k, i in enumerate(numbers)}
+    t = f[:, col["t"]]
+    changes = np.flatnonzero(t[1:] != t[:-1])
+    nodes = int(changes[0]) + 1 if changes.size else t.size
+    count = t.size // nodes
+    fields = {name: f[:count * nodes, k].reshape(count, nodes) for name, k in col.items() if name not in ("t", "x")}
+    body = None
+    if "body" in header:  # the same bodies in every snapshot: read them from the first one only
+        at = header.index("body")
+        with open(path) as stream:
+            stream.readline()
+            body = np.array([line.rstrip("\n").split(",")[at] for line in islice(stream, nodes)])
+    return f[:nodes, col["x"]], t[::nodes][:count], fields, body
+
+
+def load(run_dir, with_fields=True):
+    """Read a directory written by `barimpact run` (or `barimpact exact`);
+    with_fields=False leaves fields.csv unread (what a comparison of runs needs)."""
     d = Path(run_dir)
     if not (d / "history.csv").is_file():
         raise ValueError(f"{run_dir}: no history.csv (not a directory written by barimpact run)")
     with open(d / "history.csv") as stream:
         names = stream.readline().strip().split(",")
-    h = np.loadtxt(d / "history.csv", delimiter=",", skiprows=1, ndmin=2)
+    h = read_numbers(d / "history.csv")
+    if h.shape[1] != len(names):
+        h = np.empty((0, len(names)))
     history = {name: h[:, i] for i, name in enumerate(names)}
     x = field_t = u = sigma = np.empty(0)
-    body = None
-    eps_p = None
-    if (d / "fields.csv").is_file():
-        with open(d / "fields.csv") as stream:
-            header = stream.readline().strip().split(",")
-        numbers = [i for i, name in enumerate(header) if name != "body"]
-        f = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=2, usecols=numbers)
-        if f.size:
-            col = {name: k for k, name in enumerate(header[i] for i in numbers)}
-            field_t = np.unique(f[:, 0])
-            nodes = f.shape[0] // field_t.size
-            x = f[:nodes, 1]
-            u = f[:, 2].reshape(field_t.size, nodes)
-            sigma = f[:, 4].reshape(field_t.size, nodes)
-            if "eps_p" in col:
-                eps_p = f[:, col["eps_p"]].reshape(field_t.size, nodes)
-            if "body" in header:
-                body = np.loadtxt(d / "fields.csv", delimiter=",", skiprows=1, ndmin=1, usecols=header.index("body"),
-                                  dtype=str)[:nodes]
+    body = eps_p = None
+    if with_fields and (d / "fields.csv").is_file():
+        x, field_t, fields, body = _read_fields(d / "fields.csv")
+        if fields:
+            u, sigma, eps_p = fields["u"], fields["sigma"], fields.get("eps_p")
     case = tomllib.loads((d / "case.toml").read_text())
     summary = json.loads((d / "summary.json").read_text())
-    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p)
+    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p, case_source=d / "case.toml")
 
 
 def _from_result(result):
     history = {name: np.asarray(result[name]) for name in result.history_columns}
     return RunData(history, np.asarray(result.x), np.asarray(result.field_t), np.asarray(result.u),
                    np.asarray(result.sigma), tomllib.loads(result.case.to_toml()), result.summary,
-                   np.asarray(result.field_body), np.asarray(result.eps_p))
+                   np.asarray(result.field_body), np.asarray(result.eps_p), case_source=result.case)
 
+
+# --- what a screen can show --------------------------------------------------
+
+def screen_points(x, y, columns=SCREEN_COLUMNS):
+    """(x, y) thinned to what an axis `columns` pixels wide can show: in each
+    run of consecutive points, the smallest and the largest (in their order),
+    so every peak and the envelope stay. Short series come back whole."""
+    x, y = np.asarray(x), np.asarray(y)
+    n = y.size
+    if n <= 4 * columns:
+        return x, y
+    k = -(-n // columns)  # points per column
+    m = n // k * k
+    runs = y[:m].reshape(-1, k)
+    finite = np.isfinite(runs)
+    lowest = np.where(finite, runs, np.inf).argmin(axis=1)  # an all-NaN run keeps its first point: a gap
+    highest = np.where(finite, runs, -np.inf).argmax(axis=1)
+    starts = np.arange(0, m, k)
+    keep = np.unique(np.concatenate([starts + lowest, starts + highest, [0, n - 1], np.arange(m, n)]))
+    return x[keep], y[keep]
+
+
+def _bin_starts(n, bins):
+    k = max(1, -(-n // max(1, bins)))
+    starts = np.arange(0, n, k)
+    return starts, np.diff(np.append(starts, n)), k
+
+
+def peak_cells(values, coords, bins, axis):
+    """`values` (2-D) reduced along `axis` to about `bins` cells of
+    consecutive entries, each keeping the entry of largest magnitude (a wave
+    front or a one-node peak stays visible), with the cells' mean coordinate."""
+    n = values.shape[axis]
+    starts, counts, k = _bin_starts(n, bins)
+    if k == 1:
+        return coords, values
+    v = np.moveaxis(values, axis, -1)
+    pad = starts.size * k - n
+    v = np.concatenate([v, np.zeros(v.shape[:-1] + (pad,))], axis=-1).reshape(v.shape[:-1] + (starts.size, k))
+    pick = np.abs(np.nan_to_num(v, nan=0.0)).argmax(axis=-1)
+    reduced = np.take_along_axis(v, pick[..., None], axis=-1)[..., 0]
+    return np.add.reduceat(np.asarray(coords, dtype=float), starts) / counts, np.moveaxis(reduced, -1, axis)
+
+
+def _line(ax, x, y, *args, **kwargs):
+    """ax.plot of a series thinned to the screen."""
+    return ax.plot(*screen_points(x, y), *args, **kwargs)
+
+
+# --- exact solutions -----------------------------------------------------------
 
 def _number(text):
     try:
@@ -90,7 +266,7 @@ def _number(text):
 
 def exact_parameters(case):
     """(L, a, rho, v0) when the case is the paper's Example 1 family (one
-    elastic bar, uniform v0 < 0, no load, no initial strain, an obstacle at
+    elastic bar (no yield), uniform v0 < 0, no load, no initial strain, an obstacle at
     x = 0 without gap), else None."""
     bodies, near = case.get("body", []), case.get("near_end", {})
     if len(bodies) != 1 or bodies[0].get("kind") != "bar" or case.get("joint"):
@@ -98,25 +274,219 @@ def exact_parameters(case):
     bar = bodies[0]
     v0 = _number(bar["velocity"])
     if (near.get("law", "free") not in ("elastic", "viscoelastic", "rigid", "cushion") or near.get("gap", 0) != 0
+            or bar.get("material", "elastic") != "elastic"
             or bar["viscosity"] != 0 or _number(case["load"]["body_force"]) != 0
             or case["load"].get("gravity", 0) != 0 or _number(bar["displacement"]) != 0 or v0 is None or v0 >= 0):
         return None
     return bar["length"], bar["modulus"] * bar["area"], bar["density"] * bar["area"], v0
 
 
-def _snapshots(data, field, title, ylabel, out, name, formats, written):
-    """A field over x at up to eight snapshot times, one colour per time across the bodies."""
-    fig, ax = _figure(title)
-    chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
-    for i in chosen:
-        for n, rows in enumerate(_body_rows(data)):
-            line, = ax.plot(data.x[rows], field[i, rows], lw=1.2,
-                            label=f"t = {data.field_t[i]:.3g}" if n == 0 else None,
-                            color=None if n == 0 else line.get_color())
-    ax.set_xlabel("x")
-    ax.set_ylabel(ylabel)
-    ax.legend(fontsize=8, ncol=2)
-    _save(fig, out, name, formats, written)
+def _without_table(text, name):
+    """TOML text without its [name] table (a presentation key, no physics)."""
+    return re.sub(rf"(?m)^\[{re.escape(name)}\][^\n]*\n(?:(?!\[)[^\n]*\n)*", "", text)
+
+
+def _exact_case(source, case):
+    """The barimpact.Case whose exact solution the figures draw: the run's
+    case, its history thinned to EXACT_ROWS rows when longer (each row costs
+    an evaluation, and no screen shows more)."""
+    from . import Case, InputError
+    if isinstance(source, (str, Path)):
+        try:
+            source = Case(os.fspath(source))
+        except InputError:
+            if "units" not in case:
+                raise
+            # A reader that does not know [units] yet: it changes no number.
+            source = Case(_without_table(Path(source).read_text(), "units"))
+    every = -(-getattr(source, "steps", 0) // EXACT_ROWS)
+    if every > case.get("output", {}).get("every", 1):
+        source = Case(source.to_toml(), set={"output.every": every})
+    return source
+
+
+def exact_solution(data):
+    """The exact solution of the run's case (`barimpact.exact`) as a RunData
+    with the run's columns, or None when the case admits none."""
+    if data.case_source is None:
+        return None
+    try:
+        from . import exact
+        return _from_result(exact(_exact_case(data.case_source, data.case)))
+    except (ImportError, ValueError, OSError, RuntimeError):
+        return None  # InputError (a ValueError): the case admits no exact solution
+
+
+class Reference:
+    """A reference curve set: history columns drawn with one label and style."""
+
+    def __init__(self, history, label, **style):
+        self.history, self.label, self.style = history, label, style
+
+
+def references(data):
+    """The references a run's figures draw: its case's exact solution
+    (dashed), and for the paper's Example 1 with a penalty obstacle the
+    rigid-obstacle limit (dotted), as in the paper's Figure 3."""
+    refs = []
+    exact = exact_solution(data)
+    if exact is not None:
+        refs.append(Reference(exact.history, "exact", color="k", ls="--", lw=1.1))
+    params = exact_parameters(data.case)
+    law = data.case.get("near_end", {}).get("law", "free")
+    if params is not None and (law != "rigid" or exact is None) and data.history["t"].size:
+        from . import exact_example1
+        t = data.history["t"]
+        fine_t = np.linspace(t[0], t[-1], 2001)
+        ref = exact_example1(0.0, fine_t, *params)
+        label = "exact, rigid obstacle" if law == "rigid" else "rigid-obstacle limit"
+        refs.append(Reference({"t": fine_t, "U": ref["u"], "R": ref["R"]}, label, color="0.45", ls=":", lw=1.4))
+    return refs, exact
+
+
+def _exact_entry(ax):
+    """One legend entry for exact curves drawn dashed in their computed curve's colour."""
+    ax.plot([], [], ls="--", lw=1.0, color="0.3", label="exact (dashed, same colour)")
+
+
+def _draw_references(ax, refs, column, ts, ys):
+    for ref in refs:
+        y = ref.history.get(column)
+        if y is not None and np.any(np.isfinite(y)):
+            _line(ax, ts(ref.history["t"]), ys(y), label=ref.label, **ref.style)
+
+
+# --- legends that name what differs ---------------------------------------------
+
+def flat_case(case):
+    """A case's TOML (a dict) as {dotted key: value}, the keys --set uses:
+    body.<name>.<key> for the [[body]], [[joint]] and [[gauge]] entries."""
+    flat = {}
+    for section, keys in case.items():
+        if isinstance(keys, list) and keys and all(isinstance(k, dict) for k in keys):
+            for i, entry in enumerate(keys):
+                name = entry.get("name", str(i + 1))
+                flat.update({f"{section}.{name}.{k}": v for k, v in entry.items() if k != "name"})
+        elif isinstance(keys, dict):
+            flat.update({f"{section}.{k}": v for k, v in keys.items()})
+        else:
+            flat[section] = keys
+    return flat
+
+
+def differing_keys(settings):
+    """The keys whose values are not the same in every dict of `settings`, in first-seen order."""
+    keys = list(dict.fromkeys(k for s in settings for k in s))
+    return [k for k in keys if len({repr(s.get(k)) for s in settings}) > 1]
+
+
+def _shown(value, key, units):
+    if isinstance(value, float):
+        value = float(f"{value:.6g}")
+    return units.value(value, key_quantity(key)) if units else str(value)
+
+
+def legend_labels(settings, units=None):
+    """One label per dict of `settings` naming only the keys that differ
+    between them ("obstacle.stiffness = 100, initial.velocity = -1"), none
+    of those they all share."""
+    keys = differing_keys(settings)
+    if not keys:
+        return [f"run {i + 1}" for i in range(len(settings))]
+    return [", ".join(f"{k} = {_shown(s.get(k), k, units)}" for k in keys) for s in settings]
+
+
+# --- the figures of a run -------------------------------------------------------------
+
+def _figure(title, grid=True):
+    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
+    ax.set_title(title)
+    if grid:
+        ax.grid(True, alpha=0.3)
+    return fig, ax
+
+
+def _save(fig, out, name, formats, written):
+    for fmt in formats:
+        path = out / f"{name}.{fmt}"
+        fig.savefig(path, dpi=DPI)
+        written.append(path)
+    plt.close(fig)
+
+
+def _near_end(case, units):
+    """The near end in words, for titles: "elastic obstacle k = 100"."""
+    near = case.get("near_end", {})
+    law = near.get("law", "free")
+    if law in ("elastic", "viscoelastic", "cushion") and "stiffness" in near:
+        return f"{law} obstacle k = {units.value(near['stiffness'], 'stiffness')}"
+    return {"free": "", "rigid": "rigid obstacle"}.get(law, f"{law} near end")
+
+
+def _titled(title, data):
+    near = _near_end(data.case, data.units)
+    return f"{title}, {near}" if near else title
+
+
+def _run_label(data):
+    return data.case.get("time", {}).get("scheme", "computed")
+
+
+def _displacement_figure(data, refs, out, formats, written):
+    h, units = data.history, data.units
+    ts, us = units.axis("t", "time", h["t"]), units.axis("U", "length", h["U"])
+    fig, ax = _figure(_titled("End displacement U(t) = u(0, t)", data))
+    t, u = screen_points(h["t"], h["U"])
+    style = dict(ls="none", marker=".", ms=3) if t.size <= 400 else dict(lw=1.6)  # dots only while they stay apart
+    ax.plot(ts(t), us(u), label=_run_label(data), **style)
+    _draw_references(ax, refs, "U", ts, us)
+    near = data.case.get("near_end", {})
+    if near.get("law", "free") in ("elastic", "viscoelastic", "rigid", "cushion"):
+        ax.axhline(us(-near.get("gap", 0.0)), color="gray", lw=0.8, ls="--", label="obstacle face")
+    ax.set_xlabel(ts.label)
+    ax.set_ylabel(us.label)
+    ax.legend()
+    _save(fig, out, "displacement", formats, written)
+
+
+def _reaction_figure(data, refs, out, formats, written):
+    h, units = data.history, data.units
+    ts, rs = units.axis("t", "time", h["t"]), units.axis("R", "force", h["R"])
+    fig, ax = _figure(_titled("Reaction of the obstacle R(t)", data))
+    _line(ax, ts(h["t"]), rs(h["R"]), "-", lw=1.4, label=_run_label(data))
+    _draw_references(ax, refs, "R", ts, rs)
+    ax.set_xlabel(ts.label)
+    ax.set_ylabel(rs.label)
+    ax.legend()
+    _save(fig, out, "reaction", formats, written)
+
+
+ENERGIES = (("E_kin", "kinetic"), ("E_strain", "strain"), ("E_obstacle", "obstacle"), ("W_ext", "external work"),
+            ("D_visc", "viscous dissipation"), ("D_contact", "contact dissipation"), ("D_plastic", "plastic work"))
+
+
+def _energy_figure(data, exact, out, formats, written):
+    h, units = data.history, data.units
+    balance = (h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0) +
+               h.get("D_plastic", 0.0))
+    ts = units.axis("t", "time", h["t"])
+    es = units.axis("energy", "energy", np.concatenate([h[n] for n, _ in ENERGIES if n in h]))
+    fig, ax = _figure("Energy budget")
+    exact_drawn = False
+    for name, label in ENERGIES:
+        if name in h and (name not in ("D_contact", "D_plastic") or np.any(h[name] != 0)):
+            line, = _line(ax, ts(h["t"]), es(h[name]), lw=1.0, label=label)
+            y = exact.history.get(name) if exact is not None else None
+            if y is not None and np.any(np.isfinite(y)) and np.any(y != 0):  # same colour, dashed
+                _line(ax, ts(exact.history["t"]), es(y), ls="--", lw=1.0, color=line.get_color())
+                exact_drawn = True
+    _line(ax, ts(h["t"]), es(balance), "k-", lw=1.8, label="balance: kin + strain + obstacle - work + dissipation")
+    if exact_drawn:
+        _exact_entry(ax)
+    ax.set_xlabel(ts.label)
+    ax.set_ylabel(es.label)
+    ax.legend(fontsize=8, loc="best")
+    _save(fig, out, "energy", formats, written)
 
 
 def _body_rows(data):
@@ -127,22 +497,134 @@ def _body_rows(data):
     return [np.flatnonzero(data.body == name) for name in names]
 
 
-def _line_figures(data, out, formats, written):
-    """Joint and end forces, gauges, mass motions: the columns a line adds."""
-    h, t = data.history, data.history["t"]
-    groups = (("joint_forces", "Joint and end forces (compression > 0)", "force",
+def _map_figure(data, field, name, title, symbol, quantity, cmap, out, formats, written):
+    """A field over x and t, one map per bar body (the gaps between them stay
+    blank), reduced to about a cell per pixel and rasterized."""
+    units = data.units
+    finite = np.abs(field[np.isfinite(field)])
+    limit = float(finite.max()) if finite.size and finite.max() > 0 else 1.0
+    xs, ts = units.axis("x", "length", data.x), units.axis("t", "time", data.field_t)
+    vs = units.axis(symbol, quantity, limit)
+    fig, ax = _figure(title, grid=False)
+    span = float(np.ptp(data.x)) or 1.0
+    for rows in _body_rows(data):
+        bins = max(2, round(SCREEN_COLUMNS * float(np.ptp(data.x[rows])) / span))
+        x, cells = peak_cells(field[:, rows], data.x[rows], bins, axis=1)
+        t, cells = peak_cells(cells, data.field_t, MAP_ROWS, axis=0)
+        mesh = ax.pcolormesh(xs(x), ts(t), vs(cells), cmap=cmap, vmin=-vs(limit), vmax=vs(limit), shading="nearest",
+                             rasterized=True)  # an image in the SVG, not a path per cell
+    fig.colorbar(mesh, ax=ax, label=f"{vs.label}, tension > 0")
+    ax.set_xlabel(xs.label)
+    ax.set_ylabel(ts.label)
+    _save(fig, out, name, formats, written)
+
+
+def _exact_snapshot(data, exact, field):
+    """{run snapshot: exact snapshot} of the same times, where the exact
+    `field` is known (an exact solution may hold fewer snapshots)."""
+    values = getattr(exact, field, None) if exact is not None else None
+    if values is None or not values.size or not exact.field_t.size:
+        return {}
+    distance = np.abs(np.subtract.outer(data.field_t, exact.field_t))  # a few hundred snapshots at most
+    j = distance.argmin(axis=1)
+    step = data.case.get("time", {}).get("step", 0.0)
+    close = distance[np.arange(j.size), j] <= 0.5 * step + 1e-12 * np.abs(data.field_t)
+    return {i: int(j[i]) for i in np.flatnonzero(close) if np.any(np.isfinite(values[j[i]]))}
+
+
+def _snapshots(data, field, title, symbol, quantity, out, name, formats, written, exact=None):
+    """A field over x at up to eight snapshot times, one colour per time
+    across the bodies; `exact` (a RunData) adds the exact `symbol` field dashed."""
+    units = data.units
+    xs, fs = units.axis("x", "length", data.x), units.axis(symbol, quantity, field)
+    ts = units.axis("t", "time", data.field_t)
+    matched = _exact_snapshot(data, exact, symbol)
+    fig, ax = _figure(title)
+    chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
+    for i in chosen:
+        when = f"t = {ts(data.field_t[i]):.3g}" + (f" {ts.unit}" if ts.unit else "")
+        color = None  # the first body's line picks it, the others follow
+        for n, rows in enumerate(_body_rows(data)):
+            line, = _line(ax, xs(data.x[rows]), fs(field[i, rows]), lw=1.2, label=when if n == 0 else None,
+                          color=color)
+            color = line.get_color()
+        if i in matched:
+            values = getattr(exact, symbol)[matched[i]]
+            for rows in _body_rows(exact):
+                _line(ax, xs(exact.x[rows]), fs(values[rows]), ls="--", lw=0.9, color=color)
+    if any(i in matched for i in chosen):
+        _exact_entry(ax)
+    ax.set_xlabel(xs.label)
+    ax.set_ylabel(fs.label)
+    ax.legend(fontsize=8, ncol=2)
+    _save(fig, out, name, formats, written)
+
+
+def _contact_spans(summary, t):
+    """The contact episodes as (start, end) spans, those closer than a pixel
+    merged (a chattering contact has thousands)."""
+    spans = sorted((c["start"], c["end"]) for c in summary.get("contacts", []))
+    pixel = (float(t[-1] - t[0]) if t.size else 1.0) / SCREEN_COLUMNS
+    merged = []
+    for start, end in spans:
+        if merged and start - merged[-1][1] <= pixel:
+            merged[-1][1] = max(merged[-1][1], end)
+        else:
+            merged.append([start, end])
+    return merged
+
+
+def _impacts_figure(data, refs, out, formats, written):
+    h, units = data.history, data.units
+    ts = units.axis("t", "time", h["t"])
+    us, rs = units.axis("U", "length", h["U"]), units.axis("R", "force", h["R"])
+    contacts = data.summary.get("contacts", [])
+    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=FIGSIZE, dpi=DPI, layout="constrained")
+    fig.suptitle(f"Impacts: {len(contacts)} contact episode{'s' if len(contacts) != 1 else ''}")
+    _line(top, ts(h["t"]), us(h["U"]), lw=1.0, label=_run_label(data))
+    _line(bottom, ts(h["t"]), rs(h["R"]), lw=1.0, color="tab:red", label=_run_label(data))
+    exact = [r for r in refs if r.label == "exact"]
+    _draw_references(top, exact, "U", ts, us)
+    _draw_references(bottom, exact, "R", ts, rs)
+    top.set_ylabel(us.label)
+    bottom.set_ylabel(rs.label)
+    bottom.set_xlabel(ts.label)
+    for ax in (top, bottom):
+        for i, (start, end) in enumerate(_contact_spans(data.summary, h["t"])):
+            ax.axvspan(ts(start), ts(end), color="tab:orange", alpha=0.15, lw=0, label="contact" if i == 0 else None)
+        ax.grid(True, alpha=0.3)
+    if contacts or exact:
+        top.legend(loc="best", fontsize=8)
+    _save(fig, out, "impacts", formats, written)
+
+
+def _line_figures(data, exact, out, formats, written):
+    """Joint and end forces, gauges, mass motions: the columns a line adds
+    (with the exact ones dashed when the line admits an exact solution)."""
+    h, t, units = data.history, data.history["t"], data.units
+    groups = (("joint_forces", "Joint and end forces (compression > 0)", "force", "force",
                [c for c in h if c.startswith("joint.") and c.endswith(".force") or c == "far_end.force"]),
-              ("gauges", "Gauges: axial force (tension > 0)", "force",
+              ("gauges", "Gauges: axial force (tension > 0)", "force", "force",
                [c for c in h if c.startswith("gauge.") and c.endswith(".force")]),
-              ("masses", "Mass displacements", "u", [c for c in h if c.startswith("body.") and c.endswith(".u")]))
-    for name, title, ylabel, columns in groups:
+              ("masses", "Mass displacements", "u", "length",
+               [c for c in h if c.startswith("body.") and c.endswith(".u")]))
+    ts = units.axis("t", "time", t)
+    for name, title, symbol, quantity, columns in groups:
         if not columns:
             continue
+        ys = units.axis(symbol, quantity, [h[c] for c in columns])
         fig, ax = _figure(title)
+        exact_drawn = False
         for c in columns:
-            ax.plot(t, h[c], lw=1.0, label=c)
-        ax.set_xlabel("t")
-        ax.set_ylabel(ylabel)
+            line, = _line(ax, ts(t), ys(h[c]), lw=1.0, label=c)
+            y = exact.history.get(c) if exact is not None else None
+            if y is not None and np.any(np.isfinite(y)):
+                _line(ax, ts(exact.history["t"]), ys(y), ls="--", lw=1.0, color=line.get_color())
+                exact_drawn = True
+        if exact_drawn:
+            _exact_entry(ax)
+        ax.set_xlabel(ts.label)
+        ax.set_ylabel(ys.label)
         ax.legend(fontsize=8)
         _save(fig, out, name, formats, written)
 
@@ -150,7 +632,8 @@ def _line_figures(data, out, formats, written):
 def _blow_figures(data, out, formats, written):
     """A blow's figures: force and Z v at the gauge (the analyser's plot,
     compression and downward velocity positive), the toe's resistance, and
-    the stress envelopes along the pile."""
+    the stress envelopes along the pile. A pile is in SI whatever the case
+    says: the analysers' kN, ms and MPa."""
     blow = data.summary.get("blow")
     if not blow:
         return
@@ -159,8 +642,8 @@ def _blow_figures(data, out, formats, written):
     if gauge and f"gauge.{gauge}.force" in h and blow.get("impedance"):
         z = blow["impedance"]
         fig, ax = _figure(f"Pile head ({gauge}): force and Z v (compression, downward > 0)")
-        ax.plot(t * 1e3, -h[f"gauge.{gauge}.force"] / 1e3, lw=1.1, label="F")
-        ax.plot(t * 1e3, -z * h[f"gauge.{gauge}.velocity"] / 1e3, lw=1.1, label=f"Z v, Z = {z / 1e3:.4g} kN s/m")
+        _line(ax, t * 1e3, -h[f"gauge.{gauge}.force"] / 1e3, lw=1.1, label="F")
+        _line(ax, t * 1e3, -z * h[f"gauge.{gauge}.velocity"] / 1e3, lw=1.1, label=f"Z v, Z = {z / 1e3:.4g} kN s/m")
         ax.set_xlabel("t (ms)")
         ax.set_ylabel("kN")
         ax.legend(fontsize=8)
@@ -182,11 +665,11 @@ def _blow_figures(data, out, formats, written):
 def _toe_figure(data, blow, out, formats, written):
     h, t = data.history, data.history["t"]
     fig, ax = _figure("Toe resistance and penetration")
-    ax.plot(t * 1e3, h["R"] / 1e3, lw=1.1, color="tab:brown", label="toe force")
+    _line(ax, t * 1e3, h["R"] / 1e3, lw=1.1, color="tab:brown", label="toe force")
     ax.set_xlabel("t (ms)")
     ax.set_ylabel("toe force (kN)")
     right = ax.twinx()
-    right.plot(t * 1e3, -h["U"] * 1e3, lw=1.0, color="tab:blue", label="toe penetration")
+    _line(right, t * 1e3, -h["U"] * 1e3, lw=1.0, color="tab:blue", label="toe penetration")
     if blow.get("set", 0) > 0:
         right.axhline(blow["set"] * 1e3, color="tab:blue", lw=0.8, ls="--", label=f"set {blow['set'] * 1e3:.3g} mm")
     right.set_ylabel("penetration (mm)")
@@ -195,26 +678,7 @@ def _toe_figure(data, blow, out, formats, written):
     _save(fig, out, "blow_toe", formats, written)
 
 
-def _figure(title, grid=True):
-    fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
-    ax.set_title(title)
-    if grid:
-        ax.grid(True, alpha=0.3)
-    return fig, ax
-
-
-def _save(fig, out, name, formats, written):
-    for fmt in formats:
-        path = out / f"{name}.{fmt}"
-        fig.savefig(path, dpi=DPI)
-        written.append(path)
-    plt.close(fig)
-
-
-def _shade_contacts(ax, summary):
-    for i, c in enumerate(summary.get("contacts", [])):
-        ax.axvspan(c["start"], c["end"], color="tab:orange", alpha=0.15, lw=0, label="contact" if i == 0 else None)
-
+# --- the directory's marker ------------------------------------------------------------
 
 def mark_figures(run_dir):
     """List figures/ in the run directory's marker (.barimpact), so that the
@@ -257,110 +721,86 @@ def mark_written(directory, names):
     staging.replace(marker)
 
 
+# --- entry points ---------------------------------------------------------------------
+
+def _data_of(source):
+    if isinstance(source, RunData):
+        return source
+    return load(source) if isinstance(source, (str, Path)) else _from_result(source)
+
+
+def _out_of(source, out):
+    """Where the figures go: `out`, else DIR/figures for a directory (marked
+    as the run's), else ./figures."""
+    if out is None and isinstance(source, (str, Path)):
+        mark_figures(source)
+        out = Path(source) / "figures"
+    out = Path(out) if out is not None else Path("figures")
+    out.mkdir(parents=True, exist_ok=True)
+    return out
+
+
 def plot(source, out=None, formats=("png", "svg")):
     """Write the figures of `source` (a Result, a RunData or a run directory)
     into `out` (default: DIR/figures for a directory, else ./figures).
     Returns the paths written."""
-    if isinstance(source, (str, Path)):
-        data = load(source)
-        if out is None:
-            out = Path(source) / "figures"
-            mark_figures(source)
-        out = Path(out)
-    else:
-        data = source if isinstance(source, RunData) else _from_result(source)
-        out = Path(out) if out is not None else Path("figures")
-    out.mkdir(parents=True, exist_ok=True)
-    h, written = data.history, []
-    t = h["t"]
-    exact = exact_parameters(data.case)
-    if exact is not None:
-        from . import exact_example1
-        fine_t = np.linspace(t[0], t[-1], 2001)
-        ref = exact_example1(0.0, fine_t, *exact)
-        ref_U = ref["u"]
-    scheme = data.case["time"]["scheme"]
-    near = data.case.get("near_end", {})
-    law = near.get("law", "free")
-    label = f"{scheme}, k = {near['stiffness']:g}" if "stiffness" in near else f"{scheme}, {law} near end"
-
-    fig, ax = _figure("End displacement U(t) = u(0, t)")
-    ax.plot(t, h["U"], ".", ms=3, label=label)
-    if exact is not None:
-        ax.plot(fine_t, ref_U, "k-", lw=1.2, label="exact, rigid obstacle")
-    if law in ("elastic", "viscoelastic", "rigid", "cushion"):
-        ax.axhline(-near.get("gap", 0.0), color="gray", lw=0.8, ls="--", label="obstacle face")
-    ax.set_xlabel("t")
-    ax.set_ylabel("U")
-    ax.legend()
-    _save(fig, out, "displacement", formats, written)
-
-    fig, ax = _figure("Reaction of the obstacle R(t)")
-    ax.plot(t, h["R"], "-", lw=0.9, label=label)
-    if exact is not None:
-        ax.plot(fine_t, ref["R"], "k-", lw=1.2, label="exact, rigid obstacle")
-    ax.set_xlabel("t")
-    ax.set_ylabel("R")
-    ax.legend()
-    _save(fig, out, "reaction", formats, written)
-
-    fig, ax = _figure("Energy budget")
-    for name, label in (("E_kin", "kinetic"), ("E_strain", "strain"), ("E_obstacle", "obstacle"),
-                        ("W_ext", "external work"), ("D_visc", "viscous dissipation"),
-                        ("D_contact", "contact dissipation"), ("D_plastic", "plastic work")):
-        if name in h and (name not in ("D_contact", "D_plastic") or np.any(h[name] != 0)):
-            ax.plot(t, h[name], lw=1.0, label=label)
-    balance = (h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0) +
-               h.get("D_plastic", 0.0))
-    ax.plot(t, balance, "k-", lw=1.8, label="balance: kin + strain + obstacle - work + dissipation")
-    ax.set_xlabel("t")
-    ax.set_ylabel("energy")
-    ax.legend(fontsize=8, loc="best")
-    _save(fig, out, "energy", formats, written)
-
+    data = _data_of(source)
+    out = _out_of(source, out)
+    written = []
+    refs, exact = references(data)
+    _displacement_figure(data, refs, out, formats, written)
+    _reaction_figure(data, refs, out, formats, written)
+    _energy_figure(data, exact, out, formats, written)
     if data.field_t.size >= 2:
-        fig, ax = _figure("Stress sigma(x, t)", grid=False)
-        limit = float(np.max(np.abs(data.sigma))) or 1.0
-        for rows in _body_rows(data):  # one map per bar body: the gaps between them stay blank
-            mesh = ax.pcolormesh(data.x[rows], data.field_t, data.sigma[:, rows], cmap="RdBu_r", vmin=-limit,
-                                 vmax=limit, shading="nearest")
-        fig.colorbar(mesh, ax=ax, label="sigma (tension > 0)")
-        ax.set_xlabel("x")
-        ax.set_ylabel("t")
-        _save(fig, out, "stress_map", formats, written)
-
-    eps_p = getattr(data, "eps_p", None)
+        _map_figure(data, data.sigma, "stress_map", "Stress sigma(x, t)", "sigma", "stress", "RdBu_r", out, formats,
+                    written)
+    eps_p = data.eps_p
     if data.field_t.size >= 2 and eps_p is not None and eps_p.size and np.any(eps_p != 0):
-        fig, ax = _figure("Plastic strain eps_p(x, t)", grid=False)
-        limit = float(np.max(np.abs(eps_p)))
-        for rows in _body_rows(data):
-            mesh = ax.pcolormesh(data.x[rows], data.field_t, eps_p[:, rows], cmap="PuOr_r", vmin=-limit, vmax=limit,
-                                 shading="nearest")
-        fig.colorbar(mesh, ax=ax, label="eps_p (tension > 0)")
-        ax.set_xlabel("x")
-        ax.set_ylabel("t")
-        _save(fig, out, "plastic_map", formats, written)
-        _snapshots(data, eps_p, "Plastic strain eps_p(x) at snapshot times", "eps_p", out, "plastic_snapshots",
-                   formats, written)
-
+        _map_figure(data, eps_p, "plastic_map", "Plastic strain eps_p(x, t)", "eps_p", "strain", "PuOr_r", out,
+                    formats, written)
+        _snapshots(data, eps_p, "Plastic strain eps_p(x) at snapshot times", "eps_p", "strain", out,
+                   "plastic_snapshots", formats, written, exact)
     if data.field_t.size >= 1:
-        _snapshots(data, data.u, "Displacement u(x) at snapshot times", "u", out, "snapshots", formats, written)
-
-    contacts = data.summary.get("contacts", [])
-    fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=FIGSIZE, dpi=DPI, layout="constrained")
-    fig.suptitle(f"Impacts: {len(contacts)} contact episode{'s' if len(contacts) != 1 else ''}")
-    top.plot(t, h["U"], lw=1.0)
-    top.set_ylabel("U")
-    bottom.plot(t, h["R"], lw=1.0, color="tab:red")
-    bottom.set_ylabel("R")
-    bottom.set_xlabel("t")
-    for ax in (top, bottom):
-        _shade_contacts(ax, data.summary)
-        ax.grid(True, alpha=0.3)
-    if contacts:
-        top.legend(loc="best")
-    _save(fig, out, "impacts", formats, written)
-    _line_figures(data, out, formats, written)
+        _snapshots(data, data.u, "Displacement u(x) at snapshot times", "u", "length", out, "snapshots", formats,
+                   written, exact)
+    _impacts_figure(data, refs, out, formats, written)
+    _line_figures(data, exact, out, formats, written)
     _blow_figures(data, out, formats, written)
+    mark_written(out, [Path(p).name for p in written])
+    return written
+
+
+COMPARED = (("U", "End displacement U(t) = u(0, t)", "U", "length"),
+            ("R", "Reaction of the obstacle R(t)", "R", "force"))
+
+
+def compare(sources, out, formats=("png", "svg"), labels=None, name="compare"):
+    """Several runs (Results, RunData or run directories) in one figure per
+    quantity, `name`_U and `name`_R in `out`: each curve is named by the case
+    keys that differ between the runs (or by `labels`), the keys they share
+    go unnamed. Returns the paths written."""
+    runs = [_data_of(s) for s in sources]
+    units = runs[0].units
+    if labels is None:
+        labels = legend_labels([flat_case(r.case) for r in runs], units)
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    every_t = np.concatenate([r.history["t"] for r in runs])
+    for column, title, symbol, quantity in COMPARED:
+        ts = units.axis("t", "time", every_t)
+        ys = units.axis(symbol, quantity, np.concatenate([r.history[column] for r in runs]))
+        fig, ax = _figure(title)
+        # past the ten colours of the cycle, a colour map keeps every curve its own
+        colors = plt.cm.viridis(np.linspace(0, 0.9, len(runs))) if len(runs) > 10 else [None] * len(runs)
+        for run, label, color in zip(runs, labels, colors):
+            _line(ax, ts(run.history["t"]), ys(run.history[column]), lw=1.0, label=label, color=color)
+        ax.set_xlabel(ts.label)
+        ax.set_ylabel(ys.label)
+        if len(runs) > 4:  # beside the axes: over them it would hide the curves
+            ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+        else:
+            ax.legend(fontsize=8)
+        _save(fig, out, f"{name}_{column}", formats, written)
     mark_written(out, [Path(p).name for p in written])
     return written
