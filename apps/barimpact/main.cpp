@@ -554,9 +554,10 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   // barimpact's before the Python package fills it.
   const std::filesystem::path target =
       figures.empty() ? std::filesystem::path(run_dir) / "figures" : std::filesystem::path(figures);
-  if (!std::filesystem::is_regular_file(std::filesystem::path(run_dir) / "history.csv"))
-    throw barimpact::InputError(
-        fmt::format("plot: {} holds no history.csv (give a directory written by barimpact run)", run_dir));
+  if (!std::filesystem::is_regular_file(std::filesystem::path(run_dir) / "history.csv") &&
+      !std::filesystem::is_regular_file(std::filesystem::path(run_dir) / "sweep.csv"))
+    throw barimpact::InputError(fmt::format(
+        "plot: {} holds no history.csv or sweep.csv (give a directory written by barimpact run or sweep)", run_dir));
   std::vector<std::string> names;
   for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces",
                              "gauges", "masses", "plastic_map", "plastic_snapshots"})
@@ -686,8 +687,8 @@ int main(int argc, char** argv) {
   conv->add_option("--jobs", conv_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
 
   std::string plot_dir, plot_out;
-  auto* plot = app.add_subcommand("plot", "Draw the figures of a run directory (PNG and SVG) with matplotlib");
-  plot->add_option("dir", plot_dir, "A directory written by barimpact run")->required();
+  auto* plot = app.add_subcommand("plot", "Draw the figures of a run or sweep directory (PNG and SVG) with matplotlib");
+  plot->add_option("dir", plot_dir, "A directory written by barimpact run or sweep")->required();
   bool plot_force = false;
   plot->add_option("--out", plot_out, "Where the figures go (default: DIR/figures), by the output rule of run");
   plot->add_flag("--force", plot_force,

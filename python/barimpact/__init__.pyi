@@ -35,7 +35,7 @@ class RunData:
     def __init__(self, history: dict[str, npt.NDArray[np.float64]], x: npt.NDArray[np.float64],
                  field_t: npt.NDArray[np.float64], u: npt.NDArray[np.float64], sigma: npt.NDArray[np.float64],
                  case: dict[str, Any], summary: dict[str, Any], body: npt.NDArray[Any] | None = None,
-                 eps_p: npt.NDArray[np.float64] | None = None) -> None: ...
+                 eps_p: npt.NDArray[np.float64] | None = None, case_source: Any = None) -> None: ...
 
 class HealthWarning(UserWarning):
     """A run's health checks warned; the results are kept."""
@@ -98,8 +98,9 @@ def plot(source: _PathArg | Result | RunData, out: _PathArg | None = None, *, fo
          formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     """barimpact plot DIR [--out FIGURES] [--force], or the figures of a Result into `out`."""
 
-def load(run_dir: _PathArg) -> RunData:
-    """A directory written by `barimpact run`, read back for the figures."""
+def load(run_dir: _PathArg, with_fields: bool = True) -> RunData:
+    """A directory written by `barimpact run`, read back for the figures;
+    with_fields=False leaves fields.csv unread."""
 
 def read_table(path: _PathArg) -> Table:
     """convergence.csv, sweep.csv, bearing.csv or hopkinson.csv (a file, or the directory holding it)."""

@@ -30,7 +30,6 @@ by the case keys that differ between the runs.
 """
 import json
 import os
-import re
 import tomllib
 import warnings
 from itertools import islice
@@ -281,24 +280,13 @@ def exact_parameters(case):
     return bar["length"], bar["modulus"] * bar["area"], bar["density"] * bar["area"], v0
 
 
-def _without_table(text, name):
-    """TOML text without its [name] table (a presentation key, no physics)."""
-    return re.sub(rf"(?m)^\[{re.escape(name)}\][^\n]*\n(?:(?!\[)[^\n]*\n)*", "", text)
-
-
 def _exact_case(source, case):
     """The barimpact.Case whose exact solution the figures draw: the run's
     case, its history thinned to EXACT_ROWS rows when longer (each row costs
     an evaluation, and no screen shows more)."""
-    from . import Case, InputError
+    from . import Case
     if isinstance(source, (str, Path)):
-        try:
-            source = Case(os.fspath(source))
-        except InputError:
-            if "units" not in case:
-                raise
-            # A reader that does not know [units] yet: it changes no number.
-            source = Case(_without_table(Path(source).read_text(), "units"))
+        source = Case(os.fspath(source))
     every = -(-getattr(source, "steps", 0) // EXACT_ROWS)
     if every > case.get("output", {}).get("every", 1):
         source = Case(source.to_toml(), set={"output.every": every})

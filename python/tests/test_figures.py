@@ -62,7 +62,9 @@ def run_dir(tmp_path, case, *sets, name="run"):
 def with_units(directory, system):
     """The run directory's case.toml with `[units] system`, as the case reader writes it."""
     case = directory / "case.toml"
-    case.write_text(case.read_text() + f'\n[units]\nsystem = "{system}"\n')
+    text = case.read_text()
+    assert '[units]\nsystem = "none"' in text, "the case reader writes [units]"
+    case.write_text(text.replace('[units]\nsystem = "none"', f'[units]\nsystem = "{system}"'))
     return directory
 
 
