@@ -1,13 +1,15 @@
 # Quick start on a fresh Debian machine (as root, or with sudo):
 #   make demo   installs what is missing, builds in Release, runs both paper examples into out/ with figures
 #   make test   the same set-up, then the whole test suite (Release, an install to a scratch prefix with a
-#               consumer project and the build tree moved away, then ASan + UBSan, then a bounded fuzzing run)
+#               consumer project and the build tree moved away, pip and wheel installs with the Python tests
+#               against them, then ASan + UBSan, then a bounded fuzzing run)
 #   make fuzz   only the fuzzing run: the input layer's libFuzzer targets (clang), FUZZ_SECONDS each
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
             nlohmann-json3-dev libkissfft-dev libgtest-dev libbenchmark-dev \
             python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest \
             libopenmpi-dev openmpi-bin python3-scipy \
-            clang-14 libclang-rt-14-dev python3-hypothesis
+            clang-14 libclang-rt-14-dev python3-hypothesis \
+            python3-venv python3-pip python3-setuptools python3-wheel python3-build python3-pandas python3-mypy
 PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2
@@ -45,6 +47,7 @@ test: deps
 	cmake --build --preset ci -j $(JOBS)
 	ctest --preset ci -j $(JOBS)
 	bash tests/install/install_test.sh build/ci
+	bash tests/install/pip_test.sh
 	cmake --preset dev
 	cmake --build --preset dev -j $(JOBS)
 	ctest --preset dev -j $(JOBS)

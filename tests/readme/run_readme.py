@@ -1,7 +1,7 @@
 """Runs every command the README shows, as written and in order, the way a
 new user would after the build: from a scratch copy of the repository's
-layout (examples/ and build/release/ linked in, nothing else), so that a
-command that needs a file the README never made fails here.
+layout (its files linked in, build/release/ linked to the build, no out/),
+so that a command that needs a file the README never made fails here.
 
     python3 tests/readme/run_readme.py README.md EXAMPLES_DIR BUILD_DIR
 
@@ -46,8 +46,12 @@ def main(readme, examples, build):
     if not commands:
         print("no commands found in", readme)
         return 1
+    source = Path(examples).resolve().parent
     with tempfile.TemporaryDirectory(prefix="barimpact-readme-") as root:
-        os.symlink(os.path.abspath(examples), os.path.join(root, "examples"))
+        # A clone after the build: the sources, and build/release.
+        for entry in source.iterdir():
+            if entry.name not in ("build", "out", ".git", "dist"):
+                os.symlink(entry, os.path.join(root, entry.name))
         os.makedirs(os.path.join(root, "build"))
         os.symlink(os.path.abspath(build), os.path.join(root, "build", "release"))
         script = ["set -u"]
@@ -56,7 +60,8 @@ def main(readme, examples, build):
             script.append(f"echo + {quoted}")
             # On lines of their own: a command may end in a comment.
             script.append(f"{{\n{c}\n}} > /dev/null || {{ echo \"README command failed (exit $?): \"{quoted}; exit 1; }}")
-        env = dict(os.environ, MPLBACKEND="Agg")
+        # As on a Debian machine: python3 is Debian's.
+        env = dict(os.environ, MPLBACKEND="Agg", PATH="/usr/bin:" + os.environ.get("PATH", ""))
         env.pop("PYTHONPATH", None)
         done = subprocess.run(["bash", "-c", "\n".join(script)], cwd=root, env=env)
         print(f"{len(commands)} README commands", "ran" if done.returncode == 0 else "did not all run")
