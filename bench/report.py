@@ -165,6 +165,14 @@ def main():
         bare = statistics.median(samples[("BM_BareLoop", s)])
         batch = statistics.median(samples[("BM_PaperBatch", s)])
         rows.append(f"| {s:>9,} | {paper:6.2f} | {bare:6.2f} | {paper / bare:5.2f} | {batch:6.2f} | {paper / batch:4.1f}x |")
+    simd_rows = []
+    for path in ("scalar", "sse2", "avx2"):
+        name = f"BM_PaperBatchPath/{path}"
+        cells = [(m, statistics.median(v)) for (n, m), v in sorted(samples.items()) if n == name]
+        if cells:
+            simd_rows.append(f"| {path} | " + " | ".join(
+                f"{t:.2f} ({statistics.median(samples[('BM_PaperStep', m)]) / t:.1f}x)" for m, t in cells) + " |")
+    simd_sizes = sorted({m for (n, m) in samples if n.startswith("BM_PaperBatchPath/")})
     scheme_names = sorted({n for n, _ in samples if n.startswith("BM_Scheme/")}, key=lambda n: n)
     scheme_sizes = sorted({s for n, s in samples if n.startswith("BM_Scheme/")})
     scheme_rows = []
@@ -214,6 +222,21 @@ Produced by `make bench`, that is
 "batch of 4" is `PaperBatch::advance()` on four different cases, one per
 lane of an AVX2 register (the same arithmetic lane by lane, the same bits as
 the single runs: tests/unit/paper_batch_test.cpp), per node-step per case.
+
+### The batch kernel's SIMD paths
+
+The release build runs on any x86-64 processor: the batch kernel is
+compiled once per path and the widest one the processor runs is taken at
+run time (`BARIMPACT_SIMD=scalar|sse2|avx2` forces one; `barimpact
+--version` names them). Nanoseconds per node-step per case, and the gain
+over a single `paper` step of the same M, same run:
+
+| path | {" | ".join(f"M = {m:,}" for m in simd_sizes)} |
+|---|{"---:|" * len(simd_sizes)}
+{chr(10).join(simd_rows)}
+
+Every path gives the same bits (tests/unit/paper_batch_test.cpp forces each
+in turn; tests/cli/cli_test.sh compares a sweep's files on each).
 
 ## Every scheme's step against its bare loop
 

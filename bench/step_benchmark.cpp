@@ -20,6 +20,7 @@
 #include "barimpact/schemes/mass_redistribution_scheme.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/simd.hpp"
 
 #include <initializer_list>
 #include <string>
@@ -100,6 +101,14 @@ void BM_PaperBatch(benchmark::State& state) {
     benchmark::DoNotOptimize(batch.lane(0).next_level());
   }
   per_node_step(state, barimpact::PaperBatch::width * batch.lane(0).nodes());
+}
+
+// The batch kernel on each SIMD path this processor runs (simd.hpp), forced:
+// BM_PaperBatchPath/<path>/<M>, per node-step per case.
+void BM_PaperBatchPath(benchmark::State& state, barimpact::SimdPath path) {
+  barimpact::force_simd_path(path);
+  BM_PaperBatch(state);
+  barimpact::force_simd_path(std::nullopt);
 }
 
 // The bare loop: the right-hand side B1 z^n + B0 z^{n-1} formed inside the
@@ -487,6 +496,14 @@ void BM_BareMassRedistribution(benchmark::State& state) {
 BENCHMARK(BM_PaperStep)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareLoop)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_PaperBatch)->RangeMultiplier(10)->Range(100, 1'000'000);
+const bool simd_paths_registered = [] {
+  for (auto path : barimpact::supported_simd_paths())
+    benchmark::RegisterBenchmark(fmt::format("BM_PaperBatchPath/{}", barimpact::to_string(path)).c_str(),
+                                 BM_PaperBatchPath, path)
+        ->Arg(1'000)
+        ->Arg(10'000);
+  return true;
+}();
 BENCHMARK(BM_BareCentralDifference)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareCharacteristic)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_BareNewmark)->RangeMultiplier(10)->Range(100, 1'000'000);

@@ -14,6 +14,7 @@
 // under --strict (results written), 130 / 143 interrupted by SIGINT / SIGTERM
 // (results so far written), 1 anything else.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
@@ -51,6 +52,7 @@
 #endif
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/schemes/simd.hpp"
 
 namespace {
 
@@ -459,9 +461,10 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   const auto complete = count([](const auto& r) { return r.status == "complete"; });
   const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
   const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
-  fmt::print("{} cases: {} run{} ({} in SIMD batches), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
+  fmt::print("{} cases: {} run{} ({} in SIMD batches{}), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
              done.size() - static_cast<std::size_t>(stopped), size > 1 ? fmt::format(" on {} ranks", size) : "",
-             batched, resumed, static_cast<long>(rows.size()) - complete, out_dir);
+             batched, batched > 0 ? fmt::format(", {}", barimpact::to_string(barimpact::simd_path())) : "", resumed,
+             static_cast<long>(rows.size()) - complete, out_dir);
   print_study_warnings(rows);
   return study_exit({"cases", "sweep.csv", rows.size(), complete, stopped, warned}, flags);
 }
@@ -586,7 +589,18 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
 int main(int argc, char** argv) {
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "barimpact 0.1.0");
+  app.set_version_flag("--version", [] {
+    std::vector<std::string_view> paths;
+    for (auto p : barimpact::supported_simd_paths()) paths.push_back(barimpact::to_string(p));
+    std::string batches;
+    try {
+      batches = std::string(barimpact::to_string(barimpact::simd_path()));
+    } catch (const barimpact::InputError& e) {
+      batches = e.what();
+    }
+    return fmt::format("barimpact 0.1.0\nbatch kernels: {} (this processor runs: {}; BARIMPACT_SIMD forces one)",
+                       batches, fmt::join(paths, ", "));
+  });
 
   std::string case_path, out_dir;
   std::vector<std::string> sets;
@@ -710,6 +724,7 @@ int main(int argc, char** argv) {
 
   install_signal_handlers();
   try {
+    (void)barimpact::simd_path();  // a bad BARIMPACT_SIMD is bad input, before anything is written
     if (run->parsed()) return run_command(case_path, out_dir, sets, false, run_flags);
     if (check->parsed()) return check_command(check_case, check_sets);
     if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true, exact_flags);

@@ -5,60 +5,13 @@
 
 #include <fmt/format.h>
 
-// PaperBatch passes GCC's generic 4-double vectors by value to inlined
-// helpers; their ABI without AVX does not concern us.
-#pragma GCC diagnostic ignored "-Wpsabi"
+#include "barimpact/schemes/simd.hpp"
+#include "paper_batch_kernel.hpp"
+#include "twisted_solve.hpp"
 
 namespace barimpact {
 
-namespace {
-// The two-ended ("twisted") solve of the symmetric tridiagonal A with the
-// factors of PaperScheme: rows 0..k-1 eliminated from row 0 down, rows
-// k+1..M from row M up, row k = M/2 last. Each sweep then carries two
-// independent chains, one per half, which a latency-bound solve runs in the
-// time of one. T is double, or four lanes (PaperBatch): the same operations
-// in the same order. r0, rl: rows 0 and M of the right-hand side; rhs(j) an
-// interior row's; get/put read and write the solution, row by row.
-template <class T, class Rhs, class Inv, class Up, class Get, class Put>
-inline void twisted_solve(std::size_t last, T a, T r0, T rl, Rhs rhs, Inv inv, Up up, Get get, Put put) {
-  const std::size_t k = last / 2;
-  const std::size_t top = k > 0 ? k - 1 : 0;  // interior rows of the upper half: 1..k-1
-  const std::size_t bottom = last - 1 - k;    // of the lower half: k+1..M-1 (top or top + 1)
-  T yt{};
-  if (k > 0) {
-    yt = r0 * inv(0);
-    put(0, yt);
-  }
-  T yb = rl * inv(last);
-  put(last, yb);
-  std::size_t jb = last;
-  for (std::size_t e = top; e < bottom; ++e) {  // the lower half's extra row
-    --jb;
-    yb = rhs(jb) * inv(jb) - up(jb) * yb;
-    put(jb, yb);
-  }
-  for (std::size_t j = 1; j <= top; ++j) {
-    --jb;
-    yt = rhs(j) * inv(j) - up(j) * yt;
-    put(j, yt);
-    yb = rhs(jb) * inv(jb) - up(jb) * yb;
-    put(jb, yb);
-  }
-  T x = ((k > 0 ? rhs(k) : r0) - a * (yt + yb)) * inv(k);  // row k meets both halves
-  put(k, x);
-  T xt = x, xb = x;
-  for (std::size_t i = 1; i <= k; ++i) {
-    xt = get(k - i) - up(k - i) * xt;
-    put(k - i, xt);
-    xb = get(k + i) - up(k + i) * xb;
-    put(k + i, xb);
-  }
-  for (std::size_t j = 2 * k + 1; j <= last; ++j) {  // the lower half's extra row
-    xb = get(j) - up(j) * xb;
-    put(j, xb);
-  }
-}
-}  // namespace
+using detail::twisted_solve;
 
 PaperScheme::PaperScheme(const Case& c)
     : mesh_(c.bar.length, c.bar.elements),
@@ -517,19 +470,7 @@ bool PaperScheme::batchable(const Case& a, const Case& b) {
          Expression(a.load.body_force).is_zero() == Expression(b.load.body_force).is_zero();
 }
 
-// GCC's generic vectors of PaperBatch::width doubles: one AVX-512 or AVX2
-// register with -march=native, emulated elsewhere.
-namespace {
-typedef double lanes __attribute__((vector_size(8 * PaperBatch::width)));
-inline lanes load_lanes(const double* p) {
-  lanes v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
-}
-inline void store_lanes(double* p, lanes v) {
-  __builtin_memcpy(p, &v, sizeof v);
-}
-}  // namespace
+static_assert(PaperBatch::width == batch_kernel::width, "one register of lanes");
 
 PaperBatch::PaperBatch(const std::vector<const Case*>& cases) {
   if (cases.empty() || cases.size() > width) throw InputError(fmt::format("PaperBatch: 1 to {} cases", width));
@@ -538,6 +479,7 @@ PaperBatch::PaperBatch(const std::vector<const Case*>& cases) {
     lanes_.push_back(std::make_unique<PaperScheme>(*c));
   }
   nodes_ = lanes_.front()->nodes();
+  path_ = simd_path();
   steady_load_ = lanes_.front()->load_mode_ == PaperScheme::LoadMode::steady;
   for (auto& l : levels_) l.assign(width * nodes_, 0.0);
   inv_.assign(width * nodes_, 0.0);
@@ -572,60 +514,43 @@ void PaperBatch::start() {
         load_[width * j + l] = lanes_[std::min(l, lanes_.size() - 1)]->loads_[0][j];
 }
 
-// PaperScheme::solve_level with `width` lanes: the same operations in the same
-// order, so that every lane's result is bit-for-bit the scalar kernel's.
+// PaperScheme::solve_level with `width` lanes, on the SIMD path chosen at
+// run time (simd.hpp): every path the same operations in the same order,
+// so that every lane's result is bit-for-bit the scalar kernel's.
 void PaperBatch::advance() {
   const long long m = lanes_.front()->n_ + 1;
-  lanes b1d0, b1d, b1dl, b0d0, b0d, b0dl, b1o, b0o, contact, c0, a_off;
+  batch_kernel::Level level;
   for (std::size_t l = 0; l < width; ++l) {
     const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
     const double em1 = 1.0 / s.scale(m - 1), e0 = 1.0 / s.scale(m), ep1 = 1.0 / s.scale(m + 1);
     const double ebar = s.alpha_ * ep1 + (1.0 - 2.0 * s.alpha_) * e0 + s.alpha_ * em1;
     const double k = s.law_.stiffness(), g = s.law_.gap();
-    contact[l] = 0.5 * k * (std::abs(s.next_[0] + g * e0) - g * ebar);
-    c0[l] = steady_load_ ? ebar : 0.0;
-    b1d0[l] = s.b1_diag_[0], b1d[l] = s.b1_diag_[1], b1dl[l] = s.b1_diag_[2];
-    b0d0[l] = s.b0_diag_[0], b0d[l] = s.b0_diag_[1], b0dl[l] = s.b0_diag_[2];
-    b1o[l] = s.b1_off_, b0o[l] = s.b0_off_;
-    a_off[l] = s.a_off_;
+    level.contact[l] = 0.5 * k * (std::abs(s.next_[0] + g * e0) - g * ebar);
+    level.load_weight[l] = steady_load_ ? ebar : 0.0;
+    level.b1_first[l] = s.b1_diag_[0], level.b1_inner[l] = s.b1_diag_[1], level.b1_last[l] = s.b1_diag_[2];
+    level.b0_first[l] = s.b0_diag_[0], level.b0_inner[l] = s.b0_diag_[1], level.b0_last[l] = s.b0_diag_[2];
+    level.b1_off[l] = s.b1_off_, level.b0_off[l] = s.b0_off_;
+    level.a_off[l] = s.a_off_;
   }
-  PaperScheme& first = *lanes_.front();
-  const double* __restrict zc = first.next_;  // lane 0's pointers are the interleaved arrays' starts
-  const double* __restrict zo = first.cur_;
-  double* __restrict zn = first.prev_;
-  const double* __restrict inv = inv_.data();
-  const double* __restrict up = up_.data();
-  const double* __restrict f = load_.data();
-  const std::size_t w = width, last = nodes_ - 1;
-  // The single kernel's operations: a zero load adds nothing.
-  auto solve = [&](auto steady) {
-    auto loaded = [&](lanes r, std::size_t j) {
-      if constexpr (decltype(steady)::value) return r + c0 * load_lanes(f + w * j);
-      (void)j;
-      return r;
-    };
-    const lanes r0 =
-        loaded(b1d0 * load_lanes(zc) + b1o * load_lanes(zc + w) + b0d0 * load_lanes(zo) + b0o * load_lanes(zo + w), 0) +
-        contact;
-    const lanes r_last = loaded(b1dl * load_lanes(zc + w * last) + b1o * load_lanes(zc + w * (last - 1)) +
-                                    b0dl * load_lanes(zo + w * last) + b0o * load_lanes(zo + w * (last - 1)),
-                                last);
-    twisted_solve(
-        last, a_off, r0, r_last,
-        [&](std::size_t j) {
-          return loaded(
-              b1d * load_lanes(zc + w * j) + b1o * (load_lanes(zc + w * (j - 1)) + load_lanes(zc + w * (j + 1))) +
-                  b0d * load_lanes(zo + w * j) + b0o * (load_lanes(zo + w * (j - 1)) + load_lanes(zo + w * (j + 1))),
-              j);
-        },
-        [&](std::size_t j) { return load_lanes(inv + w * j); }, [&](std::size_t j) { return load_lanes(up + w * j); },
-        [&](std::size_t j) { return load_lanes(zn + w * j); },
-        [&](std::size_t j, lanes v) { store_lanes(zn + w * j, v); });
-  };
-  if (steady_load_)
-    solve(std::true_type{});
-  else
-    solve(std::false_type{});
+  const PaperScheme& first = *lanes_.front();  // lane 0's pointers are the interleaved arrays' starts
+  level.z_now = first.next_;
+  level.z_previous = first.cur_;
+  level.z_next = first.prev_;
+  level.inverse_pivot = inv_.data();
+  level.upper = up_.data();
+  level.load = steady_load_ ? load_.data() : nullptr;
+  level.last = nodes_ - 1;
+  switch (path_) {
+    case SimdPath::scalar:
+      batch_kernel::advance_scalar(level);
+      break;
+    case SimdPath::sse2:
+      batch_kernel::advance_sse2(level);
+      break;
+    case SimdPath::avx2:
+      batch_kernel::advance_avx2(level);
+      break;
+  }
   for (auto& s : lanes_) s->finish_level(m);
 }
 

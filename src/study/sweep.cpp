@@ -17,6 +17,7 @@
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/schemes/simd.hpp"
 #include "barimpact/study/executor.hpp"
 
 namespace barimpact {
@@ -200,8 +201,8 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
     total *= size;
   }
   if (total * list.size() > most_values)
-    throw InputError(fmt::format("{}: {} cases of {} axes each: more than 2e6 values in all", source, total,
-                                 list.size()));
+    throw InputError(
+        fmt::format("{}: {} cases of {} axes each: more than 2e6 values in all", source, total, list.size()));
   const int width = std::max(4, static_cast<int>(std::to_string(total - 1).size()));
   for (std::size_t n = 0; n < total; ++n) {
     SweepPoint p;
@@ -244,6 +245,7 @@ bool read_row(const SweepPlan& plan, const fs::path& dir, std::size_t point, Swe
 
 std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, const std::vector<std::size_t>& todo,
                                 const SweepOptions& options) {
+  if (options.batch) (void)simd_path();  // a bad BARIMPACT_SIMD stops the sweep here, not case by case
   std::vector<SweepRow> rows(todo.size());
   auto refused = [&](std::size_t i, const std::string& why, const char* status = "refused") {
     const auto& p = plan.points()[todo[i]];

@@ -185,6 +185,17 @@ cmp -s <(cut -d, -f1-14 "$work/sweep/sweep.csv") "$work/first.csv" && ok || bad 
 grep -q "(0 in SIMD batches)" "$work/out" && ok || bad "no-batch still batched"
 cmp -s <(cut -d, -f1-14 "$work/sweep-nobatch/sweep.csv") "$work/first.csv" && ok || bad "batched and unbatched rows differ"
 cmp -s "$work/sweep-nobatch/runs/0009/history.csv" "$work/sweep/runs/0009/history.csv" && ok || bad "batched history differs"
+# Every SIMD path this processor runs, forced by BARIMPACT_SIMD: the same bits.
+for path in $("$bin" --version | sed -n 's/.*this processor runs: \([a-z0-9, ]*\);.*/\1/p' | tr -d ,); do
+  BARIMPACT_SIMD=$path "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-$path" > "$work/out" && ok || bad "sweep on $path"
+  grep -q "in SIMD batches, $path)" "$work/out" && ok || bad "$path not taken: $(cat "$work/out")"
+  cmp -s <(cut -d, -f1-14 "$work/sweep-$path/sweep.csv") "$work/first.csv" && ok || bad "$path rows differ"
+  cmp -s "$work/sweep-$path/runs/0009/history.csv" "$work/sweep/runs/0009/history.csv" && ok || bad "$path history differs"
+done
+"$bin" --version | grep -q "this processor runs: scalar, sse2" && ok || bad "--version names the SIMD paths: $("$bin" --version)"
+BARIMPACT_SIMD=avx9 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/refused" > /dev/null 2> "$work/err"
+[ $? -eq 2 ] && [ ! -e "$work/refused" ] && [ "$(wc -l < "$work/err")" -eq 1 ] && grep -q "BARIMPACT_SIMD=avx9" "$work/err" && ok ||
+  bad "bad BARIMPACT_SIMD: $(cat "$work/err")"
 # A mesh too large for a batch to pay is run case by case.
 printf 'case = "%s"\n[set]\nbar.elements = 300000\ntime.step = 0.0001\ntime.end = 0.0002\noutput.fields_at = []\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0]\n' \
   "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/bigsweep.toml"

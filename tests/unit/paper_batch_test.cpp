@@ -1,12 +1,14 @@
 // A PaperBatch lane gives PaperScheme's numbers to the last bit.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <utility>
 
 #include "../support/run_case.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/schemes/simd.hpp"
 
 namespace barimpact {
 namespace {
@@ -30,20 +32,41 @@ std::vector<Case> four_cases(const std::string& load, int elements = 60) {
                                     "time.end=1.5", "obstacle.kind=none"})};
 }
 
-TEST(PaperBatch, LanesMatchSingleRunsToTheLastBit) {
-  // An even and an odd M: the two-ended solve's halves are equal, or not.
-  for (auto [load, elements] : {std::pair{"0", 60}, std::pair{"-1 + x", 60}, std::pair{"-1 + x", 61}}) {
-    const auto cases = four_cases(load, elements);
-    std::vector<const Case*> ptrs;
-    for (const auto& c : cases) ptrs.push_back(&c);
-    const auto batch = run_batch(ptrs);
-    ASSERT_EQ(batch.size(), 4u);
-    for (std::size_t l = 0; l < 4; ++l) {
-      const auto single = run(cases[l]);
-      EXPECT_TRUE(same_bits(batch[l].history, single.history)) << "lane " << l << " load " << load;
-      EXPECT_EQ(batch[l].fields.u, single.fields.u) << l;
-      EXPECT_EQ(batch[l].summary.contacts.size(), single.summary.contacts.size()) << l;
+// Every SIMD path this processor runs (scalar, sse2, avx2: simd.hpp), forced
+// in turn, gives every lane the single run's bits.
+TEST(PaperBatch, LanesMatchSingleRunsToTheLastBitOnEverySimdPath) {
+  const auto paths = supported_simd_paths();
+  ASSERT_GE(paths.size(), 1u);
+  for (SimdPath path : paths) {
+    force_simd_path(path);
+    // An even and an odd M: the two-ended solve's halves are equal, or not.
+    for (auto [load, elements] : {std::pair{"0", 60}, std::pair{"-1 + x", 60}, std::pair{"-1 + x", 61}}) {
+      const auto cases = four_cases(load, elements);
+      std::vector<const Case*> ptrs;
+      for (const auto& c : cases) ptrs.push_back(&c);
+      const auto batch = run_batch(ptrs);
+      ASSERT_EQ(batch.size(), 4u);
+      for (std::size_t l = 0; l < 4; ++l) {
+        const auto single = run(cases[l]);
+        EXPECT_TRUE(same_bits(batch[l].history, single.history))
+            << to_string(path) << " lane " << l << " load " << load;
+        EXPECT_EQ(batch[l].fields.u, single.fields.u) << to_string(path) << " lane " << l;
+        EXPECT_EQ(batch[l].summary.contacts.size(), single.summary.contacts.size()) << l;
+      }
     }
+  }
+  force_simd_path(std::nullopt);
+}
+
+TEST(PaperBatch, TheWidestSupportedPathIsTheDefault) {
+  force_simd_path(std::nullopt);
+  const auto paths = supported_simd_paths();
+  EXPECT_EQ(paths.front(), SimdPath::scalar);
+#if defined(__x86_64__)
+  EXPECT_EQ(paths.at(1), SimdPath::sse2);  // every x86-64 processor
+#endif
+  if (std::getenv("BARIMPACT_SIMD") == nullptr) {
+    EXPECT_EQ(simd_path(), paths.back());
   }
 }
 

@@ -38,6 +38,7 @@
 #include "barimpact/model/mesh.hpp"
 #include "barimpact/model/obstacle.hpp"
 #include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/simd.hpp"
 
 namespace barimpact {
 
@@ -150,7 +151,8 @@ class PaperScheme final : public Scheme {
 /// interface.
 class PaperBatch {
  public:
-  /// Cases per register: 4 doubles, one AVX2 register. (Eight, one AVX-512
+  /// Cases per register: 4 doubles, one AVX2 register (two SSE2 ones; the
+  /// path is chosen at run time, simd.hpp). (Eight, one AVX-512
   /// register, measured no faster on AMD Zen 4, which runs it as two halves,
   /// and slower from M = 10^5, where eight cases leave the cache.)
   static constexpr std::size_t width = 4;
@@ -184,6 +186,7 @@ class PaperBatch {
   Lanes inv_, up_, load_;
   std::size_t nodes_ = 0;
   bool steady_load_ = false;
+  SimdPath path_ = SimdPath::scalar;  // the kernel's instructions (simd.hpp), chosen at construction
 };
 
 }  // namespace barimpact
