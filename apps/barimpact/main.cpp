@@ -526,10 +526,12 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
                              "gauges", "masses", "plastic_map", "plastic_snapshots"})
     // plot.py writes these; a line adds joint_forces, gauges and masses, a yielding bar the plastic ones
     for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
+  // DIR/figures belongs to the run directory it is in, drawn or not; asked
+  // before figures/ is there (a folder the marker does not list makes the
+  // directory someone else's).
+  const bool ours = figures.empty() && barimpact::written_by_barimpact(run_dir);
   barimpact::prepare_output_directory(target, "plot", names, force);
-  // DIR/figures belongs to the run directory it is in, drawn or not.
-  if (figures.empty() && barimpact::written_by_barimpact(run_dir))
-    barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
+  if (ours) barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
   std::string path = BARIMPACT_PYTHON_DIR;
   if (const char* old = std::getenv("PYTHONPATH"); old != nullptr && *old != '\0') path += std::string(":") + old;
   setenv("PYTHONPATH", path.c_str(), 1);
