@@ -1,6 +1,7 @@
 #include "barimpact/study/convergence.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <time.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/scheme.hpp"
 #include "barimpact/study/executor.hpp"
 
 namespace barimpact {
@@ -162,6 +164,35 @@ double observed_order(double e_prev, double e, double s_prev, double s) {
   if (!(e_prev > 0) || !(e > 0) || !std::isfinite(e_prev) || !std::isfinite(e) || s_prev <= 0 || s <= 0 || s == s_prev)
     return nan;
   return std::log(e_prev / e) / std::log(s / s_prev);
+}
+
+StudyOptions study_options(const StudyArguments& a) {
+  StudyOptions o;
+  o.levels = a.levels;
+  o.ratio = a.ratio;
+  o.jobs = a.jobs;
+  if (a.refine) {
+    const std::string& r = *a.refine;
+    if (r != "both" && r != "h" && r != "dt" && r != "none")
+      throw InputError(fmt::format("--refine: must be both, h, dt or none (got \"{}\")", r));
+    o.refine = r == "h" ? Refine::h : r == "dt" ? Refine::dt : r == "none" ? Refine::none : Refine::both;
+  }
+  if (a.vary) {
+    o.vary = Variation::parse(*a.vary);
+    if (!a.refine) o.refine = Refine::none;  // a variation alone changes only its key
+  }
+  const auto known = scheme_names();
+  for (const auto& s : a.schemes) {
+    if (std::find(known.begin(), known.end(), s) == known.end())
+      throw InputError(fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
+    o.schemes.push_back(s);
+  }
+  if (a.reference != "auto" && a.reference != "rigid" && a.reference != "finest")
+    throw InputError(fmt::format("--reference: must be auto, rigid or finest (got \"{}\")", a.reference));
+  o.reference = a.reference == "rigid"    ? Reference::rigid
+                : a.reference == "finest" ? Reference::finest
+                                          : Reference::automatic;
+  return o;
 }
 
 void check_study(const Case& base, const StudyOptions& o) {
@@ -386,6 +417,42 @@ std::string study_markdown(const Study& study, const std::string& command) {
                        md_cell(r.lift_off, "{:.4f}"), r.contact_episodes, md_cell(r.cpu_seconds, "{:.3f}"), r.status);
   }
   return out;
+}
+
+const std::vector<std::string>& convergence_entries() {
+  static const std::vector<std::string> entries{"runs",
+                                                "convergence.csv",
+                                                "convergence.md",
+                                                "convergence.png",
+                                                "convergence.svg",
+                                                "work_precision.png",
+                                                "work_precision.svg"};
+  return entries;
+}
+
+namespace {
+// Run directories in runs/ that barimpact wrote for an earlier, other study.
+void remove_other_runs(const fs::path& runs, const Study& study) {
+  for (const auto& name : directory_entries(runs)) {
+    const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
+    std::error_code ec;
+    // Only a study's own runs: a run of the user's kept in runs/ stays.
+    if (!ours && output_command(runs / name) == "converge" && written_by_barimpact(runs / name))
+      fs::remove_all(runs / name, ec);
+  }
+}
+}  // namespace
+
+Study write_convergence(const Case& base, StudyOptions options, const fs::path& dir, bool force,
+                        const std::string& command) {
+  check_study(base, options);  // a refusal writes nothing
+  prepare_output_directory(dir, "converge", convergence_entries(), force);
+  options.runs = dir / "runs";
+  Study study = converge(base, options);
+  remove_other_runs(options.runs, study);
+  replace_text(dir / "convergence.csv", study_csv(study));
+  replace_text(dir / "convergence.md", study_markdown(study, command));
+  return study;
 }
 
 }  // namespace barimpact

@@ -107,5 +107,25 @@ TEST(Converge, RefusesBadOptionsBeforeRunning) {
   EXPECT_THROW((void)converge(c, o), InputError);
 }
 
+TEST(Converge, ReadsTheCommandsWords) {
+  StudyArguments a;
+  a.vary = "time.step=0.01,0.005";
+  a.schemes = {"paper", "newmark"};
+  a.reference = "finest";
+  const StudyOptions o = study_options(a);
+  EXPECT_EQ(o.refine, Refine::none);  // a variation alone changes only its key
+  EXPECT_EQ(o.schemes.size(), 2u);
+  EXPECT_EQ(o.reference, Reference::finest);
+  a.refine = "h";
+  EXPECT_EQ(study_options(a).refine, Refine::h);
+  for (auto bad : {&StudyArguments::refine, &StudyArguments::vary}) {
+    StudyArguments b;
+    b.*bad = "sideways";
+    EXPECT_THROW((void)study_options(b), InputError);
+  }
+  a.schemes = {"euler"};
+  EXPECT_THROW((void)study_options(a), InputError);
+}
+
 }  // namespace
 }  // namespace barimpact
