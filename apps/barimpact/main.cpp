@@ -347,7 +347,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   if (size > 1) {
     barimpact::SweepStart start;
     if (rank == 0) {  // the other ranks only run the points rank 0 hands out
-      barimpact::prepare_sweep(dir, flags.force);
+      barimpact::prepare_sweep(dir, o, flags.force);
       start = barimpact::resume_sweep(plan, dir);
     }
     MPI_Barrier(MPI_COMM_WORLD);  // the directory exists before any rank writes
@@ -371,7 +371,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 
 struct BearingArgs {
   std::string case_path, out, capacity;
-  double toe_share = -1.0;
+  std::optional<double> toe_share;
   bool no_plot = false;
   barimpact::SweepOptions options;
   WriteFlags flags;
@@ -380,7 +380,7 @@ struct BearingArgs {
 int bearing_command(const BearingArgs& a) {
   barimpact::BearingOptions o;
   barimpact::parse_capacity(a.capacity, o);
-  if (a.toe_share >= 0.0) o.toe_share = a.toe_share;
+  o.toe_share = a.toe_share;
   const barimpact::BearingPlan plan(a.case_path, o);
   const std::filesystem::path dir(a.out);
   const auto rows = barimpact::write_bearing(plan, dir, a.options, a.flags.force);
@@ -528,6 +528,7 @@ int main(int argc, char** argv) {
   add_write_flags(exact, exact_flags);
   exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
 
+  const std::string jobs_help = "Threads, 1 .. 1024 (default, or 0: all cores)";
   std::string sweep_file, sweep_out;
   barimpact::SweepOptions sweep_options;
   bool no_batch = false;
@@ -536,7 +537,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--out", sweep_out, "Output directory: a new or empty one, or a sweep's (rerunning resumes)")
       ->required();
   add_write_flags(sweep, sweep_flags);
-  sweep->add_option("--jobs", sweep_options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sweep->add_option("--jobs", sweep_options.jobs, jobs_help);
   sweep->add_flag("--no-batch", no_batch, "Run every case alone (no SIMD batches)");
 
   BearingArgs bearing_args;
@@ -547,9 +548,8 @@ int main(int argc, char** argv) {
       ->required();
   bearing->add_option("--capacity", bearing_args.capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")
       ->required();
-  bearing->add_option("--toe-share", bearing_args.toe_share, "R_toe / capacity (default: the case's)")
-      ->check(CLI::Range(0.0, 1.0));
-  bearing->add_option("--jobs", bearing_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  bearing->add_option("--toe-share", bearing_args.toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
+  bearing->add_option("--jobs", bearing_args.options.jobs, jobs_help);
   bearing->add_flag("--no-plot", bearing_args.no_plot, "Skip bearing.png");
   add_write_flags(bearing, bearing_args.flags);
 
@@ -577,15 +577,15 @@ int main(int argc, char** argv) {
       ->take_all()
       ->allow_extra_args(false);
   auto& study = conv_args.arguments;
-  conv->add_option("--levels", study.levels, "Refinement levels (default 4)")->check(CLI::Range(2, 12));
+  conv->add_option("--levels", study.levels, "Refinement levels, 2 .. 12 (default 4)");
   conv->add_option("--refine", study.refine, "both (h and dt together, default), h, dt, or none")
       ->check(CLI::IsMember({"both", "h", "dt", "none"}));
-  conv->add_option("--ratio", study.ratio, "Refinement ratio per level (default 2)")->check(CLI::Range(2, 16));
+  conv->add_option("--ratio", study.ratio, "Refinement ratio per level, 2 .. 16 (default 2)");
   conv->add_option("--vary", study.vary, "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n");
   conv->add_option("--schemes", conv_args.schemes, "Compare schemes: a,b,c (default: the case's)");
   conv->add_option("--reference", study.reference, "auto (exact if the case admits one, else finest), rigid, finest")
       ->check(CLI::IsMember({"auto", "rigid", "finest"}));
-  conv->add_option("--jobs", study.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  conv->add_option("--jobs", study.jobs, jobs_help);
 
   std::string plot_dir, plot_out;
   auto* plot = app.add_subcommand("plot", "Draw the figures of a run directory (PNG and SVG) with matplotlib");

@@ -196,18 +196,22 @@ StudyOptions study_options(const StudyArguments& a) {
 }
 
 void check_study(const Case& base, const StudyOptions& o) {
-  if (o.ratio < 2) throw InputError("--ratio: must be an integer >= 2");
-  const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
-  if (levels < 2 || levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", levels));
+  if (o.ratio < 2 || o.ratio > 16) throw InputError(fmt::format("--ratio: must be 2 .. 16 (got {})", o.ratio));
+  if (o.levels < 2 || o.levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", o.levels));
+  check_jobs(o.jobs);
   if (!o.vary && o.refine == Refine::none)
     throw InputError("--refine none: without --vary there is nothing to change between levels");
-  if (o.vary) {  // an unknown key is the option's error, not a run's (as in a sweep file)
-    try {
-      (void)Case::from_string(base.to_toml(), {{o.vary->key + "=" + o.vary->values.front()}}, "study", false);
+  if (o.vary) {
+    const std::string& key = o.vary->key;
+    if (o.vary->values.size() < 2 || o.vary->values.size() > 12)
+      throw InputError(
+          fmt::format("--vary {}: must give 2 .. 12 values, one per level (got {})", key, o.vary->values.size()));
+    try {  // an unknown key is the option's error, not a run's (as in a sweep file)
+      (void)Case::from_string(base.to_toml(), {{key + "=" + o.vary->values.front()}}, "study", false);
     } catch (const InputError& e) {
       const std::string what = e.what();
       if (what.find("unknown") != std::string::npos || what.find("expected section.key") != std::string::npos)
-        throw InputError(fmt::format("--vary {}: {}", o.vary->key, what));
+        throw InputError(fmt::format("--vary {}: {}", key, what));
     }
   }
   if (o.reference == Reference::rigid) {

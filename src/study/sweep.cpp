@@ -322,7 +322,9 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
   return rows;
 }
 
-void prepare_sweep(const fs::path& dir, bool force, std::string_view command, const std::vector<std::string>& entries) {
+void prepare_sweep(const fs::path& dir, const SweepOptions& options, bool force, std::string_view command,
+                   const std::vector<std::string>& entries) {
+  check_jobs(options.jobs);
   prepare_output_directory(dir, command, entries, force);
   std::error_code ec;
   fs::create_directories(dir / "runs", ec);
@@ -354,7 +356,7 @@ SweepOutcome finish_sweep(const SweepPlan& plan, const fs::path& dir, SweepStart
 }
 
 SweepOutcome write_sweep(const SweepPlan& plan, const fs::path& dir, const SweepOptions& options, bool force) {
-  prepare_sweep(dir, force);
+  prepare_sweep(dir, options, force);
   SweepStart start = resume_sweep(plan, dir);
   const auto done = run_sweep(plan, dir, start.todo, options);
   return finish_sweep(plan, dir, std::move(start), done);

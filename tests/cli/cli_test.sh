@@ -162,9 +162,13 @@ expect_refused "--refine" converge "$ex1" --out "$work/refused" --refine sideway
 expect_refused "--vary" converge "$ex1" --out "$work/refused" --vary stiffness=1,2
 expect_refused "--schemes" converge "$ex1" --out "$work/refused" --schemes paper,euler
 expect_refused "--refine none" converge "$ex1" --out "$work/refused" --refine none
+expect_refused "--ratio: must be 2 .. 16" converge "$ex1" --out "$work/refused" --ratio 17
+expect_refused "--levels: must be 2 .. 12" converge "$ex1" --out "$work/refused" --levels 13
+expect_refused "--jobs: must be 1 .. 1024" converge "$ex1" --out "$work/refused" --jobs 1025
 
 # barimpact sweep: one row and one complete run directory per case; resume; failures recorded.
 sweeps="$examples/sweeps"
+expect_refused "--jobs: must be 1 .. 1024" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/refused" --jobs 2000
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" --jobs 2 > "$work/out" && ok || bad "sweep"
 [ "$(ls "$work/sweep/runs" | wc -l)" -eq 12 ] && ok || bad "sweep run directories"
 [ "$(tail -n +2 "$work/sweep/sweep.csv" | wc -l)" -eq 12 ] && ok || bad "sweep rows"
@@ -307,6 +311,8 @@ cp "$work/bearing/bearing.csv" "$work/bearing-first.csv"
 cut -d, -f1-11 "$work/bearing/bearing.csv" | cmp -s - <(cut -d, -f1-11 "$work/bearing-first.csv") && ok || bad "bearing resumed differs"
 expect_refused "--capacity" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6
 expect_refused "--toe-share" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share 2
+expect_refused "--toe-share must be in [0, 1]" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share -0.5
+expect_refused "--jobs: must be 1 .. 1024" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --jobs -1
 expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
 expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5

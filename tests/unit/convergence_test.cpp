@@ -107,6 +107,38 @@ TEST(Converge, RefusesBadOptionsBeforeRunning) {
   EXPECT_THROW((void)converge(c, o), InputError);
 }
 
+// The message of the InputError check_study throws ("" if none).
+std::string refusal(const Case& c, const StudyOptions& o) {
+  try {
+    check_study(c, o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Converge, RefusesOptionsOutOfTheirRanges) {
+  const Case c = testing::example("paper-example1.toml");
+  for (auto [option, set] : std::initializer_list<std::pair<const char*, void (*)(StudyOptions&)>>{
+           {"--ratio: must be 2 .. 16 (got 17)", [](StudyOptions& o) { o.ratio = 17; }},
+           {"--ratio: must be 2 .. 16 (got 1)", [](StudyOptions& o) { o.ratio = 1; }},
+           {"--levels: must be 2 .. 12 (got 13)", [](StudyOptions& o) { o.levels = 13; }},
+           {"--levels: must be 2 .. 12 (got 1)", [](StudyOptions& o) { o.levels = 1; }},
+           {"--jobs: must be 1 .. 1024, or 0 for all cores (got 1025)", [](StudyOptions& o) { o.jobs = 1025; }},
+           {"--jobs: must be 1 .. 1024, or 0 for all cores (got -1)", [](StudyOptions& o) { o.jobs = -1; }},
+           {"--vary obstacle.stiffness: must give 2 .. 12 values, one per level (got 13)",
+            [](StudyOptions& o) { o.vary = Variation::parse("obstacle.stiffness=1:13:13"); }}}) {
+    StudyOptions o;
+    set(o);
+    EXPECT_EQ(refusal(c, o), option);
+  }
+  StudyOptions o;
+  o.ratio = 16;
+  o.levels = 12;
+  o.jobs = 1024;
+  EXPECT_EQ(refusal(c, o), "");
+}
+
 TEST(Converge, ReadsTheCommandsWords) {
   StudyArguments a;
   a.vary = "time.step=0.01,0.005";

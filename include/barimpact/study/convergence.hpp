@@ -92,7 +92,10 @@ struct StudyArguments {
 /// they fit the case are check_study's.
 [[nodiscard]] StudyOptions study_options(const StudyArguments& arguments);
 
-/// Checks the options against the case; throws InputError naming the option.
+/// Checks the options against the case; throws InputError naming the
+/// option: --levels 2 .. 12 (a variation's values too), --ratio 2 .. 16,
+/// --jobs (check_jobs), a level to change, a varied key the case has, a
+/// rigid reference the case admits.
 void check_study(const Case& base, const StudyOptions& options);
 
 /// Runs the study. Throws InputError for bad options (check_study), before any run.

@@ -89,12 +89,12 @@ struct SweepOptions {
 };
 
 /// Makes `dir` ready for a sweep (or another study of sweep points, as
-/// bearing): applies the output rule (new, empty or the command's own;
-/// `force` as --force) and marks `dir` as `command`'s, listing `entries`;
-/// creates dir/runs/ and removes what a killed sweep left there. Throws
-/// InputError.
-void prepare_sweep(const std::filesystem::path& dir, bool force, std::string_view command = "sweep",
-                   const std::vector<std::string>& entries = {"runs", "sweep.csv"});
+/// bearing): checks `options` (--jobs), applies the output rule (new, empty
+/// or the command's own; `force` as --force) and marks `dir` as `command`'s,
+/// listing `entries`; creates dir/runs/ and removes what a killed sweep left
+/// there. Throws InputError.
+void prepare_sweep(const std::filesystem::path& dir, const SweepOptions& options, bool force,
+                   std::string_view command = "sweep", const std::vector<std::string>& entries = {"runs", "sweep.csv"});
 
 /// A sweep's rows before it runs: one per point, those whose run directory
 /// holds their run read back (read_row), and the points still to run.
