@@ -581,7 +581,9 @@ int main(int argc, char** argv) {
   conv->add_option("--refine", study.refine, "both (h and dt together, default), h, dt, or none")
       ->check(CLI::IsMember({"both", "h", "dt", "none"}));
   conv->add_option("--ratio", study.ratio, "Refinement ratio per level, 2 .. 16 (default 2)");
-  conv->add_option("--vary", study.vary, "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n");
+  conv->add_option("--vary", study.vary,
+                   "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n (wins over the study's own "
+                   "time.step or elements: refused where --refine refines them too)");
   conv->add_option("--schemes", conv_args.schemes, "Compare schemes: a,b,c (default: the case's)");
   conv->add_option("--reference", study.reference, "auto (exact if the case admits one, else finest), rigid, finest")
       ->check(CLI::IsMember({"auto", "rigid", "finest"}));

@@ -187,7 +187,9 @@ def test_converge_refuses_what_the_command_refuses(tmp_path):
                           (dict(schemes="paper,nope"), ["--schemes", "paper,nope"]),
                           (dict(refine="none"), ["--refine", "none"]),
                           (dict(levels=13), ["--levels", "13"]),
-                          (dict(ratio=17), ["--ratio", "17"])):
+                          (dict(ratio=17), ["--ratio", "17"]),
+                          (dict(vary="time.step=0.01,0.005", refine="both"),
+                           ["--vary", "time.step=0.01,0.005", "--refine", "both"])):
         with pytest.raises(barimpact.InputError) as e:
             barimpact.converge(RIGID, out, **options)
         assert str(e.value) == cli_error("converge", str(RIGID), "--out", str(out), *args)

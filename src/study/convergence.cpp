@@ -128,6 +128,19 @@ double mean_reaction(const exact::Solution& s, double t, double dt) {
   return sum / samples;
 }
 
+// The characteristic scheme's step dt = h/c for a level whose variation
+// (bar.elements, bar.length, ...) may change h or c: the level's case finds
+// it, as it does without a given step; `fallback` if that case is refused
+// (it is then refused again, with its own message, when the level is built).
+double varied_courant_step(const std::string& base_toml, std::vector<Case::Override> sets, double fallback) {
+  sets.push_back({"time.step=\"auto\""});
+  try {
+    return Case::from_string(base_toml, sets, "study", false).time.step;
+  } catch (const InputError&) {
+    return fallback;
+  }
+}
+
 }  // namespace
 
 Variation Variation::parse(const std::string& text) {
@@ -206,6 +219,25 @@ void check_study(const Case& base, const StudyOptions& o) {
     if (o.vary->values.size() < 2 || o.vary->values.size() > 12)
       throw InputError(
           fmt::format("--vary {}: must give 2 .. 12 values, one per level (got {})", key, o.vary->values.size()));
+    // The study sets the step and the bars' elements itself: a varied one
+    // wins over that, unless --refine refines it too.
+    const bool step = key == "time.step";
+    const bool elements = key == "bar.elements" || (key.starts_with("body.") && key.ends_with(".elements"));
+    const bool refine_h = o.refine == Refine::both || o.refine == Refine::h;
+    const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
+    const char* refine = o.refine == Refine::both ? "both" : o.refine == Refine::h ? "h" : "dt";
+    if (step && refine_dt)
+      throw InputError(
+          fmt::format("--vary {}: --refine {} refines the step too; vary it with --refine h or none", key, refine));
+    if (elements && refine_h)
+      throw InputError(fmt::format(
+          "--vary {}: --refine {} refines the elements too; vary them with --refine dt or none", key, refine));
+    const auto& schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
+    if (step && std::find(schemes.begin(), schemes.end(), "characteristic") != schemes.end())
+      throw InputError(
+          fmt::format("--vary {}: the characteristic scheme sets dt = h/c itself; vary bar.elements "
+                      "instead, or leave it out of --schemes",
+                      key));
     try {  // an unknown key is the option's error, not a run's (as in a sweep file)
       (void)Case::from_string(base.to_toml(), {{key + "=" + o.vary->values.front()}}, "study", false);
     } catch (const InputError& e) {
@@ -236,6 +268,7 @@ Study converge(const Case& base, const StudyOptions& o) {
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
   const double c = std::sqrt(base.bar.stiffness / base.bar.density);
+  const bool varies_step = o.vary && o.vary->key == "time.step";
 
   std::vector<Task> tasks;
   for (const auto& scheme : schemes) {
@@ -261,12 +294,17 @@ Study converge(const Case& base, const StudyOptions& o) {
         sets.push_back({o.vary->key + "=" + t.value});
       }
       // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
-      if (scheme == "characteristic" && base.single_bar) step = base.bar.length / static_cast<double>(elements) / c;
-      sets.push_back({fmt::format("time.step={}", step)});
+      if (scheme == "characteristic" && base.single_bar) {
+        step = base.bar.length / static_cast<double>(elements) / c;
+        if (o.vary) step = varied_courant_step(base_toml, sets, step);
+      }
+      // A varied step wins (check_study refuses it where the study refines the step).
+      if (!varies_step) sets.push_back({fmt::format("time.step={}", step)});
       t.scale = (o.refine != Refine::none) ? static_cast<double>(f) : nan;
       if (o.refine == Refine::none && o.vary) {
         try {
           t.scale = number(t.value, "--vary");
+          if (varies_step) t.scale = 1.0 / t.scale;  // as 1/h: the orders of a falling step come out positive
         } catch (const InputError&) {
           t.scale = nan;
         }

@@ -94,8 +94,10 @@ struct StudyArguments {
 
 /// Checks the options against the case; throws InputError naming the
 /// option: --levels 2 .. 12 (a variation's values too), --ratio 2 .. 16,
-/// --jobs (check_jobs), a level to change, a varied key the case has, a
-/// rigid reference the case admits.
+/// --jobs (check_jobs), a level to change, a varied key the case has and the
+/// study does not set itself (time.step under --refine both or dt, a bar's
+/// elements under --refine both or h, time.step for the characteristic
+/// scheme, which sets dt = h/c), a rigid reference the case admits.
 void check_study(const Case& base, const StudyOptions& options);
 
 /// Runs the study. Throws InputError for bad options (check_study), before any run.
