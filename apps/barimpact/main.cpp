@@ -26,6 +26,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <optional>
 #include <string_view>
 
 #include <sys/wait.h>
@@ -42,7 +43,6 @@
 #include "barimpact/run/check.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
-#include "barimpact/schemes/scheme.hpp"
 #include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
 #include "barimpact/study/sweep.hpp"
@@ -235,31 +235,10 @@ int study_exit(const StudyEnd& e, const WriteFlags& flags) {
   return flags.strict && e.warned > 0 ? exit_warnings : 0;
 }
 
-// What converge writes into its directory (the marker lists them).
-const std::vector<std::string> study_entries{"runs",
-                                             "convergence.csv",
-                                             "convergence.md",
-                                             "convergence.png",
-                                             "convergence.svg",
-                                             "work_precision.png",
-                                             "work_precision.svg"};
-
-// Run directories in runs/ that barimpact wrote for an earlier, other study.
-void remove_other_runs(const std::filesystem::path& runs, const barimpact::Study& study) {
-  for (const auto& name : barimpact::directory_entries(runs)) {
-    const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
-    std::error_code ec;
-    // Only a study's own runs: a run of the user's kept in runs/ stays.
-    if (!ours && barimpact::output_command(runs / name) == "converge" && barimpact::written_by_barimpact(runs / name))
-      std::filesystem::remove_all(runs / name, ec);
-  }
-}
-
 struct ConvergeArgs {
-  std::string case_path, out, refine, vary, schemes, reference = "auto";
+  std::string case_path, out, schemes;
   std::vector<std::string> sets;
-  barimpact::StudyOptions options;
-  bool refine_given = false;
+  barimpact::StudyArguments arguments;
   std::string command;
   WriteFlags flags;
 };
@@ -268,41 +247,13 @@ int converge_command(ConvergeArgs& a) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : a.sets) overrides.push_back({s});
   const auto c = barimpact::Case::from_file(a.case_path, overrides);
-  auto& o = a.options;
-  if (a.refine_given) {
-    o.refine = a.refine == "h"      ? barimpact::Refine::h
-               : a.refine == "dt"   ? barimpact::Refine::dt
-               : a.refine == "none" ? barimpact::Refine::none
-                                    : barimpact::Refine::both;
-  }
-  if (!a.vary.empty()) {
-    o.vary = barimpact::Variation::parse(a.vary);
-    if (!a.refine_given) o.refine = barimpact::Refine::none;
-  }
-  if (!a.schemes.empty()) {
-    std::stringstream list(a.schemes);
-    const auto known = barimpact::scheme_names();
-    for (std::string s; std::getline(list, s, ',');) {
-      if (std::find(known.begin(), known.end(), s) == known.end())
-        throw barimpact::InputError(
-            fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
-      o.schemes.push_back(s);
-    }
-  }
-  o.reference = a.reference == "rigid"    ? barimpact::Reference::rigid
-                : a.reference == "finest" ? barimpact::Reference::finest
-                                          : barimpact::Reference::automatic;
-  barimpact::check_study(c, o);
-  const std::filesystem::path dir(a.out);
-  barimpact::prepare_output_directory(dir, "converge", study_entries, a.flags.force);
-  o.runs = dir / "runs";
+  std::stringstream list(a.schemes);
+  for (std::string s; std::getline(list, s, ',');) a.arguments.schemes.push_back(s);
+  auto o = barimpact::study_options(a.arguments);
   o.interrupt = &interrupted;
-  const auto study = barimpact::converge(c, o);
-  remove_other_runs(o.runs, study);
-  const std::string markdown = barimpact::study_markdown(study, a.command);
-  barimpact::replace_text(dir / "convergence.csv", barimpact::study_csv(study));
-  barimpact::replace_text(dir / "convergence.md", markdown);
-  fmt::print("{}\n", markdown);
+  const std::filesystem::path dir(a.out);
+  const auto study = barimpact::write_convergence(c, o, dir, a.flags.force, a.command);
+  fmt::print("{}\n", barimpact::study_markdown(study, a.command));
   auto count = [&](auto&& pred) { return std::count_if(study.runs.begin(), study.runs.end(), pred); };
   const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
   const auto results = count([](const auto& r) { return r.status == "complete" || r.status == "reference"; });
@@ -425,53 +376,38 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 #endif
   const auto plan = barimpact::SweepPlan::from_file(sweep_path);
   const std::filesystem::path dir(out_dir);
-  std::error_code ec;
-  if (rank == 0) {
-    barimpact::prepare_output_directory(dir, "sweep", {"runs", "sweep.csv"}, flags.force);
-    std::filesystem::create_directories(dir / "runs", ec);
-    if (ec) throw barimpact::InputError(fmt::format("--out {}: cannot create it ({})", out_dir, ec.message()));
-    barimpact::remove_stale_staging(dir / "runs", "");  // what a killed sweep left
-    barimpact::remove_stale_staging(dir, "");
-  }
-  std::vector<barimpact::SweepRow> rows(plan.points().size());
-  std::vector<std::size_t> todo;
-  std::size_t resumed = 0;
-  for (std::size_t i = 0; i < plan.points().size(); ++i) {
-    if (barimpact::read_row(plan, dir, i, rows[i]))
-      ++resumed;
-    else
-      todo.push_back(i);
-  }
-  std::vector<barimpact::SweepRow> done;
+  barimpact::SweepOutcome outcome;
 #ifdef BARIMPACT_HAVE_MPI
   if (size > 1) {
+    barimpact::SweepStart start;
+    if (rank == 0) {  // the other ranks only run the points rank 0 hands out
+      barimpact::prepare_sweep(dir, o, flags.force);
+      start = barimpact::resume_sweep(plan, dir);
+    }
     MPI_Barrier(MPI_COMM_WORLD);  // the directory exists before any rank writes
-    done = mpi_sweep(plan, dir, todo, o, rank, size, provided >= MPI_THREAD_FUNNELED);
+    const auto done = mpi_sweep(plan, dir, start.todo, o, rank, size, provided >= MPI_THREAD_FUNNELED);
     if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
+    outcome = barimpact::finish_sweep(plan, dir, std::move(start), done);
   } else
 #endif
-    done = barimpact::run_sweep(plan, dir, todo, o);
-  for (auto& r : done) {
-    const auto at = static_cast<std::size_t>(std::stoll(r.id));
-    rows[at] = r;
-  }
-  barimpact::replace_text(dir / "sweep.csv", barimpact::sweep_csv(plan, rows));
+    outcome = barimpact::write_sweep(plan, dir, o, flags.force);
+  const auto& rows = outcome.rows;
   auto count = [&](auto&& pred) { return std::count_if(rows.begin(), rows.end(), pred); };
-  const auto batched = std::count_if(done.begin(), done.end(), [](const auto& r) { return r.batched; });
   const auto complete = count([](const auto& r) { return r.status == "complete"; });
   const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
   const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
   fmt::print("{} cases: {} run{} ({} in SIMD batches{}), {} resumed, {} not complete; sweep.csv in {}\n", rows.size(),
-             done.size() - static_cast<std::size_t>(stopped), size > 1 ? fmt::format(" on {} ranks", size) : "",
-             batched, batched > 0 ? fmt::format(", {}", barimpact::to_string(barimpact::simd_path())) : "", resumed,
-             static_cast<long>(rows.size()) - complete, out_dir);
+             outcome.run - static_cast<std::size_t>(stopped), size > 1 ? fmt::format(" on {} ranks", size) : "",
+             outcome.batched,
+             outcome.batched > 0 ? fmt::format(", {}", barimpact::to_string(barimpact::simd_path())) : "",
+             outcome.resumed, static_cast<long>(rows.size()) - complete, out_dir);
   print_study_warnings(rows);
   return study_exit({"cases", "sweep.csv", rows.size(), complete, stopped, warned}, flags);
 }
 
 struct BearingArgs {
   std::string case_path, out, capacity;
-  double toe_share = -1.0;
+  std::optional<double> toe_share;
   bool no_plot = false;
   barimpact::SweepOptions options;
   WriteFlags flags;
@@ -480,7 +416,7 @@ struct BearingArgs {
 int bearing_command(const BearingArgs& a) {
   barimpact::BearingOptions o;
   barimpact::parse_capacity(a.capacity, o);
-  if (a.toe_share >= 0.0) o.toe_share = a.toe_share;
+  o.toe_share = a.toe_share;
   const barimpact::BearingPlan plan(a.case_path, o);
   const std::filesystem::path dir(a.out);
   const auto rows = barimpact::write_bearing(plan, dir, a.options, a.flags.force);
@@ -566,10 +502,12 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
                              "gauges", "masses", "plastic_map", "plastic_snapshots"})
     // plot.py writes these; a line adds joint_forces, gauges and masses, a yielding bar the plastic ones
     for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
+  // DIR/figures belongs to the run directory it is in, drawn or not; asked
+  // before figures/ is there (a folder the marker does not list makes the
+  // directory someone else's).
+  const bool ours = figures.empty() && barimpact::written_by_barimpact(run_dir);
   barimpact::prepare_output_directory(target, "plot", names, force);
-  // DIR/figures belongs to the run directory it is in, drawn or not.
-  if (figures.empty() && barimpact::written_by_barimpact(run_dir))
-    barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
+  if (ours) barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
   setenv("PYTHONPATH", python_path().c_str(), 1);
   std::vector<std::string> args{python_interpreter(), "-m", "barimpact", "plot", run_dir};
   if (!figures.empty()) {
@@ -640,6 +578,7 @@ int main(int argc, char** argv) {
   add_write_flags(exact, exact_flags);
   exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
 
+  const std::string jobs_help = "Threads, 1 .. 1024 (default, or 0: all cores)";
   std::string sweep_file, sweep_out;
   barimpact::SweepOptions sweep_options;
   bool no_batch = false;
@@ -648,7 +587,7 @@ int main(int argc, char** argv) {
   sweep->add_option("--out", sweep_out, "Output directory: a new or empty one, or a sweep's (rerunning resumes)")
       ->required();
   add_write_flags(sweep, sweep_flags);
-  sweep->add_option("--jobs", sweep_options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sweep->add_option("--jobs", sweep_options.jobs, jobs_help);
   sweep->add_flag("--no-batch", no_batch, "Run every case alone (no SIMD batches)");
 
   BearingArgs bearing_args;
@@ -659,9 +598,8 @@ int main(int argc, char** argv) {
       ->required();
   bearing->add_option("--capacity", bearing_args.capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")
       ->required();
-  bearing->add_option("--toe-share", bearing_args.toe_share, "R_toe / capacity (default: the case's)")
-      ->check(CLI::Range(0.0, 1.0));
-  bearing->add_option("--jobs", bearing_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  bearing->add_option("--toe-share", bearing_args.toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
+  bearing->add_option("--jobs", bearing_args.options.jobs, jobs_help);
   bearing->add_flag("--no-plot", bearing_args.no_plot, "Skip bearing.png");
   add_write_flags(bearing, bearing_args.flags);
 
@@ -688,17 +626,18 @@ int main(int argc, char** argv) {
   conv->add_option("--set", conv_args.sets, "Override a case key: section.key=value")
       ->take_all()
       ->allow_extra_args(false);
-  conv->add_option("--levels", conv_args.options.levels, "Refinement levels (default 4)")->check(CLI::Range(2, 12));
-  conv->add_option("--refine", conv_args.refine, "both (h and dt together, default), h, dt, or none")
+  auto& study = conv_args.arguments;
+  conv->add_option("--levels", study.levels, "Refinement levels, 2 .. 12 (default 4)");
+  conv->add_option("--refine", study.refine, "both (h and dt together, default), h, dt, or none")
       ->check(CLI::IsMember({"both", "h", "dt", "none"}));
-  conv->add_option("--ratio", conv_args.options.ratio, "Refinement ratio per level (default 2)")
-      ->check(CLI::Range(2, 16));
-  conv->add_option("--vary", conv_args.vary, "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n");
+  conv->add_option("--ratio", study.ratio, "Refinement ratio per level, 2 .. 16 (default 2)");
+  conv->add_option("--vary", study.vary,
+                   "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n (wins over the study's own "
+                   "time.step or elements: refused where --refine refines them too)");
   conv->add_option("--schemes", conv_args.schemes, "Compare schemes: a,b,c (default: the case's)");
-  conv->add_option("--reference", conv_args.reference,
-                   "auto (exact if the case admits one, else finest), rigid, finest")
+  conv->add_option("--reference", study.reference, "auto (exact if the case admits one, else finest), rigid, finest")
       ->check(CLI::IsMember({"auto", "rigid", "finest"}));
-  conv->add_option("--jobs", conv_args.options.jobs, "Threads (default: all cores)")->check(CLI::Range(1, 1024));
+  conv->add_option("--jobs", study.jobs, jobs_help);
 
   std::string plot_dir, plot_out;
   auto* plot = app.add_subcommand("plot", "Draw the figures of a run or sweep directory (PNG and SVG) with matplotlib");
@@ -734,7 +673,6 @@ int main(int argc, char** argv) {
       return sweep_command(sweep_file, sweep_out, sweep_options, sweep_flags);
     }
     if (conv->parsed()) {
-      conv_args.refine_given = conv->count("--refine") > 0;
       conv_args.command = "barimpact";
       for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];

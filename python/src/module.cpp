@@ -5,7 +5,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <fmt/format.h>
 #include <toml++/toml.h>
 #include <algorithm>
 #include <atomic>
@@ -22,7 +21,6 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
-#include "barimpact/schemes/scheme.hpp"
 #include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
 #include "barimpact/study/sweep.hpp"
@@ -235,90 +233,21 @@ long count_status(const Rows& rows, std::initializer_list<std::string_view> stat
   }));
 }
 
-// ---- converge: the steps of main.cpp's converge_command, by the same
-// library calls (the two should share one library function; see the report).
+// ---- converge, sweep, bearing: the library's writers (as the command),
+// on a thread of their own (interruptible), without their figures.
 
-struct ConvergeArgs {
-  int levels = 4, ratio = 2, jobs = 0;
-  std::optional<std::string> refine, vary;
-  std::vector<std::string> schemes;
-  std::string reference = "auto";
-};
-
-StudyOptions study_options(const ConvergeArgs& a) {
-  StudyOptions o;
-  o.levels = a.levels;
-  o.ratio = a.ratio;
-  o.jobs = a.jobs;
-  if (a.ratio > 16) throw InputError(fmt::format("--ratio: must be 2 .. 16 (got {})", a.ratio));
-  if (a.refine) {
-    const std::string& r = *a.refine;
-    if (r != "both" && r != "h" && r != "dt" && r != "none")
-      throw InputError(fmt::format("--refine: must be both, h, dt or none (got \"{}\")", r));
-    o.refine = r == "h" ? Refine::h : r == "dt" ? Refine::dt : r == "none" ? Refine::none : Refine::both;
-  }
-  if (a.vary) {
-    o.vary = Variation::parse(*a.vary);
-    if (!a.refine) o.refine = Refine::none;  // a variation alone changes only its key
-  }
-  const auto known = scheme_names();
-  for (const auto& s : a.schemes) {
-    if (std::find(known.begin(), known.end(), s) == known.end())
-      throw InputError(fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
-    o.schemes.push_back(s);
-  }
-  if (a.reference != "auto" && a.reference != "rigid" && a.reference != "finest")
-    throw InputError(fmt::format("--reference: must be auto, rigid or finest (got \"{}\")", a.reference));
-  o.reference = a.reference == "rigid"    ? Reference::rigid
-                : a.reference == "finest" ? Reference::finest
-                                          : Reference::automatic;
-  return o;
-}
-
-// What converge writes into its directory (its marker lists them), as main.cpp's study_entries.
-const std::vector<std::string> study_entries{"runs",
-                                             "convergence.csv",
-                                             "convergence.md",
-                                             "convergence.png",
-                                             "convergence.svg",
-                                             "work_precision.png",
-                                             "work_precision.svg"};
-
-// Run directories in runs/ that barimpact wrote for an earlier, other study
-// (as main.cpp's remove_other_runs): a run of the user's kept there stays.
-void remove_other_runs(const std::filesystem::path& runs, const Study& study) {
-  for (const auto& name : directory_entries(runs)) {
-    const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
-    std::error_code ec;
-    if (!ours && output_command(runs / name) == "converge" && written_by_barimpact(runs / name))
-      std::filesystem::remove_all(runs / name, ec);
-  }
-}
-
-py::dict converge_binding(const Case& c, const std::optional<std::string>& out, const ConvergeArgs& args, bool force,
+py::dict converge_binding(const Case& c, const std::optional<std::string>& out, const StudyArguments& args, bool force,
                           const std::string& command) {
   auto o = study_options(args);
-  check_study(c, o);  // bad options refused before the directory is touched
   std::atomic<bool> stop{false};
   std::optional<py::error_already_set> signal;
   o.interrupt = &stop;
-  if (out) {
-    prepare_output_directory(*out, "converge", study_entries, force);
-    o.runs = std::filesystem::path(*out) / "runs";
-  }
-  const Study study = interruptible([&] { return converge(c, o); }, stop, signal);
-  const std::string markdown = study_markdown(study, command);
-  const std::string csv = study_csv(study);
-  if (out) {
-    const std::filesystem::path dir(*out);
-    remove_other_runs(o.runs, study);
-    replace_text(dir / "convergence.csv", csv);
-    replace_text(dir / "convergence.md", markdown);
-  }
+  const Study study =
+      interruptible([&] { return out ? write_convergence(c, o, *out, force, command) : converge(c, o); }, stop, signal);
   if (signal) throw *signal;
   py::dict d;
-  d["csv"] = csv;
-  d["markdown"] = markdown;
+  d["csv"] = study_csv(study);
+  d["markdown"] = study_markdown(study, command);
   d["reference"] = study.reference;
   d["abscissa"] = study.abscissa;
   d["warnings"] = study_warnings(study.runs);
@@ -327,8 +256,6 @@ py::dict converge_binding(const Case& c, const std::optional<std::string>& out, 
   d["stopped"] = count_status(study.runs, {"interrupted"});
   return d;
 }
-
-// ---- sweep: the steps of main.cpp's sweep_command without MPI.
 
 SweepPlan sweep_plan(const py::object& sweep) {
   if (py::isinstance<py::dict>(sweep)) {
@@ -341,47 +268,29 @@ SweepPlan sweep_plan(const py::object& sweep) {
 
 py::dict sweep_binding(const py::object& sweep, const std::string& out, int jobs, bool batch, bool force) {
   const SweepPlan plan = sweep_plan(sweep);
-  const std::filesystem::path dir(out);
-  prepare_output_directory(dir, "sweep", {"runs", "sweep.csv"}, force);
-  std::error_code ec;
-  std::filesystem::create_directories(dir / "runs", ec);
-  if (ec) throw InputError(fmt::format("--out {}: cannot create it ({})", out, ec.message()));
-  remove_stale_staging(dir / "runs", "");  // what a killed sweep left
-  remove_stale_staging(dir, "");
-  std::vector<SweepRow> rows(plan.points().size());
-  std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < plan.points().size(); ++i)
-    if (!read_row(plan, dir, i, rows[i])) todo.push_back(i);
   std::atomic<bool> stop{false};
   std::optional<py::error_already_set> signal;
   SweepOptions o;
   o.jobs = jobs;
   o.batch = batch;
   o.interrupt = &stop;
-  const auto done = interruptible([&] { return run_sweep(plan, dir, todo, o); }, stop, signal);
-  for (const auto& r : done) rows[static_cast<std::size_t>(std::stoll(r.id))] = r;
-  const std::string csv = sweep_csv(plan, rows);
-  replace_text(dir / "sweep.csv", csv);
+  const auto outcome = interruptible([&] { return write_sweep(plan, out, o, force); }, stop, signal);
   if (signal) throw *signal;
   py::dict d;
-  d["csv"] = csv;
-  d["cases"] = rows.size();
-  d["run"] = done.size();
-  d["batched"] = std::count_if(done.begin(), done.end(), [](const auto& r) { return r.batched; });
-  d["resumed"] = rows.size() - todo.size();
-  d["warnings"] = study_warnings(rows);
+  d["csv"] = sweep_csv(plan, outcome.rows);
+  d["cases"] = outcome.rows.size();
+  d["run"] = outcome.run;
+  d["batched"] = outcome.batched;
+  d["resumed"] = outcome.resumed;
+  d["warnings"] = study_warnings(outcome.rows);
   return d;
 }
 
 py::dict bearing_binding(const py::object& case_file, const std::string& out, const std::string& capacity,
-                         const py::object& toe_share, int jobs, bool force) {
+                         const std::optional<double>& toe_share, int jobs, bool force) {
   BearingOptions o;
   parse_capacity(capacity, o);  // the command's rules
-  if (!toe_share.is_none()) {
-    const auto share = toe_share.cast<double>();
-    if (!(share >= 0.0 && share <= 1.0)) throw InputError(fmt::format("--toe-share: must be 0 .. 1 (got {})", share));
-    o.toe_share = share;
-  }
+  o.toe_share = toe_share;      // BearingPlan checks it
   const BearingPlan plan(fspath(case_file), o);
   std::atomic<bool> stop{false};
   std::optional<py::error_already_set> signal;
@@ -628,7 +537,7 @@ PYBIND11_MODULE(_core, m) {
          const std::optional<std::string>& refine, const std::optional<std::string>& vary,
          const std::vector<std::string>& schemes, const std::string& reference, int jobs, bool force,
          const std::string& command) {
-        ConvergeArgs args;
+        StudyArguments args;
         args.levels = levels;
         args.ratio = ratio;
         args.refine = refine;
@@ -640,10 +549,11 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("case"), py::arg("out"), py::arg("levels"), py::arg("ratio"), py::arg("refine"), py::arg("vary"),
       py::arg("schemes"), py::arg("reference"), py::arg("jobs"), py::arg("force"), py::arg("command"),
-      "converge's study (main.cpp's converge_command without the figures); use barimpact.converge");
+      "write_convergence, or converge without `out` (the converge command without its figures); use "
+      "barimpact.converge");
 
   m.def("_sweep", &sweep_binding, py::arg("sweep"), py::arg("out"), py::arg("jobs"), py::arg("batch"), py::arg("force"),
-        "A sweep into `out` (main.cpp's sweep_command without MPI); use barimpact.sweep");
+        "write_sweep (the sweep command without MPI); use barimpact.sweep");
 
   m.def("_bearing", &bearing_binding, py::arg("case"), py::arg("out"), py::arg("capacity"), py::arg("toe_share"),
         py::arg("jobs"), py::arg("force"),

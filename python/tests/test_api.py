@@ -186,11 +186,13 @@ def test_converge_refuses_what_the_command_refuses(tmp_path):
     for options, args in ((dict(vary="bar.elements"), ["--vary", "bar.elements"]),
                           (dict(schemes="paper,nope"), ["--schemes", "paper,nope"]),
                           (dict(refine="none"), ["--refine", "none"]),
-                          (dict(levels=13), ["--levels", "13"])):
+                          (dict(levels=13), ["--levels", "13"]),
+                          (dict(ratio=17), ["--ratio", "17"]),
+                          (dict(vary="time.step=0.01,0.005", refine="both"),
+                           ["--vary", "time.step=0.01,0.005", "--refine", "both"])):
         with pytest.raises(barimpact.InputError) as e:
             barimpact.converge(RIGID, out, **options)
-        if options.get("levels") != 13:  # CLI11 checks --levels' range before the library
-            assert str(e.value) == cli_error("converge", str(RIGID), "--out", str(out), *args)
+        assert str(e.value) == cli_error("converge", str(RIGID), "--out", str(out), *args)
     with pytest.raises(barimpact.InputError, match="--refine: must be both, h, dt or none"):
         barimpact.converge(RIGID, out, refine="x")
     with pytest.raises(barimpact.InputError, match="--jobs"):
@@ -290,8 +292,11 @@ def test_bearing_takes_the_commands_capacity_and_returns_a_table(tmp_path):
     assert t.summary["toe_share"] == 0.5 and t.summary["count"] == 2
     assert not (tmp_path / "b" / "bearing.png").exists()
     assert_tables_equal(t, barimpact.read_table(tmp_path / "b"))
-    with pytest.raises(barimpact.InputError, match="--toe-share"):
+    with pytest.raises(barimpact.InputError, match="--toe-share") as e:
         barimpact.bearing(pipe, tmp_path / "c", (1e6, 5e7, 2), toe_share=1.5)
+    assert str(e.value) == cli_error("bearing", str(pipe), "--out", str(tmp_path / "c"), "--capacity", "1e6:5e7:2",
+                                     "--toe-share", "1.5")  # the library's rule, the command's words
+    assert not (tmp_path / "c").exists()
 
 
 def test_hopkinson_writes_the_commands_directory(tmp_path):

@@ -124,13 +124,13 @@ BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
 
 std::vector<BearingRow> run_bearing(const BearingPlan& plan, const fs::path& dir, const SweepOptions& options) {
   const auto& points = plan.sweep().points();
+  SweepStart start = resume_sweep(plan.sweep(), dir);
+  for (auto& r : run_sweep(plan.sweep(), dir, start.todo, options))
+    start.rows[static_cast<std::size_t>(std::stoll(r.id))] = r;
   std::vector<BearingRow> rows(points.size());
-  std::vector<std::size_t> todo;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!read_row(plan.sweep(), dir, i, rows[i].run)) todo.push_back(i);
-  for (auto& r : run_sweep(plan.sweep(), dir, todo, options)) rows[static_cast<std::size_t>(std::stoll(r.id))].run = r;
   for (std::size_t i = 0; i < points.size(); ++i) {
     BearingRow& row = rows[i];
+    row.run = std::move(start.rows[i]);
     row.capacity = plan.capacity(i);
     row.toe = plan.toe_share() * row.capacity;
     row.shaft = row.capacity - row.toe;
@@ -142,12 +142,7 @@ std::vector<BearingRow> run_bearing(const BearingPlan& plan, const fs::path& dir
 
 std::vector<BearingRow> write_bearing(const BearingPlan& plan, const fs::path& dir, const SweepOptions& options,
                                       bool force) {
-  prepare_output_directory(dir, "bearing", {"runs", "bearing.csv", "bearing.png", "bearing.svg"}, force);
-  std::error_code ec;
-  fs::create_directories(dir / "runs", ec);
-  if (ec) throw InputError(fmt::format("--out {}: cannot create it ({})", dir.string(), ec.message()));
-  remove_stale_staging(dir / "runs", "");  // what a killed bearing left
-  remove_stale_staging(dir, "");
+  prepare_sweep(dir, options, force, "bearing", {"runs", "bearing.csv", "bearing.png", "bearing.svg"});
   auto rows = run_bearing(plan, dir, options);
   replace_text(dir / "bearing.csv", bearing_csv(rows));
   return rows;

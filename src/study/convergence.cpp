@@ -1,6 +1,7 @@
 #include "barimpact/study/convergence.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <time.h>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/scheme.hpp"
 #include "barimpact/study/executor.hpp"
 
 namespace barimpact {
@@ -126,6 +128,19 @@ double mean_reaction(const exact::Solution& s, double t, double dt) {
   return sum / samples;
 }
 
+// The characteristic scheme's step dt = h/c for a level whose variation
+// (bar.elements, bar.length, ...) may change h or c: the level's case finds
+// it, as it does without a given step; `fallback` if that case is refused
+// (it is then refused again, with its own message, when the level is built).
+double varied_courant_step(const std::string& base_toml, std::vector<Case::Override> sets, double fallback) {
+  sets.push_back({"time.step=\"auto\""});
+  try {
+    return Case::from_string(base_toml, sets, "study", false).time.step;
+  } catch (const InputError&) {
+    return fallback;
+  }
+}
+
 }  // namespace
 
 Variation Variation::parse(const std::string& text) {
@@ -164,19 +179,71 @@ double observed_order(double e_prev, double e, double s_prev, double s) {
   return std::log(e_prev / e) / std::log(s / s_prev);
 }
 
+StudyOptions study_options(const StudyArguments& a) {
+  StudyOptions o;
+  o.levels = a.levels;
+  o.ratio = a.ratio;
+  o.jobs = a.jobs;
+  if (a.refine) {
+    const std::string& r = *a.refine;
+    if (r != "both" && r != "h" && r != "dt" && r != "none")
+      throw InputError(fmt::format("--refine: must be both, h, dt or none (got \"{}\")", r));
+    o.refine = r == "h" ? Refine::h : r == "dt" ? Refine::dt : r == "none" ? Refine::none : Refine::both;
+  }
+  if (a.vary) {
+    o.vary = Variation::parse(*a.vary);
+    if (!a.refine) o.refine = Refine::none;  // a variation alone changes only its key
+  }
+  const auto known = scheme_names();
+  for (const auto& s : a.schemes) {
+    if (std::find(known.begin(), known.end(), s) == known.end())
+      throw InputError(fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
+    o.schemes.push_back(s);
+  }
+  if (a.reference != "auto" && a.reference != "rigid" && a.reference != "finest")
+    throw InputError(fmt::format("--reference: must be auto, rigid or finest (got \"{}\")", a.reference));
+  o.reference = a.reference == "rigid"    ? Reference::rigid
+                : a.reference == "finest" ? Reference::finest
+                                          : Reference::automatic;
+  return o;
+}
+
 void check_study(const Case& base, const StudyOptions& o) {
-  if (o.ratio < 2) throw InputError("--ratio: must be an integer >= 2");
-  const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
-  if (levels < 2 || levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", levels));
+  if (o.ratio < 2 || o.ratio > 16) throw InputError(fmt::format("--ratio: must be 2 .. 16 (got {})", o.ratio));
+  if (o.levels < 2 || o.levels > 12) throw InputError(fmt::format("--levels: must be 2 .. 12 (got {})", o.levels));
+  check_jobs(o.jobs);
   if (!o.vary && o.refine == Refine::none)
     throw InputError("--refine none: without --vary there is nothing to change between levels");
-  if (o.vary) {  // an unknown key is the option's error, not a run's (as in a sweep file)
-    try {
-      (void)Case::from_string(base.to_toml(), {{o.vary->key + "=" + o.vary->values.front()}}, "study", false);
+  if (o.vary) {
+    const std::string& key = o.vary->key;
+    if (o.vary->values.size() < 2 || o.vary->values.size() > 12)
+      throw InputError(
+          fmt::format("--vary {}: must give 2 .. 12 values, one per level (got {})", key, o.vary->values.size()));
+    // The study sets the step and the bars' elements itself: a varied one
+    // wins over that, unless --refine refines it too.
+    const bool step = key == "time.step";
+    const bool elements = key == "bar.elements" || (key.starts_with("body.") && key.ends_with(".elements"));
+    const bool refine_h = o.refine == Refine::both || o.refine == Refine::h;
+    const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
+    const char* refine = o.refine == Refine::both ? "both" : o.refine == Refine::h ? "h" : "dt";
+    if (step && refine_dt)
+      throw InputError(
+          fmt::format("--vary {}: --refine {} refines the step too; vary it with --refine h or none", key, refine));
+    if (elements && refine_h)
+      throw InputError(fmt::format(
+          "--vary {}: --refine {} refines the elements too; vary them with --refine dt or none", key, refine));
+    const auto& schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
+    if (step && std::find(schemes.begin(), schemes.end(), "characteristic") != schemes.end())
+      throw InputError(
+          fmt::format("--vary {}: the characteristic scheme sets dt = h/c itself; vary bar.elements "
+                      "instead, or leave it out of --schemes",
+                      key));
+    try {  // an unknown key is the option's error, not a run's (as in a sweep file)
+      (void)Case::from_string(base.to_toml(), {{key + "=" + o.vary->values.front()}}, "study", false);
     } catch (const InputError& e) {
       const std::string what = e.what();
       if (what.find("unknown") != std::string::npos || what.find("expected section.key") != std::string::npos)
-        throw InputError(fmt::format("--vary {}: {}", o.vary->key, what));
+        throw InputError(fmt::format("--vary {}: {}", key, what));
     }
   }
   if (o.reference == Reference::rigid) {
@@ -201,6 +268,7 @@ Study converge(const Case& base, const StudyOptions& o) {
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
   const double c = std::sqrt(base.bar.stiffness / base.bar.density);
+  const bool varies_step = o.vary && o.vary->key == "time.step";
 
   std::vector<Task> tasks;
   for (const auto& scheme : schemes) {
@@ -226,12 +294,17 @@ Study converge(const Case& base, const StudyOptions& o) {
         sets.push_back({o.vary->key + "=" + t.value});
       }
       // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
-      if (scheme == "characteristic" && base.single_bar) step = base.bar.length / static_cast<double>(elements) / c;
-      sets.push_back({fmt::format("time.step={}", step)});
+      if (scheme == "characteristic" && base.single_bar) {
+        step = base.bar.length / static_cast<double>(elements) / c;
+        if (o.vary) step = varied_courant_step(base_toml, sets, step);
+      }
+      // A varied step wins (check_study refuses it where the study refines the step).
+      if (!varies_step) sets.push_back({fmt::format("time.step={}", step)});
       t.scale = (o.refine != Refine::none) ? static_cast<double>(f) : nan;
       if (o.refine == Refine::none && o.vary) {
         try {
           t.scale = number(t.value, "--vary");
+          if (varies_step) t.scale = 1.0 / t.scale;  // as 1/h: the orders of a falling step come out positive
         } catch (const InputError&) {
           t.scale = nan;
         }
@@ -386,6 +459,42 @@ std::string study_markdown(const Study& study, const std::string& command) {
                        md_cell(r.lift_off, "{:.4f}"), r.contact_episodes, md_cell(r.cpu_seconds, "{:.3f}"), r.status);
   }
   return out;
+}
+
+const std::vector<std::string>& convergence_entries() {
+  static const std::vector<std::string> entries{"runs",
+                                                "convergence.csv",
+                                                "convergence.md",
+                                                "convergence.png",
+                                                "convergence.svg",
+                                                "work_precision.png",
+                                                "work_precision.svg"};
+  return entries;
+}
+
+namespace {
+// Run directories in runs/ that barimpact wrote for an earlier, other study.
+void remove_other_runs(const fs::path& runs, const Study& study) {
+  for (const auto& name : directory_entries(runs)) {
+    const bool ours = std::any_of(study.runs.begin(), study.runs.end(), [&](const auto& r) { return name == r.id; });
+    std::error_code ec;
+    // Only a study's own runs: a run of the user's kept in runs/ stays.
+    if (!ours && output_command(runs / name) == "converge" && written_by_barimpact(runs / name))
+      fs::remove_all(runs / name, ec);
+  }
+}
+}  // namespace
+
+Study write_convergence(const Case& base, StudyOptions options, const fs::path& dir, bool force,
+                        const std::string& command) {
+  check_study(base, options);  // a refusal writes nothing
+  prepare_output_directory(dir, "converge", convergence_entries(), force);
+  options.runs = dir / "runs";
+  Study study = converge(base, options);
+  remove_other_runs(options.runs, study);
+  replace_text(dir / "convergence.csv", study_csv(study));
+  replace_text(dir / "convergence.md", study_markdown(study, command));
+  return study;
 }
 
 }  // namespace barimpact

@@ -1,9 +1,13 @@
 #include "barimpact/study/executor.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <thread>
 #include <vector>
+
+#include "barimpact/model/input_error.hpp"
 
 namespace barimpact {
 
@@ -21,6 +25,11 @@ void run_parallel(std::size_t count, int jobs, const std::function<void(std::siz
   std::vector<std::thread> pool;
   for (std::size_t j = 0; j < threads; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
+}
+
+void check_jobs(int jobs) {
+  if (jobs < 0 || jobs > 1024)
+    throw InputError(fmt::format("--jobs: must be 1 .. 1024, or 0 for all cores (got {})", jobs));
 }
 
 }  // namespace barimpact

@@ -324,6 +324,47 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
   return rows;
 }
 
+void prepare_sweep(const fs::path& dir, const SweepOptions& options, bool force, std::string_view command,
+                   const std::vector<std::string>& entries) {
+  check_jobs(options.jobs);
+  if (options.batch) (void)simd_path();  // a bad BARIMPACT_SIMD is refused before anything is written
+  prepare_output_directory(dir, command, entries, force);
+  std::error_code ec;
+  fs::create_directories(dir / "runs", ec);
+  if (ec) throw InputError(fmt::format("--out {}: cannot create it ({})", dir.string(), ec.message()));
+  remove_stale_staging(dir / "runs", "");  // what a killed sweep left
+  remove_stale_staging(dir, "");
+}
+
+SweepStart resume_sweep(const SweepPlan& plan, const fs::path& dir) {
+  SweepStart start;
+  start.rows.resize(plan.points().size());
+  for (std::size_t i = 0; i < plan.points().size(); ++i)
+    if (!read_row(plan, dir, i, start.rows[i])) start.todo.push_back(i);
+  return start;
+}
+
+SweepOutcome finish_sweep(const SweepPlan& plan, const fs::path& dir, SweepStart start,
+                          const std::vector<SweepRow>& done) {
+  SweepOutcome outcome;
+  outcome.resumed = start.rows.size() - start.todo.size();
+  outcome.run = done.size();
+  for (const auto& r : done) {
+    start.rows[static_cast<std::size_t>(std::stoll(r.id))] = r;
+    if (r.batched) ++outcome.batched;
+  }
+  outcome.rows = std::move(start.rows);
+  replace_text(dir / "sweep.csv", sweep_csv(plan, outcome.rows));
+  return outcome;
+}
+
+SweepOutcome write_sweep(const SweepPlan& plan, const fs::path& dir, const SweepOptions& options, bool force) {
+  prepare_sweep(dir, options, force);
+  SweepStart start = resume_sweep(plan, dir);
+  const auto done = run_sweep(plan, dir, start.todo, options);
+  return finish_sweep(plan, dir, std::move(start), done);
+}
+
 namespace {
 using detail::csv_number;
 using detail::csv_text;

@@ -162,9 +162,26 @@ expect_refused "--refine" converge "$ex1" --out "$work/refused" --refine sideway
 expect_refused "--vary" converge "$ex1" --out "$work/refused" --vary stiffness=1,2
 expect_refused "--schemes" converge "$ex1" --out "$work/refused" --schemes paper,euler
 expect_refused "--refine none" converge "$ex1" --out "$work/refused" --refine none
+expect_refused "--ratio: must be 2 .. 16" converge "$ex1" --out "$work/refused" --ratio 17
+expect_refused "--levels: must be 2 .. 12" converge "$ex1" --out "$work/refused" --levels 13
+expect_refused "--jobs: must be 1 .. 1024" converge "$ex1" --out "$work/refused" --jobs 1025
+# --vary time.step varies the step on the case's mesh (the study's own step
+# does not override it), and is refused where --refine refines the step too.
+rigid="$examples/paper-example1-rigid.toml"
+"$bin" converge "$rigid" --out "$work/conv-step" --vary time.step=0.01,0.005,0.0025 --set time.end=2.5 \
+  --set output.fields_at=[] --schemes central-difference > /dev/null 2> "$work/err" && ok || bad "converge --vary time.step: $(cat "$work/err")"
+[ "$(tail -n +2 "$work/conv-step/convergence.csv" | cut -d, -f4,6 | tr '\n' ' ')" = "100,0.01 100,0.005 100,0.0025 " ] && ok ||
+  bad "--vary time.step rows: $(cut -d, -f1-8 "$work/conv-step/convergence.csv")"
+expect_refused "--vary time.step: --refine both refines the step too" converge "$rigid" --out "$work/refused" \
+  --vary time.step=0.01,0.005 --refine both --schemes central-difference
+expect_refused "--vary bar.elements: --refine h refines the elements too" converge "$ex1" --out "$work/refused" \
+  --vary bar.elements=100,200 --refine h
+expect_refused "--vary time.step: the characteristic scheme sets dt = h/c" converge "$rigid" --out "$work/refused" \
+  --vary time.step=0.01,0.005
 
 # barimpact sweep: one row and one complete run directory per case; resume; failures recorded.
 sweeps="$examples/sweeps"
+expect_refused "--jobs: must be 1 .. 1024" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/refused" --jobs 2000
 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep" --jobs 2 > "$work/out" && ok || bad "sweep"
 [ "$(ls "$work/sweep/runs" | wc -l)" -eq 12 ] && ok || bad "sweep run directories"
 [ "$(tail -n +2 "$work/sweep/sweep.csv" | wc -l)" -eq 12 ] && ok || bad "sweep rows"
@@ -318,6 +335,8 @@ cp "$work/bearing/bearing.csv" "$work/bearing-first.csv"
 cut -d, -f1-11 "$work/bearing/bearing.csv" | cmp -s - <(cut -d, -f1-11 "$work/bearing-first.csv") && ok || bad "bearing resumed differs"
 expect_refused "--capacity" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6
 expect_refused "--toe-share" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share 2
+expect_refused "--toe-share must be in [0, 1]" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share -0.5
+expect_refused "--jobs: must be 1 .. 1024" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --jobs -1
 expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
 expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5

@@ -12,6 +12,7 @@ command); `make` lines (the build itself) and sample output are not run.
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -49,8 +50,12 @@ def main(readme, examples, build):
     source = Path(examples).resolve().parent
     with tempfile.TemporaryDirectory(prefix="barimpact-readme-") as root:
         # A clone after the build: the sources, and build/release.
+        # examples/ is copied: a case's relative path (../../out/...) must
+        # lead into this tree, as in a clone, not through a link into the source.
         for entry in source.iterdir():
-            if entry.name not in ("build", "out", ".git", "dist"):
+            if entry.name == "examples":
+                shutil.copytree(entry, os.path.join(root, entry.name))
+            elif entry.name not in ("build", "out", ".git", "dist"):
                 os.symlink(entry, os.path.join(root, entry.name))
         os.makedirs(os.path.join(root, "build"))
         os.symlink(os.path.abspath(build), os.path.join(root, "build", "release"))

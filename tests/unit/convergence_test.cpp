@@ -107,5 +107,125 @@ TEST(Converge, RefusesBadOptionsBeforeRunning) {
   EXPECT_THROW((void)converge(c, o), InputError);
 }
 
+// The message of the InputError check_study throws ("" if none).
+std::string refusal(const Case& c, const StudyOptions& o) {
+  try {
+    check_study(c, o);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Converge, RefusesOptionsOutOfTheirRanges) {
+  const Case c = testing::example("paper-example1.toml");
+  for (auto [option, set] : std::initializer_list<std::pair<const char*, void (*)(StudyOptions&)>>{
+           {"--ratio: must be 2 .. 16 (got 17)", [](StudyOptions& o) { o.ratio = 17; }},
+           {"--ratio: must be 2 .. 16 (got 1)", [](StudyOptions& o) { o.ratio = 1; }},
+           {"--levels: must be 2 .. 12 (got 13)", [](StudyOptions& o) { o.levels = 13; }},
+           {"--levels: must be 2 .. 12 (got 1)", [](StudyOptions& o) { o.levels = 1; }},
+           {"--jobs: must be 1 .. 1024, or 0 for all cores (got 1025)", [](StudyOptions& o) { o.jobs = 1025; }},
+           {"--jobs: must be 1 .. 1024, or 0 for all cores (got -1)", [](StudyOptions& o) { o.jobs = -1; }},
+           {"--vary obstacle.stiffness: must give 2 .. 12 values, one per level (got 13)",
+            [](StudyOptions& o) { o.vary = Variation::parse("obstacle.stiffness=1:13:13"); }}}) {
+    StudyOptions o;
+    set(o);
+    EXPECT_EQ(refusal(c, o), option);
+  }
+  StudyOptions o;
+  o.ratio = 16;
+  o.levels = 12;
+  o.jobs = 1024;
+  EXPECT_EQ(refusal(c, o), "");
+}
+
+TEST(Converge, ReadsTheCommandsWords) {
+  StudyArguments a;
+  a.vary = "time.step=0.01,0.005";
+  a.schemes = {"paper", "newmark"};
+  a.reference = "finest";
+  const StudyOptions o = study_options(a);
+  EXPECT_EQ(o.refine, Refine::none);  // a variation alone changes only its key
+  EXPECT_EQ(o.schemes.size(), 2u);
+  EXPECT_EQ(o.reference, Reference::finest);
+  a.refine = "h";
+  EXPECT_EQ(study_options(a).refine, Refine::h);
+  for (auto bad : {&StudyArguments::refine, &StudyArguments::vary}) {
+    StudyArguments b;
+    b.*bad = "sideways";
+    EXPECT_THROW((void)study_options(b), InputError);
+  }
+  a.schemes = {"euler"};
+  EXPECT_THROW((void)study_options(a), InputError);
+}
+
+// A study along `vary` alone (--refine none).
+StudyOptions varying(const char* vary) {
+  StudyOptions o;
+  o.vary = Variation::parse(vary);
+  o.refine = Refine::none;
+  return o;
+}
+
+// Three levels, each complete at step 0.01 / 2^level, on 100 elements or,
+// if the mesh doubles too, 100 * 2^level.
+void expect_three_levels(const Study& s, bool mesh_doubles) {
+  ASSERT_EQ(s.runs.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(s.runs[i].status, "complete") << s.runs[i].message;
+    EXPECT_EQ(s.runs[i].elements, mesh_doubles ? 100 << i : 100);
+    EXPECT_DOUBLE_EQ(s.runs[i].step, 0.01 / (1 << i));
+  }
+}
+
+TEST(Converge, AVariedStepRunsAtEachLevelOnTheSameMesh) {
+  // --vary time.step with h fixed: each level steps at its own value (the
+  // study's own time.step once came after the variation, and every level
+  // ran the case's step: identical rows). Central differences at a falling
+  // Courant number on Example 1 with a rigid obstacle.
+  const Case c = testing::example("paper-example1-rigid.toml",
+                                  {"time.scheme=\"central-difference\"", "time.end=2.5", "output.fields_at=[]"});
+  StudyOptions o = varying("time.step=0.01,0.005,0.0025");
+  const Study s = converge(c, o);
+  expect_three_levels(s, false);
+  EXPECT_NE(s.runs[0].error_U_max, s.runs[1].error_U_max);
+  // The scale of a varied step is 1/dt, as 1/h's: the order has the sign of log(e_prev / e).
+  EXPECT_GT(s.runs[1].order_U * std::log(s.runs[0].error_U_max / s.runs[1].error_U_max), 0.0);
+  // With the mesh refined too (--refine h), the step still varies (at Courant 1 here).
+  o.refine = Refine::h;
+  expect_three_levels(converge(c, o), true);
+}
+
+TEST(Converge, AVariedMeshKeepsTheCharacteristicSchemeAtCourantOne) {
+  const Case c = testing::example("paper-example1-rigid.toml", {"time.end=2.5", "output.fields_at=[]"});
+  const Study s = converge(c, varying("bar.elements=100,200,400"));
+  expect_three_levels(s, true);                                  // dt = h/c
+  for (const auto& r : s.runs) EXPECT_LT(r.error_U_max, 1e-12);  // exact at the nodes
+}
+
+TEST(Converge, RefusesAVariedKeyTheStudySetsItself) {
+  const Case cd = testing::example("paper-example1-rigid.toml", {"time.scheme=\"central-difference\""});
+  struct Rule {
+    const char* vary;
+    std::vector<Refine> conflicting;
+    Refine fine;
+  };
+  for (const Rule& rule : {Rule{"time.step=0.01,0.005", {Refine::both, Refine::dt}, Refine::h},
+                           Rule{"bar.elements=100,200", {Refine::both, Refine::h}, Refine::dt}}) {
+    StudyOptions o = varying(rule.vary);
+    EXPECT_EQ(refusal(cd, o), "");
+    o.refine = rule.fine;
+    EXPECT_EQ(refusal(cd, o), "");
+    const std::string key(rule.vary, std::string_view(rule.vary).find('='));
+    for (auto r : rule.conflicting) {
+      o.refine = r;
+      EXPECT_EQ(refusal(cd, o).rfind("--vary " + key + ": --refine ", 0), 0u) << refusal(cd, o);
+    }
+  }
+  StudyOptions o = varying("time.step=0.01,0.005");
+  o.schemes = {"central-difference", "characteristic"};
+  EXPECT_NE(refusal(cd, o).find("characteristic scheme sets dt = h/c"), std::string::npos) << refusal(cd, o);
+}
+
 }  // namespace
 }  // namespace barimpact

@@ -20,7 +20,7 @@ namespace barimpact {
 struct BearingOptions {
   double from = 0.0, to = 0.0;      ///< the capacities R_toe + R_shaft, N
   int count = 0;                    ///< spaced linearly, from and to included
-  std::optional<double> toe_share;  ///< R_toe / capacity in [0, 1] (none: the case's)
+  std::optional<double> toe_share;  ///< R_toe / capacity in [0, 1] (none: the case's); BearingPlan checks it
 };
 
 /// Reads --capacity FROM:TO:COUNT into `o` (count >= 2, or 1 with FROM = TO).
@@ -55,9 +55,9 @@ struct BearingRow {
 [[nodiscard]] std::vector<BearingRow> run_bearing(const BearingPlan& plan, const std::filesystem::path& dir,
                                                   const SweepOptions& options);
 
-/// All of `barimpact bearing` but its figure: prepares `dir` (the output
-/// rule: new, empty or a bearing's; `force` as --force), runs or resumes,
-/// and writes bearing.csv. Returns the rows.
+/// All of `barimpact bearing` but its figure: checks `options` (--jobs),
+/// prepares `dir` (the output rule: new, empty or a bearing's; `force` as
+/// --force), runs or resumes, and writes bearing.csv. Returns the rows.
 [[nodiscard]] std::vector<BearingRow> write_bearing(const BearingPlan& plan, const std::filesystem::path& dir,
                                                     const SweepOptions& options, bool force);
 

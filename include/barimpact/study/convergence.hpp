@@ -75,7 +75,29 @@ struct Study {
   std::vector<StudyRun> runs;
 };
 
-/// Checks the options against the case; throws InputError naming the option.
+/// The options as the command and the Python module take them, in words
+/// (`barimpact converge`'s --levels, --ratio, ...): study_options reads them.
+struct StudyArguments {
+  int levels = 4;
+  int ratio = 2;
+  int jobs = 0;                       ///< 0: all cores
+  std::optional<std::string> refine;  ///< both, h, dt, none; unset: both, or none with a variation
+  std::optional<std::string> vary;    ///< key=v1,v2,... | key=a:b:n | key=log:a:b:n
+  std::vector<std::string> schemes;   ///< names of scheme_names(); empty: the case's
+  std::string reference = "auto";     ///< auto, rigid, finest
+};
+
+/// Reads the arguments into StudyOptions; throws InputError naming the
+/// option (--refine, --vary, --schemes, --reference). Their ranges and how
+/// they fit the case are check_study's.
+[[nodiscard]] StudyOptions study_options(const StudyArguments& arguments);
+
+/// Checks the options against the case; throws InputError naming the
+/// option: --levels 2 .. 12 (a variation's values too), --ratio 2 .. 16,
+/// --jobs (check_jobs), a level to change, a varied key the case has and the
+/// study does not set itself (time.step under --refine both or dt, a bar's
+/// elements under --refine both or h, time.step for the characteristic
+/// scheme, which sets dt = h/c), a rigid reference the case admits.
 void check_study(const Case& base, const StudyOptions& options);
 
 /// Runs the study. Throws InputError for bad options (check_study), before any run.
@@ -90,5 +112,17 @@ void check_study(const Case& base, const StudyOptions& options);
 [[nodiscard]] std::string study_csv(const Study& study);
 /// A Markdown table a person can paste into a paper; `command` is printed above it.
 [[nodiscard]] std::string study_markdown(const Study& study, const std::string& command);
+
+/// What `barimpact converge --out DIR` writes into DIR (its marker lists them).
+[[nodiscard]] const std::vector<std::string>& convergence_entries();
+
+/// All of `barimpact converge --out dir` but its figures: checks the options
+/// (a refusal writes nothing), prepares `dir` by the output rule (new, empty
+/// or a study's; `force` as --force), runs or resumes the study with its runs
+/// kept in dir/runs/ (options.runs is set so), removes the runs barimpact
+/// wrote there for an earlier, other study (a run of the user's stays), and
+/// writes convergence.csv and convergence.md (`command` above its table).
+[[nodiscard]] Study write_convergence(const Case& base, StudyOptions options, const std::filesystem::path& dir,
+                                      bool force, const std::string& command);
 
 }  // namespace barimpact

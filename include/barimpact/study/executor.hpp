@@ -11,4 +11,8 @@ namespace barimpact {
 /// Tasks must not throw (record failures in their results).
 void run_parallel(std::size_t count, int jobs, const std::function<void(std::size_t)>& task);
 
+/// The studies' --jobs rule: 1 .. 1024 threads, or 0 for all cores. Throws
+/// InputError naming --jobs otherwise.
+void check_jobs(int jobs);
+
 }  // namespace barimpact

@@ -88,6 +88,40 @@ struct SweepOptions {
   const std::atomic<bool>* interrupt = nullptr;
 };
 
+/// Makes `dir` ready for a sweep (or another study of sweep points, as
+/// bearing): checks `options` (--jobs), applies the output rule (new, empty
+/// or the command's own; `force` as --force) and marks `dir` as `command`'s,
+/// listing `entries`; creates dir/runs/ and removes what a killed sweep left
+/// there. Throws InputError.
+void prepare_sweep(const std::filesystem::path& dir, const SweepOptions& options, bool force,
+                   std::string_view command = "sweep", const std::vector<std::string>& entries = {"runs", "sweep.csv"});
+
+/// A sweep's rows before it runs: one per point, those whose run directory
+/// holds their run read back (read_row), and the points still to run.
+struct SweepStart {
+  std::vector<SweepRow> rows;
+  std::vector<std::size_t> todo;
+};
+[[nodiscard]] SweepStart resume_sweep(const SweepPlan& plan, const std::filesystem::path& dir);
+
+/// How a sweep ended.
+struct SweepOutcome {
+  std::vector<SweepRow> rows;  ///< every point's, in order (sweep.csv's)
+  std::size_t resumed = 0;     ///< read back, not run
+  std::size_t run = 0;         ///< run this time (interrupted ones included)
+  std::size_t batched = 0;     ///< of those, run in SIMD batches
+};
+
+/// Puts the rows run (run_sweep's, from any rank, in any order) in their
+/// places among `start`'s and writes dir/sweep.csv.
+[[nodiscard]] SweepOutcome finish_sweep(const SweepPlan& plan, const std::filesystem::path& dir, SweepStart start,
+                                        const std::vector<SweepRow>& done);
+
+/// All of `barimpact sweep` on one machine: prepare_sweep, resume_sweep,
+/// run_sweep on the points left, finish_sweep.
+[[nodiscard]] SweepOutcome write_sweep(const SweepPlan& plan, const std::filesystem::path& dir,
+                                       const SweepOptions& options, bool force);
+
 /// Runs (or resumes) the points `todo` (indices into plan.points()) into
 /// `dir`/runs/<id>/ and returns their rows. `dir` must exist, with no stale
 /// staging left in runs/ by a killed sweep (remove_stale_staging).
