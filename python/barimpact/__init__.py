@@ -54,7 +54,7 @@ InputError.__module__ = "barimpact"  # tracebacks say barimpact.InputError, wher
 from .plot import RunData, load
 
 __all__ = ["Case", "Result", "InputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable", "RunData",
-           "run", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
+           "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
            "exact_example1"]
 
 
@@ -328,6 +328,18 @@ def run(case, progress=None, *, out=None, set=None, force=False, strict=False):
     raises `StrictError` after writing instead (the command's exit 4)."""
     result = _core.run(_case(case, set), progress)
     return _finish_run(result, out, force, strict, "the run")
+
+
+def check(case, *, set=None):
+    """Validate a case without running it (`barimpact check CASE [--set ...]`):
+    a dict with `steps`, `step`, `nodes`, `stable_step` and the `mass` matrix
+    it was bounded with (explicit schemes, and the implicit ones only
+    conditionally stable; else None), `stability` in words, `penalties` (per
+    penalty law: link, tau, dt_over_tau, basis such as "Z/k", resolved),
+    `estimate_seconds` (timed on `timed_steps` steps), `trouble` (the timed
+    stretch went non-finite: where; else None) and `text`, the command's
+    report. InputError (one line) for a bad case, as the command's exit 2."""
+    return _core._check(_case(case, set))
 
 
 def exact(case, *, out=None, set=None, force=False, strict=False):

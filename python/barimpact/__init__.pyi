@@ -11,7 +11,7 @@ from ._core import InputError as InputError
 from ._core import Result as Result
 
 __all__ = ["Case", "Result", "InputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable", "RunData",
-           "run", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
+           "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
            "exact_example1"]
 
 _PathArg = Union[str, os.PathLike[str]]
@@ -68,6 +68,9 @@ class HopkinsonTable(Table):
 def run(case: _CaseLike, progress: _Progress | None = None, *, out: _PathArg | None = None, set: _Overrides = None,
         force: bool = False, strict: bool = False) -> Result:
     """barimpact run CASE [--out DIR] [--set ...] [--force] [--strict]."""
+
+def check(case: _CaseLike, *, set: _Overrides = None) -> dict[str, Any]:
+    """barimpact check CASE [--set ...]: steps, stable step, penalty time constants, a time estimate."""
 
 def exact(case: _CaseLike, *, out: _PathArg | None = None, set: _Overrides = None, force: bool = False,
           strict: bool = False) -> Result:

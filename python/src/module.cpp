@@ -18,6 +18,7 @@
 #include "barimpact/case/case.hpp"
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
+#include "barimpact/run/check.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
@@ -530,6 +531,30 @@ PYBIND11_MODULE(_core, m) {
         return result;
       },
       py::arg("case"), "Tabulate the exact solution the case admits (as `barimpact exact`); InputError if none");
+
+  m.def(
+      "_check",
+      [](const Case& c) {
+        CaseCheck k;
+        {
+          py::gil_scoped_release released;
+          k = check_case(c);
+        }
+        py::list penalties;
+        for (const auto& p : k.penalties)
+          penalties.append(py::dict(py::arg("link") = p.link, py::arg("tau") = p.tau,
+                                    py::arg("dt_over_tau") = c.time.step / p.tau, py::arg("basis") = p.basis,
+                                    py::arg("resolved") = c.time.step <= p.tau));
+        return py::dict(py::arg("steps") = k.steps, py::arg("step") = c.time.step, py::arg("nodes") = k.nodes,
+                        py::arg("stable_step") = k.stable_step ? py::cast(*k.stable_step) : py::none(),
+                        py::arg("mass") = k.stable_step ? py::cast(k.mass) : py::none(),
+                        py::arg("stability") = k.stability, py::arg("penalties") = penalties,
+                        py::arg("timed_steps") = k.timed_steps, py::arg("timed_seconds") = k.timed_seconds,
+                        py::arg("estimate_seconds") = k.estimate_seconds,
+                        py::arg("trouble") = k.trouble.empty() ? py::none() : py::cast(k.trouble),
+                        py::arg("text") = check_text(c, k));
+      },
+      py::arg("case"), "check_case and check_text (run/check.hpp); use barimpact.check");
 
   m.def(
       "_converge",

@@ -448,3 +448,30 @@ def test_stubtest_finds_the_stubs_true_to_the_module(tmp_path):
                         "--mypy-config-file", str(tmp_path / "mypy.ini")], capture_output=True, text=True, env=env,
                        cwd=tmp_path, timeout=600)
     assert p.returncode == 0, p.stdout + p.stderr
+
+
+# --- check -------------------------------------------------------------------------------
+
+def test_check_reports_what_the_command_prints():
+    sets = {"obstacle.stiffness": 1e4, "time.step": 0.001}
+    k = barimpact.check(EXAMPLES / "paper-example1.toml", set=sets)
+    assert k["steps"] == 4000 and k["nodes"] == 101 and k["stable_step"] is None
+    [p] = k["penalties"]
+    # Z = sqrt(rho a) = 1, k = 1e4: tau = 1e-4, ten times below the step.
+    assert p["link"] == "obstacle" and p["basis"] == "Z/k" and p["tau"] == pytest.approx(1e-4, rel=1e-15)
+    assert p["dt_over_tau"] == pytest.approx(10.0) and not p["resolved"]
+    assert k["timed_steps"] == 4000 and k["estimate_seconds"] > 0 and k["trouble"] is None
+    out = subprocess.run([CLI, "check", str(EXAMPLES / "paper-example1.toml"), "--set", "obstacle.stiffness=1e4",
+                          "--set", "time.step=0.001"], capture_output=True, text=True, check=True).stdout
+    # The same report but for the measured time.
+    drop_time = lambda text: [line for line in text.splitlines() if not line.startswith("time estimate")]
+    assert drop_time(out)[1:] == drop_time(k["text"])
+
+
+def test_check_gives_the_explicit_schemes_stable_step_and_refuses_like_the_command():
+    k = barimpact.check(EXAMPLES / "paper-example1-rigid.toml",
+                        set={"time.scheme": "central-difference", "time.step": 0.005})
+    assert k["stable_step"] == pytest.approx(0.01) and k["mass"] == "lumped"
+    with pytest.raises(barimpact.InputError) as e:
+        barimpact.check(EXAMPLES / "paper-example1.toml", set={"time.step": 0})
+    assert str(e.value) == cli_error("check", str(EXAMPLES / "paper-example1.toml"), "--set", "time.step=0")
