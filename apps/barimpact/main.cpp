@@ -45,6 +45,7 @@
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
+#include "barimpact/study/executor.hpp"
 #include "barimpact/study/sweep.hpp"
 
 #ifdef BARIMPACT_HAVE_MPI
@@ -162,7 +163,11 @@ std::filesystem::path python_package_dir() {
   std::error_code ec;
   const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (ec) return {};
-  for (const auto& dir : {exe.parent_path() / "python", exe.parent_path() / BARIMPACT_PYTHON_FROM_BIN})
+  // Debian's pip names the same place dist-packages (and puts bin/ under <prefix>/local).
+  std::string dist = BARIMPACT_PYTHON_FROM_BIN;
+  if (const auto at = dist.rfind("site-packages"); at != std::string::npos) dist.replace(at, 13, "dist-packages");
+  for (const auto& dir :
+       {exe.parent_path() / "python", exe.parent_path() / BARIMPACT_PYTHON_FROM_BIN, exe.parent_path() / dist})
     if (std::filesystem::is_regular_file(dir / "barimpact" / "__init__.py", ec)) return dir.lexically_normal();
   return {};
 }
@@ -374,6 +379,9 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
     }
   } finalize{distributed};
 #endif
+  // Checked on every rank: a refusal on rank 0 alone would leave the others at its barrier.
+  barimpact::check_jobs(o.jobs);
+  if (o.batch) (void)barimpact::simd_path();
   const auto plan = barimpact::SweepPlan::from_file(sweep_path);
   const std::filesystem::path dir(out_dir);
   barimpact::SweepOutcome outcome;
@@ -530,14 +538,12 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", [] {
     std::vector<std::string_view> paths;
     for (auto p : barimpact::supported_simd_paths()) paths.push_back(barimpact::to_string(p));
-    std::string batches;
     try {
-      batches = std::string(barimpact::to_string(barimpact::simd_path()));
+      return fmt::format("barimpact 0.1.0\nbatch kernels: {} (this processor runs: {}; BARIMPACT_SIMD forces one)",
+                         barimpact::to_string(barimpact::simd_path()), fmt::join(paths, ", "));
     } catch (const barimpact::InputError& e) {
-      batches = e.what();
+      return fmt::format("barimpact 0.1.0\nbatch kernels: {}", e.what());
     }
-    return fmt::format("barimpact 0.1.0\nbatch kernels: {} (this processor runs: {}; BARIMPACT_SIMD forces one)",
-                       batches, fmt::join(paths, ", "));
   });
 
   std::string case_path, out_dir;
@@ -663,7 +669,6 @@ int main(int argc, char** argv) {
 
   install_signal_handlers();
   try {
-    (void)barimpact::simd_path();  // a bad BARIMPACT_SIMD is bad input, before anything is written
     if (run->parsed()) return run_command(case_path, out_dir, sets, false, run_flags);
     if (check->parsed()) return check_command(check_case, check_sets);
     if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true, exact_flags);

@@ -507,13 +507,18 @@ def plot(source, out=None, *, force=False, formats=("png", "svg")):
     if not isinstance(source, (str, os.PathLike)):
         return _figures.plot(source, out, formats)
     run_dir = _Path(os.fspath(source))
-    if not (run_dir / "history.csv").is_file():
-        raise InputError(f"plot: {os.fspath(source)} holds no history.csv (give a directory written by barimpact run)")
+    sweep = not (run_dir / "history.csv").is_file() and (run_dir / "sweep.csv").is_file()
+    if not sweep and not (run_dir / "history.csv").is_file():
+        raise InputError(f"plot: {os.fspath(source)} holds no history.csv or sweep.csv "
+                         "(give a directory written by barimpact run or sweep)")
     target = run_dir / "figures" if out is None else _Path(os.fspath(out))
     ours = out is None and _core._written_by_barimpact(run_dir)  # asked before figures/ is there
     _core._prepare_output_directory(target, "plot", [f"{f}.{e}" for f in _FIGURES for e in formats], bool(force))
     if ours:
         _core._mark_entries(run_dir, ["figures"])  # DIR/figures belongs to its run directory
+    if sweep:  # each sweep.csv output against the swept keys, as `barimpact plot SWEEP_DIR`
+        from .convergence import plot_sweep
+        return plot_sweep(run_dir, target)
     return _figures.plot(load(run_dir), target, formats)
 
 

@@ -54,7 +54,8 @@ def _study_text(directory):
 def _abscissa(rows, text):
     """(column, name, quantity, refined): what the errors are drawn against:
     the varied key's value, else h when the levels refine it, else dt."""
-    vary = re.search(r"--vary[ =](\S+?)=", text)
+    # The command's `--vary key=...`, or the Python call's `vary='key=...'` / `vary=('key', ...)`.
+    vary = re.search(r"--vary[ =]'?([^\s=']+)=", text) or re.search(r"vary=\(?['\"]([^'\"=]+)['\"=]", text)
     if any(r["value"] for r in rows) and all(_float(r["value"]) is not None for r in rows if r["value"]):
         key = vary.group(1) if vary else "varied value"
         return "value", key, key_quantity(key), False

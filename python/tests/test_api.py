@@ -475,3 +475,12 @@ def test_check_gives_the_explicit_schemes_stable_step_and_refuses_like_the_comma
     with pytest.raises(barimpact.InputError) as e:
         barimpact.check(EXAMPLES / "paper-example1.toml", set={"time.step": 0})
     assert str(e.value) == cli_error("check", str(EXAMPLES / "paper-example1.toml"), "--set", "time.step=0")
+
+
+def test_plot_takes_a_sweep_directory_as_the_command_does(tmp_path):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", barimpact.HealthWarning)
+        barimpact.sweep(EXAMPLES / "sweeps" / "penalty-to-rigid.toml", out=tmp_path / "sweep")
+    written = barimpact.plot(tmp_path / "sweep")
+    assert written and all(p.exists() for p in map(Path, written))
+    assert (tmp_path / "sweep" / "figures" / "rebound_velocity.png").is_file()

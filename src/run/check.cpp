@@ -70,9 +70,11 @@ std::string check_text(const Case& c, const CaseCheck& k) {
   std::string out = fmt::format("scheme: {}\n", c.time.scheme);
   out += fmt::format("steps: {} (dt = {:.4g} to t = {:.4g}, {} nodes)\n", k.steps, c.time.step,
                      static_cast<double>(k.steps) * c.time.step, k.nodes);
-  if (k.stable_step)
+  if (k.stable_step && std::isfinite(*k.stable_step))
     out += fmt::format("stable step: {:.4g} ({} mass); dt is {:.3g} of it\n", *k.stable_step, k.mass,
                        c.time.step / *k.stable_step);
+  else if (k.stable_step)
+    out += fmt::format("stable step: none (nothing stiff in the line, {} mass)\n", k.mass);
   out += fmt::format("stability: {}\n", k.stability);
   for (const auto& p : k.penalties)
     out += fmt::format("penalty: tau = {:.4g}, dt/tau = {:.3g}{} ({}, {})\n", p.tau, c.time.step / p.tau,

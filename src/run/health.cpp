@@ -68,6 +68,8 @@ std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c) {
     }
     if (z.size() == 2)  // two bars: their impedances in series
       out.push_back({l.name, z[0] * z[1] / (z[0] + z[1]) / k, "Z1 Z2/((Z1 + Z2) k)"});
+    else if (z.size() == 1 && !mass.empty() && std::sqrt(mass[0] / k) < z[0] / k)  // a light mass on a bar
+      out.push_back({l.name, std::sqrt(mass[0] / k), "sqrt(m/k)"});
     else if (z.size() == 1)
       out.push_back({l.name, z[0] / k, "Z/k"});
     else if (mass.size() == 2)

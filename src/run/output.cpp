@@ -345,9 +345,8 @@ std::string signed_number(double v) {
 }  // namespace
 
 std::string summary_text(const Case& c, const Summary& s) {
-  std::string out =
-      fmt::format("{}: {} steps of dt = {:.6g} on {} elements, t = 0 .. {:.6g}{}\n", s.method, s.steps_done,
-                  c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
+  std::string out = fmt::format("{}: {} steps of dt = {:.6g} on {} elements, t = 0 .. {:.6g}{}\n", s.method,
+                                s.steps_done, c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
   // The near end's obstacle, when it has one (a line's ends may be free, held or loaded).
   const bool obstacle = std::find(s.link_names.begin(), s.link_names.end(), "near_end") != s.link_names.end() ||
                         (c.single_bar && c.obstacle.kind != ObstacleKind::none);
@@ -356,9 +355,9 @@ std::string summary_text(const Case& c, const Summary& s) {
   for (std::size_t i = 0; i < std::min(shown, s.contacts.size()); ++i) {
     const auto& ci = s.contacts[i];
     if (ci.closed)
-      out += fmt::format(
-          "  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {} (end {})\n", i + 1,
-          ci.start, ci.end, ci.max_reaction, signed_number(ci.rebound_velocity), signed_number(ci.exit_velocity));
+      out += fmt::format("  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {} (end {})\n",
+                         i + 1, ci.start, ci.end, ci.max_reaction, signed_number(ci.rebound_velocity),
+                         signed_number(ci.exit_velocity));
     else
       out += fmt::format("  contact {}: t = {:.6g} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
                          ci.max_reaction);
@@ -398,9 +397,9 @@ std::string summary_text(const Case& c, const Summary& s) {
   if (std::isfinite(s.energy_initial))
     out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g}{}\n", s.energy_initial,
                        s.energy_final, s.energy_error_max,
-                       s.energy_initial != 0.0
-                           ? fmt::format(" ({:.2g}% of initial)", 100.0 * s.energy_error_max / std::abs(s.energy_initial))
-                           : std::string());
+                       s.energy_initial != 0.0 ? fmt::format(" ({:.2g}% of initial)",
+                                                             100.0 * s.energy_error_max / std::abs(s.energy_initial))
+                                               : std::string());
   else
     out += "  energy: not known for this solution\n";
   out += fmt::format("  run time {:.3f} s\n", s.run_seconds);

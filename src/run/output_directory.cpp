@@ -231,14 +231,24 @@ MadeParents::MadeParents(const fs::path& target) {
   for (fs::path p = resolved(target).parent_path(); !fs::exists(p, ec) && p != p.root_path(); p = p.parent_path())
     made_.push_back(p);
   std::reverse(made_.begin(), made_.end());
-  for (const auto& p : made_)
-    if (!fs::create_directory(p, ec) && ec)
-      throw InputError(fmt::format("--out {}: cannot create {} ({})", target.string(), p.string(), ec.message()));
+  for (std::size_t i = 0; i < made_.size(); ++i)
+    if (!fs::create_directory(made_[i], ec) && ec) {
+      const std::string why =
+          fmt::format("--out {}: cannot create {} ({})", target.string(), made_[i].string(), ec.message());
+      made_.resize(i);
+      remove_made();  // a constructor that throws has no destructor run
+      throw InputError(why);
+    }
 }
 
 MadeParents::~MadeParents() {
+  remove_made();
+}
+
+void MadeParents::remove_made() {
   std::error_code ec;
   for (auto p = made_.rbegin(); p != made_.rend(); ++p) fs::remove(*p, ec);  // empty ones only
+  made_.clear();
 }
 
 void prepare_output_directory(const fs::path& target, std::string_view command, const std::vector<std::string>& entries,

@@ -6,8 +6,8 @@ so that a command that needs a file the README never made fails here.
     python3 tests/readme/run_readme.py README.md EXAMPLES_DIR BUILD_DIR
 
 A command is a line of an indented code block whose first word runs
-something (barimpact, python3, cmake, mkdir, cd, an assignment before a
-command); `make` lines (the build itself) and sample output are not run.
+something (barimpact, python3, cmake, mkdir, cd or a subshell's cd, an
+assignment before a command); `make` lines (the build itself) and sample output are not run.
 """
 import os
 import re
@@ -18,7 +18,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-COMMAND = re.compile(r"^(\S*barimpact|mkdir|cmake|cd|\S*python3|[A-Z_]+=\S+|\S+/bin/\S+)(\s|$)")
+COMMAND = re.compile(r"^(\(?cd|\S*barimpact|mkdir|cmake|\S*python3|[A-Z_]+=\S+|\S+/bin/\S+)(\s|$)")
 
 
 def readme_commands(text):

@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "barimpact/schemes/scheme.hpp"
 #include "../support/run_case.hpp"
+#include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact {
 namespace {
@@ -83,6 +83,43 @@ scheme = "central-difference"
   ASSERT_EQ(p.size(), 2U);
   EXPECT_NEAR(p[0].tau, std::sqrt(3.0 / 12.0), 1e-15);              // the near end: the anvil alone
   EXPECT_NEAR(p[1].tau, std::sqrt(3.0 * 6.0 / 9.0 / 50.0), 1e-15);  // m1 m2/(m1 + m2) = 2
+}
+
+TEST(Check, ALightMassOnABarTakesTheSmallerTimeConstant) {
+  // Bar Z = 1; mass m against it through k = 100: Z/k = 0.01, sqrt(m/k) =
+  // 0.001 for m = 1e-4 (the mass rings faster than the bar answers).
+  const std::string line = R"(
+[[body]]
+name = "bar"
+length = 1.0
+elements = 10
+[[body]]
+name = "tip"
+kind = "mass"
+mass = MASS
+velocity = -1
+[[joint]]
+between = ["bar", "tip"]
+law = "elastic"
+stiffness = 100.0
+[time]
+end = 1.0
+step = 1e-4
+scheme = "central-difference"
+)";
+  auto with_mass = [&](const char* m) {
+    std::string text = line;
+    text.replace(text.find("MASS"), 4, m);
+    return penalty_time_constants(case_from(text));
+  };
+  const auto light = with_mass("1e-4");
+  ASSERT_EQ(light.size(), 1U);
+  EXPECT_NEAR(light[0].tau, 1e-3, 1e-15);
+  EXPECT_EQ(light[0].basis, "sqrt(m/k)");
+  const auto heavy = with_mass("10.0");  // sqrt(m/k) = 0.32 > Z/k = 0.01
+  ASSERT_EQ(heavy.size(), 1U);
+  EXPECT_NEAR(heavy[0].tau, 0.01, 1e-15);
+  EXPECT_EQ(heavy[0].basis, "Z/k");
 }
 
 TEST(Check, ReportsTheExplicitSchemesStableStepWithItsMass) {

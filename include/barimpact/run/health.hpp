@@ -36,8 +36,9 @@ namespace barimpact {
 /// A penalty law's own time constant: how long its spring takes to stop
 /// what it meets. tau = Z/k against a bar (Z = rho c A), Z1 Z2/((Z1 + Z2) k)
 /// between two bars (their impedances in series), sqrt(m/k) against a point
-/// mass (m1 m2/(m1 + m2) between two). A step above tau does not resolve the
-/// contact's force.
+/// mass (m1 m2/(m1 + m2) between two), the smaller of Z/k and sqrt(m/k)
+/// between a bar and a mass (m Z p^2 + k m p + k Z = 0 has roots near both).
+/// A step above tau does not resolve the contact's force.
 struct PenaltyTimeConstant {
   std::string link;   ///< "obstacle" on a single bar, else the link's name (near_end, a joint, far_end)
   double tau;         ///< the time constant

@@ -72,6 +72,7 @@ class MadeParents {
   void keep() { made_.clear(); }
 
  private:
+  void remove_made();
   std::vector<std::filesystem::path> made_;  // outermost first
 };
 
