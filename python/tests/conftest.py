@@ -1,8 +1,14 @@
 import os
+import signal
 import subprocess
 from pathlib import Path
 
 import pytest
+
+# Python leaves SIGINT ignored when it starts with it ignored (a job started
+# in the background by a non-interactive shell, as CI may be): the Ctrl-C
+# tests need its usual KeyboardInterrupt.
+signal.signal(signal.SIGINT, signal.default_int_handler)
 
 ROOT = Path(os.environ.get("BARIMPACT_ROOT", Path(__file__).resolve().parents[2]))
 CLI = os.environ.get("BARIMPACT_CLI", str(ROOT / "build" / "release" / "barimpact"))
