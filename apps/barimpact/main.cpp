@@ -363,9 +363,9 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
 
 int sweep_command(const std::string& sweep_path, const std::string& out_dir, const barimpact::SweepOptions& o,
                   const WriteFlags& flags) {
-  int rank = 0, size = 1;
+  int size = 1;
 #ifdef BARIMPACT_HAVE_MPI
-  int provided = 0;
+  int rank = 0, provided = 0;
   const bool distributed = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr;
   if (distributed) {
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
