@@ -19,12 +19,12 @@ namespace {
 // GCC's generic vectors of `width` doubles: one AVX2 register, or two SSE2 ones.
 typedef double lanes __attribute__((vector_size(8 * width)));
 
-inline lanes load_lanes(const double* p) {
+[[maybe_unused]] inline lanes load_lanes(const double* p) {
   lanes v;
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
-inline void store_lanes(double* p, lanes v) {
+[[maybe_unused]] inline void store_lanes(double* p, lanes v) {
   __builtin_memcpy(p, &v, sizeof v);
 }
 
