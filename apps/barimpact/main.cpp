@@ -493,10 +493,6 @@ int check_command(const std::string& case_path, const std::vector<std::string>& 
 
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
-  if (python_package_dir().empty())
-    throw barimpact::InputError(
-        "plot: the Python package barimpact is not installed beside this command (python/ in a build tree, " +
-        std::string(BARIMPACT_PYTHON_FROM_BIN) + " from its bin/)");
   // The figures' directory follows the output rule too, and is marked as
   // barimpact's before the Python package fills it.
   const std::filesystem::path target =
@@ -514,6 +510,11 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   // before figures/ is there (a folder the marker does not list makes the
   // directory someone else's).
   const bool ours = figures.empty() && barimpact::written_by_barimpact(run_dir);
+  (void)barimpact::check_output_directory(target, force);  // the output rule first, then what plotting needs
+  if (python_package_dir().empty())
+    throw barimpact::InputError(
+        "plot: the Python package barimpact is not installed beside this command (python/ in a build tree, " +
+        std::string(BARIMPACT_PYTHON_FROM_BIN) + " from its bin/)");
   barimpact::prepare_output_directory(target, "plot", names, force);
   if (ours) barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
   setenv("PYTHONPATH", python_path().c_str(), 1);
