@@ -9,7 +9,8 @@ PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libf
             python3 python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest \
             libopenmpi-dev openmpi-bin python3-scipy \
             clang-14 libclang-rt-14-dev python3-hypothesis \
-            python3-venv python3-pip python3-setuptools python3-wheel python3-build python3-pandas python3-mypy
+            python3-venv python3-pip python3-setuptools python3-wheel python3-build python3-pandas python3-mypy \
+            libhdf5-dev python3-h5py
 PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2

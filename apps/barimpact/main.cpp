@@ -497,10 +497,15 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   // barimpact's before the Python package fills it.
   const std::filesystem::path target =
       figures.empty() ? std::filesystem::path(run_dir) / "figures" : std::filesystem::path(figures);
-  if (!std::filesystem::is_regular_file(std::filesystem::path(run_dir) / "history.csv") &&
-      !std::filesystem::is_regular_file(std::filesystem::path(run_dir) / "sweep.csv"))
-    throw barimpact::InputError(fmt::format(
-        "plot: {} holds no history.csv or sweep.csv (give a directory written by barimpact run or sweep)", run_dir));
+  const auto holds = [&](std::string_view name) {
+    return std::filesystem::is_regular_file(std::filesystem::path(run_dir) / name);
+  };
+  if (!holds(barimpact::history_file(barimpact::OutputFormat::csv)) &&
+      !holds(barimpact::history_file(barimpact::OutputFormat::hdf5)) && !holds("sweep.csv"))
+    throw barimpact::InputError(
+        fmt::format("plot: {} holds no history.csv, results.h5 or sweep.csv (give a directory written by barimpact "
+                    "run or sweep)",
+                    run_dir));
   std::vector<std::string> names;
   for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces",
                              "gauges", "masses", "plastic_map", "plastic_snapshots"})
@@ -549,7 +554,8 @@ int main(int argc, char** argv) {
 
   std::string case_path, out_dir;
   std::vector<std::string> sets;
-  auto* run = app.add_subcommand("run", "Run one case and write history.csv, fields.csv, case.toml, summary.json");
+  auto* run = app.add_subcommand(
+      "run", "Run one case and write history.csv, fields.csv (or results.h5: output.format), case.toml, summary.json");
   run->add_option("case", case_path, "Case file (TOML)")->required();
   WriteFlags run_flags, exact_flags, sweep_flags;
   run->add_option("--out", out_dir, "Output directory: a new or empty one, or one barimpact wrote (replaced)")

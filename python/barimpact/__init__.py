@@ -322,10 +322,11 @@ def run(case, progress=None, *, out=None, set=None, force=False, strict=False):
     released while it runs; Ctrl-C stops it, raising KeyboardInterrupt.
     `progress`, if given, is called about twice a second with a dict (step,
     steps, t, t_end, elapsed); returning False stops the run (the result is
-    then marked incomplete). With `out`, writes history.csv, fields.csv,
-    case.toml and summary.json there by the command's output rule (`force` as
-    --force). The health checks' warnings are `HealthWarning`s; strict=True
-    raises `StrictError` after writing instead (the command's exit 4)."""
+    then marked incomplete). With `out`, writes history.csv, fields.csv
+    (or results.h5, when the case says `[output] format = "hdf5"`), case.toml
+    and summary.json there by the command's output rule (`force` as --force).
+    The health checks' warnings are `HealthWarning`s; strict=True raises
+    `StrictError` after writing instead (the command's exit 4)."""
     result = _core.run(_case(case, set), progress)
     return _finish_run(result, out, force, strict, "the run")
 
@@ -507,9 +508,10 @@ def plot(source, out=None, *, force=False, formats=("png", "svg")):
     if not isinstance(source, (str, os.PathLike)):
         return _figures.plot(source, out, formats)
     run_dir = _Path(os.fspath(source))
-    sweep = not (run_dir / "history.csv").is_file() and (run_dir / "sweep.csv").is_file()
-    if not sweep and not (run_dir / "history.csv").is_file():
-        raise InputError(f"plot: {os.fspath(source)} holds no history.csv or sweep.csv "
+    run = _figures.is_run_directory(run_dir)
+    sweep = not run and (run_dir / "sweep.csv").is_file()
+    if not run and not sweep:
+        raise InputError(f"plot: {os.fspath(source)} holds no history.csv, results.h5 or sweep.csv "
                          "(give a directory written by barimpact run or sweep)")
     target = run_dir / "figures" if out is None else _Path(os.fspath(out))
     ours = out is None and _core._written_by_barimpact(run_dir)  # asked before figures/ is there

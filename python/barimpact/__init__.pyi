@@ -102,8 +102,9 @@ def plot(source: _PathArg | Result | RunData, out: _PathArg | None = None, *, fo
     """barimpact plot DIR [--out FIGURES] [--force], or the figures of a Result into `out`."""
 
 def load(run_dir: _PathArg, with_fields: bool = True) -> RunData:
-    """A directory written by `barimpact run`, read back for the figures;
-    with_fields=False leaves fields.csv unread."""
+    """A directory written by `barimpact run`, read back for the figures:
+    history.csv and fields.csv, or results.h5 (`[output] format = "hdf5"`,
+    read with h5py), the same RunData; with_fields=False leaves the fields unread."""
 
 def read_table(path: _PathArg) -> Table:
     """convergence.csv, sweep.csv, bearing.csv or hopkinson.csv (a file, or the directory holding it)."""

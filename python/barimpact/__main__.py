@@ -1,13 +1,13 @@
 """python3 -m barimpact plot DIR [DIR ...] [--out FIGURES] (what `barimpact plot` runs).
 
-DIR is a run directory (history.csv: the run's figures) or a sweep
+DIR is a run directory (history.csv or results.h5: the run's figures) or a sweep
 directory (sweep.csv: each output against the swept keys, and the runs'
 U(t) and R(t) overlaid); several run directories draw one comparison."""
 import argparse
 import sys
 from pathlib import Path
 
-from .plot import compare, load, mark_figures, plot
+from .plot import compare, is_run_directory, load, mark_figures, plot
 
 
 def _plot(dirs, out):
@@ -18,13 +18,14 @@ def _plot(dirs, out):
         return compare([load(d) for d in dirs], out)
     d = Path(dirs[0])
     target = Path(out) if out else d / "figures"
-    if (d / "history.csv").is_file():
+    if is_run_directory(d):
         written = plot(load(d), target)
     elif (d / "sweep.csv").is_file():
         from .convergence import plot_sweep
         written = plot_sweep(d, target)
     else:
-        raise ValueError(f"{d}: no history.csv or sweep.csv (not a directory written by barimpact run or sweep)")
+        raise ValueError(f"{d}: no history.csv, results.h5 or sweep.csv (not a directory written by barimpact run or "
+                         "sweep)")
     if not out:
         mark_figures(d)
     return written
@@ -59,7 +60,7 @@ def main(argv=None):
         return 0
     try:
         written = _plot(args.dir, args.out)
-    except (OSError, ValueError) as e:
+    except (OSError, ValueError, ImportError) as e:  # ImportError: results.h5 without h5py
         print(f"barimpact: error: plot: {e}", file=sys.stderr)
         return 2
     for path in written:

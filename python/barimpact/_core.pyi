@@ -87,7 +87,8 @@ class Result:
     @property
     def case(self) -> Case: ...
     def write(self, dir: str, *, force: bool = False) -> None:
-        """history.csv, fields.csv, case.toml, summary.json, as `barimpact run --out dir`."""
+        """history.csv, fields.csv (or results.h5: output.format), case.toml, summary.json, as
+        `barimpact run --out dir`."""
     # Added by barimpact/__init__.py:
     @property
     def summary(self) -> dict[str, Any]:

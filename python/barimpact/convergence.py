@@ -20,7 +20,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.ticker import NullLocator
 
-from .plot import Units, _figure, _save, compare, key_quantity, legend_labels, load, mark_written, units_of
+from .plot import (Units, _figure, _save, compare, is_run_directory, key_quantity, legend_labels, load, mark_written,
+                   units_of)
 
 
 def _float(text):
@@ -290,7 +291,7 @@ def _dropped(rows, complete):
 
 def _run_overlays(d, out, keys, complete, units, formats):
     """U(t) and R(t) of every complete run in one figure each, named by the swept keys that differ."""
-    runs = [d / "runs" / r["id"] for r in complete if (d / "runs" / r["id"] / "history.csv").is_file()]
+    runs = [d / "runs" / r["id"] for r in complete if is_run_directory(d / "runs" / r["id"])]
     if not 2 <= len(runs) <= RUNS_OVERLAID:
         return []
     by_id = {r["id"]: r for r in complete}

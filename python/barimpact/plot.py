@@ -1,5 +1,5 @@
 """Figures of a run (matplotlib, PNG and SVG), from a `Result` or from a
-directory written by `barimpact run`:
+directory written by `barimpact run` (CSV files, or results.h5 read with h5py):
 
 - displacement: U(t), with the case's exact solution when it admits one
   (`barimpact.exact`), and the rigid-obstacle limit for the paper's Example 1
@@ -176,25 +176,61 @@ def _read_fields(path):
     return f[:nodes, col["x"]], t[::nodes][:count], fields, body
 
 
-def load(run_dir, with_fields=True):
-    """Read a directory written by `barimpact run` (or `barimpact exact`);
-    with_fields=False leaves fields.csv unread (what a comparison of runs needs)."""
+def is_run_directory(run_dir):
+    """True when `run_dir` holds a run's history: history.csv, or results.h5
+    (a case with `[output] format = "hdf5"`)."""
     d = Path(run_dir)
-    if not (d / "history.csv").is_file():
-        raise ValueError(f"{run_dir}: no history.csv (not a directory written by barimpact run)")
-    with open(d / "history.csv") as stream:
-        names = stream.readline().strip().split(",")
-    h = read_numbers(d / "history.csv")
-    if h.shape[1] != len(names):
-        h = np.empty((0, len(names)))
-    history = {name: h[:, i] for i, name in enumerate(names)}
-    x = field_t = u = sigma = np.empty(0)
-    body = eps_p = None
-    if with_fields and (d / "fields.csv").is_file():
-        x, field_t, fields, body = _read_fields(d / "fields.csv")
-        if fields:
-            u, sigma, eps_p = fields["u"], fields["sigma"], fields.get("eps_p")
+    return (d / "history.csv").is_file() or (d / "results.h5").is_file()
+
+
+def _h5py(path):
+    try:
+        import h5py
+    except ImportError:
+        raise ImportError(f"{path}: reading it needs h5py, which is not installed here (Debian: apt-get install "
+                          "python3-h5py; elsewhere: pip install h5py)") from None
+    return h5py
+
+
+def _read_results_h5(path, with_fields):
+    """results.h5 as (history, (x, field_t, {column: (snapshots, nodes) array}, body)): what
+    history.csv and fields.csv give, the same doubles (the file's layout: barimpact/run/results_h5.hpp)."""
+    with _h5py(path).File(path, "r") as f:
+        g = f["history"]
+        history = {str(name): g[str(name)][()] for name in g.attrs["columns"]}
+        if not with_fields or "fields" not in f or not f["fields/t"].size:
+            return history, (np.empty(0), np.empty(0), {}, None)
+        g = f["fields"]
+        fields = {str(n): g[str(n)][()] for n in g.attrs["columns"] if str(n) not in ("t", "x", "body")}
+        body = np.array([str(n) for n in g["body"].attrs["names"]])[g["body"][()]]
+        return history, (g["x"][()], g["t"][()], fields, body)
+
+
+def load(run_dir, with_fields=True):
+    """Read a directory written by `barimpact run` (or `barimpact exact`):
+    history.csv and fields.csv, or results.h5 when its case says `[output]
+    format = "hdf5"` (read with h5py), the same RunData either way.
+    with_fields=False leaves the fields unread (what a comparison of runs needs)."""
+    d = Path(run_dir)
+    if not is_run_directory(d):
+        raise ValueError(f"{run_dir}: no history.csv or results.h5 (not a directory written by barimpact run)")
     case = tomllib.loads((d / "case.toml").read_text())
+    if case.get("output", {}).get("format") == "hdf5":  # --force may have left the other format beside it
+        history, (x, field_t, fields, body) = _read_results_h5(d / "results.h5", with_fields)
+    else:
+        with open(d / "history.csv") as stream:
+            names = stream.readline().strip().split(",")
+        h = read_numbers(d / "history.csv")
+        if h.shape[1] != len(names):
+            h = np.empty((0, len(names)))
+        history = {name: h[:, i] for i, name in enumerate(names)}
+        x, field_t, fields, body = np.empty(0), np.empty(0), {}, None
+        if with_fields and (d / "fields.csv").is_file():
+            x, field_t, fields, body = _read_fields(d / "fields.csv")
+    u = sigma = np.empty(0)
+    eps_p = None
+    if fields:
+        u, sigma, eps_p = fields["u"], fields["sigma"], fields.get("eps_p")
     summary = json.loads((d / "summary.json").read_text())
     return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p, case_source=d / "case.toml")
 

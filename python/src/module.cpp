@@ -462,7 +462,8 @@ PYBIND11_MODULE(_core, m) {
             out.commit(p.c, p.r);
           },
           py::arg("dir"), py::kw_only(), py::arg("force") = false,
-          "Write history.csv, fields.csv, case.toml, summary.json as `barimpact run --out dir` does, by the same "
+          "Write history.csv, fields.csv (or results.h5: output.format), case.toml, summary.json as `barimpact run "
+          "--out dir` does, by the same "
           "rule: a new or empty directory, or one barimpact wrote (replaced); force=True writes beside someone "
           "else's files and deletes none of them");
 

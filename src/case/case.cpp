@@ -50,7 +50,7 @@ const std::array<SectionKeys, 10>& contract() {
        {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
       {"blow", {"gauge", "ram", "pile"}},
       {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution"}},
-      {"output", {"every", "fields_at"}},
+      {"output", {"every", "fields_at", "format", "compression"}},
       {"units", {"system"}},
   }};
   return c;
@@ -487,6 +487,17 @@ void read_output(const Reader& r, Case& c) {
   if (c.step_count() / every > 100'000'000)
     r.fail("output", "every",
            fmt::format("gives {} history rows; at most 1e8 (raise output.every)", c.step_count() / every));
+  const std::string format = r.word("output", "format", "csv");
+  if (format == "csv")
+    c.output.format = OutputFormat::csv;
+  else if (format == "hdf5")
+    c.output.format = OutputFormat::hdf5;
+  else
+    r.fail("output", "format", fmt::format("must be \"csv\" or \"hdf5\" (got \"{}\")", format));
+  const long long level = r.integer("output", "compression", c.output.compression);
+  if (level < 0 || level > 9)
+    r.fail("output", "compression", fmt::format("must be a gzip level from 0 (none) to 9 (got {})", level));
+  c.output.compression = static_cast<int>(level);
 }
 
 // [units] system: how figures label the case's numbers; the solver is unit-free.
@@ -1001,6 +1012,10 @@ std::string_view to_string(FarEnd end) {
   return end == FarEnd::free ? "free" : "clamped";
 }
 
+std::string_view to_string(OutputFormat format) {
+  return format == OutputFormat::csv ? "csv" : "hdf5";
+}
+
 std::string_view to_string(BodyKind kind) {
   return kind == BodyKind::bar ? "bar" : "mass";
 }
@@ -1197,7 +1212,8 @@ std::string Case::to_toml() const {
       toml_float(time.theta), toml_float(time.restitution));
   std::string times;
   for (double t : output.fields_at) times += (times.empty() ? "" : ", ") + toml_float(t);
-  out += fmt::format("[output]\nevery = {}\nfields_at = [{}]\n\n", output.every, times);
+  out += fmt::format("[output]\nevery = {}\nfields_at = [{}]\nformat = {}\ncompression = {}\n\n", output.every, times,
+                     toml_string(std::string(to_string(output.format))), output.compression);
   out += fmt::format("[units]\nsystem = {}\n", toml_string(units));
   return out;
 }

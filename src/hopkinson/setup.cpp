@@ -10,6 +10,7 @@
 #include "../case/toml_input.hpp"
 #include "barimpact/case/case.hpp"
 #include "barimpact/model/input_error.hpp"
+#include "barimpact/run/output.hpp"
 
 namespace barimpact {
 
@@ -189,13 +190,16 @@ struct RunGauge {
   double specimen_length = 0.0, specimen_area = 0.0;
 };
 
-RunGauge read_run_gauge(const SetupReader& r, const ChannelSetup& ch, const std::string& specimen_body) {
+// Sets the channel's file: the run's history.csv, or its results.h5.
+RunGauge read_run_gauge(const SetupReader& r, ChannelSetup& ch, const std::string& specimen_body) {
   const std::string s = ch.section;
   const auto case_file = ch.run / "case.toml";
-  if (!std::filesystem::is_regular_file(case_file) || !std::filesystem::is_regular_file(ch.run / "history.csv"))
+  if (!std::filesystem::is_regular_file(case_file) ||
+      (!std::filesystem::is_regular_file(ch.run / history_file(OutputFormat::csv)) &&
+       !std::filesystem::is_regular_file(ch.run / history_file(OutputFormat::hdf5))))
     r.fail(s, "run",
-           fmt::format("= \"{}\" holds no case.toml and history.csv (give a directory written by barimpact "
-                       "run)",
+           fmt::format("= \"{}\" holds no case.toml and history.csv or results.h5 (give a directory written by "
+                       "barimpact run)",
                        ch.run.string()));
   if (specimen_body.empty()) r.fail("specimen", "body", "must name the specimen's body of the run (given a run)");
   Case c;
@@ -204,6 +208,11 @@ RunGauge read_run_gauge(const SetupReader& r, const ChannelSetup& ch, const std:
   } catch (const InputError& e) {
     r.fail(s, "run", fmt::format("= \"{}\": its case.toml does not read ({})", ch.run.string(), e.what()));
   }
+  ch.files = {ch.run / history_file(c.output.format)};
+  if (!std::filesystem::is_regular_file(ch.files.front()))
+    r.fail(s, "run",
+           fmt::format("= \"{}\" holds no {} (its case.toml says output.format = \"{}\")", ch.run.string(),
+                       history_file(c.output.format), to_string(c.output.format)));
   const auto body_index = [&](const std::string& name) {
     for (std::size_t i = 0; i < c.bodies.size(); ++i)
       if (c.bodies[i].name == name) return static_cast<long>(i);
@@ -331,14 +340,13 @@ ChannelSetup read_channel(const SetupReader& r, std::string_view s, const std::f
   if (run) {
     for (std::string_view key : {"time", "strain", "volts", "header", "sample_interval", "delimiter", "skip_rows",
                                  "gauge_factor", "excitation", "bridge", "gain", "polarity", "full_scale"})
-      if (r.has(s, key)) r.fail(s, key, "does not apply to a run's gauge (its history.csv is read as written)");
+      if (r.has(s, key)) r.fail(s, key, "does not apply to a run's gauge (its history is read as written)");
     ch.run = relative_to(base, *run);
     const auto gauge = r.word(s, "gauge");
     if (!gauge || gauge->empty()) r.fail(s, "gauge", "must name the run's gauge (given run)");
     ch.gauge = *gauge;
     ch.time_column = std::string("t");  // std::string(...): GCC 12's -Wrestrict on a literal's assignment
-    ch.strain_columns = {fmt::format("gauge.{}.strain", ch.gauge)};
-    ch.files = {ch.run / "history.csv"};
+    ch.strain_columns = {fmt::format("gauge.{}.strain", ch.gauge)};  // files: read_run_gauge, from its case
   } else {
     if (files.empty()) r.fail(s, "signal", "is missing: a CSV file (or a list of them), or run and gauge");
     if (r.has(s, "gauge")) r.fail(s, "gauge", "needs run (a barimpact run's gauge)");

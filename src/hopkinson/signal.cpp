@@ -7,8 +7,10 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <stdexcept>
 
 #include "barimpact/model/input_error.hpp"
+#include "barimpact/run/results_h5.hpp"
 
 namespace barimpact {
 
@@ -143,6 +145,39 @@ class ColumnReader {
   std::vector<std::size_t> data_index_;
 };
 
+// A run's columns from the results.h5 it wrote (history.csv goes through
+// ColumnReader), held to the same rules: finite samples, time increasing.
+FileColumns read_run_results(const ChannelSetup& ch, const std::filesystem::path& file,
+                             const std::vector<std::string>& names) {
+  HistoryColumns h;
+  try {
+    h = read_results_h5_history(file);
+  } catch (const std::runtime_error& e) {
+    throw InputError(fmt::format("{}: {}", ch.section, e.what()));
+  }
+  auto column = [&](const std::string& name, std::string_view key) {
+    const auto it = std::find(h.names.begin(), h.names.end(), name);
+    if (it == h.names.end())
+      throw InputError(fmt::format("{}: {}: {}: no column \"{}\" in /history", file.string(), ch.section, key, name));
+    std::vector<double> values = std::move(h.values[static_cast<std::size_t>(it - h.names.begin())]);
+    for (std::size_t k = 0; k < values.size(); ++k)
+      if (!std::isfinite(values[k]))
+        throw InputError(fmt::format("{}: {}: /history/{} holds {} at row {}, not a finite number", file.string(),
+                                     ch.section, name, values[k], k + 1));
+    return values;
+  };
+  FileColumns out;
+  out.t = column(ch.time_column, "time");
+  for (const auto& n : names) out.data.push_back(column(n, "strain"));
+  for (std::size_t k = 1; k < out.t.size(); ++k)
+    if (!(out.t[k] > out.t[k - 1]))
+      throw InputError(fmt::format("{}: {}: /history/{} is not increasing (t = {} after {})", file.string(), ch.section,
+                                   ch.time_column, out.t[k], out.t[k - 1]));
+  if (out.t.empty()) throw InputError(fmt::format("{}: {} holds no samples", ch.section, file.string()));
+  for (std::size_t k = 0; k < out.t.size(); ++k) out.lines.push_back(static_cast<long>(k + 1));
+  return out;
+}
+
 // A measured channel clips when 3 or more consecutive samples reach its range.
 void check_clipping(const ChannelSetup& ch, const std::filesystem::path& file, const std::string& name,
                     const FileColumns& f, const std::vector<double>& v) {
@@ -183,7 +218,8 @@ GaugeSignal read_gauge_signal(const ChannelSetup& ch) {
   for (std::size_t i = 0; i < ch.files.size(); ++i) {
     std::vector<std::string> names = ch.strain_columns;
     if (ch.files.size() > 1 && names.size() == ch.files.size()) names = {ch.strain_columns[i]};
-    auto f = ColumnReader(ch, ch.files[i], names).read();
+    auto f = !ch.run.empty() && ch.files[i].filename() == results_h5_name ? read_run_results(ch, ch.files[i], names)
+                                                                          : ColumnReader(ch, ch.files[i], names).read();
     if (ch.full_scale)
       for (std::size_t c = 0; c < names.size(); ++c) check_clipping(ch, ch.files[i], names[c], f, f.data[c]);
     if (i == 0)

@@ -1,6 +1,7 @@
 #include "barimpact/run/output.hpp"
 
 #include "barimpact/run/output_directory.hpp"
+#include "barimpact/run/results_h5.hpp"
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -96,10 +97,18 @@ void replace_text(const fs::path& path, const std::string& text) {
   fs::rename(staging, path);
 }
 
+std::string_view history_file(OutputFormat format) {
+  return format == OutputFormat::hdf5 ? results_h5_name : std::string_view("history.csv");
+}
+
 void RunDirectory::commit(const Case& c, const RunResult& result) {
   commit([&](const fs::path& dir) {
-    write_history(dir / "history.csv", result);
-    write_fields(dir / "fields.csv", result);
+    if (c.output.format == OutputFormat::hdf5) {
+      write_results_h5(dir / results_h5_name, c, result);
+    } else {
+      write_history(dir / "history.csv", result);
+      write_fields(dir / "fields.csv", result);
+    }
     write_text(dir / "case.toml", c.to_toml());
     write_text(dir / "summary.json", summary_json(c, result.summary));
   });
@@ -110,7 +119,7 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
     write(staging_);
     fs::remove(staging_ / staging_flag);
     write_output_marker(staging_, command_, directory_entries(staging_));
-  } catch (const std::system_error& e) {
+  } catch (const std::runtime_error& e) {  // std::system_error, or results.h5's errors
     throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
   }
   // The target is judged again now: it may have changed during the run.
@@ -182,8 +191,6 @@ void read_history(const fs::path& path, RunResult& result) {
   }
   while (std::getline(in, line)) {
     HistoryRow r{};
-    double* cells[] = {&r.t,          &r.U,     &r.V,      &r.R,         &r.E_kin,    &r.E_strain,
-                       &r.E_obstacle, &r.W_ext, &r.D_visc, &r.D_contact, &r.D_plastic};
     std::size_t at = 0;
     auto next = [&] {
       const std::size_t end = std::min(line.find(',', at), line.size());
@@ -191,9 +198,26 @@ void read_history(const fs::path& path, RunResult& result) {
       at = end + 1;
       return v;
     };
-    for (double* cell : cells) *cell = next();
+    for (const auto& b : budget_columns) r.*b.value = next();
     for (std::size_t i = 0; i < result.columns.size(); ++i) result.extra.push_back(next());
     result.history.push_back(r);
+  }
+}
+
+// The history as results.h5 holds it, by column: into rows as read_history gives them.
+void read_results_history(const fs::path& path, RunResult& result) {
+  const HistoryColumns h = read_results_h5_history(path);
+  const std::size_t budget = budget_columns.size();
+  if (h.names.size() < budget || !std::equal(budget_columns.begin(), budget_columns.end(), h.names.begin(),
+                                             [](const BudgetColumn& b, const std::string& n) { return b.name == n; }))
+    throw std::runtime_error("not a results.h5 history");
+  result.columns.assign(h.names.begin() + static_cast<std::ptrdiff_t>(budget), h.names.end());
+  const std::size_t rows = h.values.front().size(), n = result.columns.size();
+  result.history.assign(rows, HistoryRow{});
+  result.extra.assign(rows * n, 0.0);
+  for (std::size_t k = 0; k < rows; ++k) {
+    for (std::size_t i = 0; i < budget; ++i) result.history[k].*budget_columns[i].value = h.values[i][k];
+    for (std::size_t i = 0; i < n; ++i) result.extra[k * n + i] = h.values[budget + i][k];
   }
 }
 
@@ -240,7 +264,11 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
     s.energy_error_max = number_or_nan(j, "energy_error_max");
     s.run_seconds = number_or_nan(j, "run_seconds");
     s.warnings = j.value("warnings", std::vector<std::string>{});
-    read_history(dir / "history.csv", r);
+    // The file the case says the run wrote (--force may have left the other beside it).
+    if (Case::from_file(dir / "case.toml").output.format == OutputFormat::hdf5)
+      read_results_history(dir / results_h5_name, r);
+    else
+      read_history(dir / "history.csv", r);
     return r;
   } catch (const std::exception&) {
     return std::nullopt;  // not a run directory barimpact wrote whole: run it again

@@ -37,6 +37,17 @@ cmp -s "$work/ex1/history.csv" "$work/again/history.csv" && ok || bad "rerun dif
 "$bin" run "$examples/paper-example2.toml" --out "$work/ex1" > /dev/null && ok || bad "replace"
 grep -q 'body_force = .-1.' "$work/ex1/case.toml" && ok || bad "replaced case"
 
+# output.format = "hdf5": results.h5 for history.csv and fields.csv, listed
+# in the marker as barimpact's (a rerun replaces the directory).
+"$bin" run "$examples/paper-example1.toml" --out "$work/h5" --set output.format=hdf5 > /dev/null && ok || bad "hdf5 run"
+for f in results.h5 case.toml summary.json; do [ -s "$work/h5/$f" ] && ok || bad "hdf5 run: missing $f"; done
+for f in history.csv fields.csv; do [ ! -e "$work/h5/$f" ] && ok || bad "hdf5 run wrote $f"; done
+grep -q '"results.h5"' "$work/h5/.barimpact" && ok || bad "results.h5 not in the marker"
+grep -q '^format = "hdf5"$' "$work/h5/case.toml" && ok || bad "output.format not in case.toml"
+"$bin" run "$work/h5/case.toml" --out "$work/h5" > /dev/null && [ -s "$work/h5/results.h5" ] && ok || bad "hdf5 rerun"
+"$bin" run "$examples/paper-example1.toml" --out "$work/h5" > /dev/null && [ -s "$work/h5/history.csv" ] &&
+  [ ! -e "$work/h5/results.h5" ] && ok || bad "a csv run does not replace an hdf5 one whole"
+
 # Bad input: exit 2, one line on stderr naming the key or option, nothing written.
 expect_refused() {  # expected-substring, then the arguments
   local want=$1
@@ -58,6 +69,7 @@ expect_refused "bar.length" run "$ex1" --out "$work/refused" --set bar.length=0
 expect_refused "bar.elements" run "$ex1" --out "$work/refused" --set bar.elements=0
 expect_refused "obstacle.stiffness" run "$ex1" --out "$work/refused" --set obstacle.stiffness=-1
 expect_refused "time.step" run "$ex1" --out "$work/refused" --set time.step=0
+expect_refused 'output.format must be "csv" or "hdf5" (got "netcdf")' run "$ex1" --out "$work/refused" --set output.format=netcdf
 expect_refused "time.end" run "$ex1" --out "$work/refused" --set time.end=0.001
 expect_refused "time.alpha" run "$ex1" --out "$work/refused" --set time.alpha=0.75
 expect_refused "time.lambda" run "$ex1" --out "$work/refused" --set time.lambda=-0.5
@@ -215,6 +227,16 @@ done
 BARIMPACT_SIMD=avx9 "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/refused" > /dev/null 2> "$work/err"
 [ $? -eq 2 ] && [ ! -e "$work/refused" ] && [ "$(wc -l < "$work/err")" -eq 1 ] && grep -q "BARIMPACT_SIMD=avx9" "$work/err" && ok ||
   bad "bad BARIMPACT_SIMD: $(cat "$work/err")"
+# A sweep writing results.h5 resumes from them.
+printf 'case = "%s"\n[set]\noutput.format = "hdf5"\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0, 400.0]\n' \
+  "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/h5sweep.toml"
+"$bin" sweep "$work/h5sweep.toml" --out "$work/sweep-h5" > /dev/null && ok || bad "hdf5 sweep"
+[ -s "$work/sweep-h5/runs/0001/results.h5" ] && [ ! -e "$work/sweep-h5/runs/0001/history.csv" ] && ok || bad "hdf5 sweep run files"
+cp "$work/sweep-h5/sweep.csv" "$work/h5sweep-first.csv"
+rm -rf "$work/sweep-h5/runs/0001"
+"$bin" sweep "$work/h5sweep.toml" --out "$work/sweep-h5" > "$work/out" && ok || bad "hdf5 sweep resume"
+grep -q "3 cases: 1 run (.*), 2 resumed" "$work/out" && ok || bad "hdf5 resume counts: $(cat "$work/out")"
+cmp -s <(cut -d, -f1-12 "$work/sweep-h5/sweep.csv") <(cut -d, -f1-12 "$work/h5sweep-first.csv") && ok || bad "hdf5 resumed sweep.csv differs"
 # A mesh too large for a batch to pay is run case by case.
 printf 'case = "%s"\n[set]\nbar.elements = 300000\ntime.step = 0.0001\ntime.end = 0.0002\noutput.fields_at = []\n[[axis]]\nkey = "obstacle.stiffness"\nvalues = [100.0, 200.0]\n' \
   "$(cd "$examples" && pwd)/paper-example1.toml" > "$work/bigsweep.toml"
@@ -371,6 +393,11 @@ mkdir -p "$work/setups" && cp "$work/analyse.toml" "$work/setups/"
 abs_bin=$(cd "$(dirname "$bin")" && pwd)/$(basename "$bin")
 (cd "$work" && "$abs_bin" hopkinson setups/analyse.toml --out hk-cwd --no-plot > /dev/null 2>&1) && ok || bad "run relative to the working directory"
 cmp -s "$work/hk/hopkinson.csv" "$work/hk-cwd/hopkinson.csv" && ok || bad "the same analysis from the working directory"
+# A run that wrote results.h5 gives the same analysis.
+"$bin" run "$examples/hopkinson/shpb.toml" --out "$work/shpb-h5" --set output.format=hdf5 > /dev/null 2>&1 && ok || bad "shpb hdf5 run"
+sed 's/"shpb"/"shpb-h5"/' "$work/analyse.toml" > "$work/analyse-h5.toml"
+"$bin" hopkinson "$work/analyse-h5.toml" --out "$work/hk-h5" --no-plot > /dev/null 2>&1 && ok || bad "hopkinson of an hdf5 run"
+cmp -s "$work/hk/hopkinson.csv" "$work/hk-h5/hopkinson.csv" && ok || bad "the hdf5 run's analysis differs"
 # The same gauges as measured files: a file without a header, volts.
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "gauge.incident.strain") c = i; next } { print $1 "," $c }' "$work/shpb/history.csv" > "$work/inc.csv"
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "gauge.transmitted.strain") c = i; next } { print $1 "," $c * 1000 }' "$work/shpb/history.csv" > "$work/tr.csv"

@@ -38,6 +38,8 @@ mkdir -p "$work/user" && cd "$work/user"
 "$bin" check "$examples/paper-example1.toml" > /dev/null && ok || bad "installed check"
 "$bin" run "$examples/paper-example1.toml" --out runs/ex1 > /dev/null && ok || bad "installed run"
 "$bin" plot runs/ex1 > /dev/null && [ -s runs/ex1/figures/displacement.png ] && ok || bad "installed plot"
+"$bin" run "$examples/paper-example1.toml" --out runs/ex1-h5 --set output.format=hdf5 > /dev/null &&
+  "$bin" plot runs/ex1-h5 > /dev/null && [ -s runs/ex1-h5/figures/displacement.png ] && ok || bad "installed run and plot of results.h5"
 "$bin" exact "$examples/clamped-periodic.toml" --out runs/exact > /dev/null && ok || bad "installed exact"
 "$bin" converge "$examples/paper-example1-rigid.toml" --out runs/study --levels 2 --schemes central-difference,moreau-jean \
   > /dev/null && [ -s runs/study/convergence.png ] && ok || bad "installed converge (with its plots)"

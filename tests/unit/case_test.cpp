@@ -53,6 +53,25 @@ TEST(Case, UnitsSystemIsSIOrNoneAndIsWrittenBack) {
   EXPECT_REFUSED("[units]\nlength = \"m\"", "unknown key units.length");
 }
 
+TEST(Case, OutputFormatIsCsvOrHdf5AndIsWrittenBack) {
+  const Case plain = case_from("");
+  EXPECT_EQ(plain.output.format, OutputFormat::csv);
+  EXPECT_EQ(plain.output.compression, 1);
+  EXPECT_NE(plain.to_toml().find("[output]\nevery = 1\nfields_at = []\nformat = \"csv\"\ncompression = 1\n"),
+            std::string::npos);
+  const Case h5 = case_from("[output]\nformat = \"hdf5\"\ncompression = 0\n");
+  EXPECT_EQ(h5.output.format, OutputFormat::hdf5);
+  EXPECT_EQ(h5.output.compression, 0);
+  const Case again = Case::from_string(h5.to_toml(), {}, "again");
+  EXPECT_EQ(again.output.format, OutputFormat::hdf5);
+  EXPECT_EQ(again.output.compression, 0);
+  EXPECT_REFUSED("[output]\nformat = \"netcdf\"", "output.format", "must be \"csv\" or \"hdf5\" (got \"netcdf\")");
+  EXPECT_REFUSED("[output]\nformat = 5", "output.format", "must be a string");
+  EXPECT_REFUSED("[output]\ncompression = 10", "output.compression", "from 0 (none) to 9 (got 10)");
+  EXPECT_REFUSED("[output]\ncompression = -1", "output.compression", "(got -1)");
+  EXPECT_REFUSED("[output]\ncompression = 1.5", "output.compression", "must be an integer");
+}
+
 TEST(Case, RefusesSchemesThatDoNotFitAndNamesThoseThatDo) {
   EXPECT_REFUSED("[obstacle]\nkind = \"rigid\"", "time.scheme", "does not handle obstacle.kind = \"rigid\"",
                  "central-difference, mass-redistribution, paoli-schatzman, moreau-jean, characteristic");

@@ -8,6 +8,7 @@
 
 #include "../support/run_case.hpp"
 #include "barimpact/run/output.hpp"
+#include "barimpact/run/results_h5.hpp"
 
 namespace barimpact {
 namespace {
@@ -158,6 +159,51 @@ TEST_F(OutputDirectory, ARunDirectoryReadsBackBitForBit) {
   EXPECT_EQ(back->summary.contacts.back().end, result.summary.contacts.back().end);
   EXPECT_EQ(back->summary.warnings, result.summary.warnings);
   EXPECT_FALSE(read_run_directory(root_ / "run", "another case"));
+}
+
+// output.format = "hdf5": results.h5 for history.csv and fields.csv, the
+// marker listing it, and the history read back as written.
+TEST_F(OutputDirectory, AnHdf5RunWritesResultsH5AndReadsBackBitForBit) {
+  const auto c = testing::example("lines/saint-venant.toml", {"output.format=\"hdf5\"", "output.every=3"});
+  ASSERT_EQ(c.output.format, OutputFormat::hdf5);
+  const auto result = run(c);
+  ASSERT_FALSE(result.columns.empty());
+  RunDirectory out(root_ / "run");
+  out.commit(c, result);
+  EXPECT_EQ(directory_entries(root_ / "run"),
+            (std::vector<std::string>{".barimpact", "case.toml", "results.h5", "summary.json"}));
+  EXPECT_TRUE(written_by_barimpact(root_ / "run"));
+  EXPECT_EQ(check_output_directory(root_ / "run", false), OutputMode::replace);
+
+  const auto h = read_results_h5_history(root_ / "run" / "results.h5");
+  ASSERT_EQ(h.names.size(), budget_columns.size() + result.columns.size());
+  EXPECT_EQ(h.names.front(), "t");
+  EXPECT_EQ(h.names.back(), result.columns.back());
+  const auto back = read_run_directory(root_ / "run", c.to_toml());
+  ASSERT_TRUE(back);
+  EXPECT_EQ(back->columns, result.columns);
+  ASSERT_EQ(back->history.size(), result.history.size());
+  for (std::size_t k = 0; k < result.history.size(); ++k)
+    for (const auto& b : budget_columns) ASSERT_EQ(back->history[k].*b.value, result.history[k].*b.value) << b.name;
+  EXPECT_EQ(back->extra, result.extra);
+  EXPECT_EQ(back->summary.contacts.size(), result.summary.contacts.size());
+  // A file that is not one barimpact wrote: no run to resume.
+  touch(root_ / "run" / "results.h5", "not hdf5");
+  EXPECT_FALSE(read_run_directory(root_ / "run", c.to_toml()));
+  EXPECT_THROW((void)read_results_h5_history(root_ / "run" / "results.h5"), std::runtime_error);
+}
+
+TEST_F(OutputDirectory, AResultsFileThatCannotBeWrittenIsOneLine) {
+  const auto c =
+      testing::example("paper-example1.toml", {"output.format=\"hdf5\"", "time.end=0.1", "output.fields_at=[]"});
+  try {
+    write_results_h5(root_ / "no" / "such" / "results.h5", c, run(c));
+    FAIL() << "written";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("results.h5: cannot create it"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
 }
 
 }  // namespace

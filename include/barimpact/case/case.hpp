@@ -129,9 +129,15 @@ struct TimeData {
   double restitution = 0.0;  ///< e: Paoli-Schatzman, Moreau-Jean
 };
 
+/// How a run directory holds the history and the fields: history.csv and
+/// fields.csv, or one results.h5 (HDF5).
+enum class OutputFormat { csv, hdf5 };
+
 struct OutputData {
   int every = 1;                  ///< history row every N steps
   std::vector<double> fields_at;  ///< times of field snapshots
+  OutputFormat format = OutputFormat::csv;
+  int compression = 1;  ///< gzip level 0-9 of results.h5's fields (0: none); CSV files are not compressed
 };
 
 /// A validated case. Construct with `Case::from_file` or `Case::from_string`;
@@ -197,6 +203,7 @@ struct Case {
 [[nodiscard]] std::string toml_float(double v);
 
 [[nodiscard]] std::string_view to_string(FarEnd end);
+[[nodiscard]] std::string_view to_string(OutputFormat format);
 [[nodiscard]] std::string_view to_string(BodyKind kind);
 [[nodiscard]] std::string_view to_string(JointLaw law);
 

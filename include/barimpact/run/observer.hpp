@@ -4,11 +4,13 @@
 // run, see output.hpp).
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <functional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
@@ -35,6 +37,23 @@ struct HistoryRow {
   /// E_total: constant for an exact solution, the budget's test.
   [[nodiscard]] double total() const { return E_kin + E_strain + E_obstacle - W_ext + D_visc + D_contact + D_plastic; }
 };
+
+/// The budget: history.csv's first columns, in its order, each a member of HistoryRow.
+struct BudgetColumn {
+  std::string_view name;
+  double HistoryRow::*value;
+};
+inline constexpr std::array<BudgetColumn, 11> budget_columns{{{"t", &HistoryRow::t},
+                                                              {"U", &HistoryRow::U},
+                                                              {"V", &HistoryRow::V},
+                                                              {"R", &HistoryRow::R},
+                                                              {"E_kin", &HistoryRow::E_kin},
+                                                              {"E_strain", &HistoryRow::E_strain},
+                                                              {"E_obstacle", &HistoryRow::E_obstacle},
+                                                              {"W_ext", &HistoryRow::W_ext},
+                                                              {"D_visc", &HistoryRow::D_visc},
+                                                              {"D_contact", &HistoryRow::D_contact},
+                                                              {"D_plastic", &HistoryRow::D_plastic}}};
 
 /// Rows at steps 0, every, 2 every, ... and always at the last step.
 class HistoryRecorder final : public Observer {

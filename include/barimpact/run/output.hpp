@@ -1,8 +1,10 @@
-// The run directory: history.csv, fields.csv, case.toml, summary.json,
-// written into a hidden staging directory beside the target and renamed into
-// place only when written whole, so that no half-written result ever carries
-// the target's name. Which targets may be written, and how, is the rule of
-// output_directory.hpp: nothing barimpact did not write is ever deleted.
+// The run directory: history.csv, fields.csv, case.toml, summary.json (or,
+// with `[output] format = "hdf5"`, results.h5 for the two CSV files: see
+// results_h5.hpp), written into a hidden staging directory beside the target
+// and renamed into place only when written whole, so that no half-written
+// result ever carries the target's name. Which targets may be written, and
+// how, is the rule of output_directory.hpp: nothing barimpact did not write
+// is ever deleted.
 #pragma once
 
 #include <filesystem>
@@ -10,6 +12,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/run/simulate.hpp"
@@ -31,7 +34,9 @@ class RunDirectory {
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
 
-  /// Writes the four files into staging, then moves them into place.
+  /// Writes the files into staging (history.csv and fields.csv, or
+  /// results.h5, as `c.output.format` says; case.toml, summary.json), then
+  /// moves them into place.
   void commit(const Case& c, const RunResult& result);
   /// Lets `write` fill the staging directory with files, marks them as
   /// barimpact's, then moves them into place: `target` is created, or
@@ -57,9 +62,14 @@ void write_text(const std::filesystem::path& path, const std::string& text);
 /// (or an interruption) never sees half of it.
 void replace_text(const std::filesystem::path& path, const std::string& text);
 
-/// Reads back what `commit` wrote (history.csv and summary.json; not the
-/// fields): the same doubles, as every number is written in its shortest
-/// exact form. Empty when `dir` holds no readable run, or one whose case.toml
+/// The file of a run directory that holds its history: history.csv, or
+/// results.h5 (output.format = "hdf5").
+[[nodiscard]] std::string_view history_file(OutputFormat format);
+
+/// Reads back what `commit` wrote (the history, from history.csv or
+/// results.h5 as its case.toml says, and summary.json; not the fields): the
+/// same doubles, as every number is written in its shortest exact form (or
+/// as float64). Empty when `dir` holds no readable run, or one whose case.toml
 /// is not `case_toml` (when given).
 [[nodiscard]] std::optional<RunResult> read_run_directory(const std::filesystem::path& dir,
                                                           const std::string& case_toml = {});

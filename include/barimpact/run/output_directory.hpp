@@ -2,8 +2,10 @@
 // directory is barimpact's. The rule: barimpact never deletes what it did
 // not write.
 //   - a new path, or an empty directory: written;
-//   - a directory barimpact wrote (the marker lists every entry in it, and it
-//     holds nothing else): replaced, or resumed by sweep and converge;
+//   - a directory barimpact wrote (the marker lists every entry in it: a
+//     run's history.csv and fields.csv or results.h5, case.toml,
+//     summary.json, figures/, a study's runs/ and tables; and it holds
+//     nothing else): replaced, or resumed by sweep and converge;
 //   - any other non-empty directory, and the working directory: refused,
 //     unless --force, which writes barimpact's files beside the others and
 //     replaces only files of the same names;

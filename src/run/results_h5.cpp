@@ -1,0 +1,258 @@
+#include "barimpact/run/results_h5.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string_view>
+#include <utility>
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Field chunks of about this many bytes: whole snapshots (a snapshot's
+// rows, or as many snapshots as fit), so that reading one is one chunk.
+constexpr hsize_t chunk_bytes = 256 * 1024;
+
+// The innermost message of the calling thread's HDF5 error stack (where the
+// error was found), then the stack cleared.
+std::string hdf5_error() {
+  std::string message;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
+        if (n == 0 && e->desc != nullptr) *static_cast<std::string*>(out) = e->desc;
+        return 0;
+      },
+      &message);
+  H5Eclear2(H5E_DEFAULT);
+  return message.empty() ? std::string("HDF5 error") : message;
+}
+
+// A stretch of HDF5 calls: one thread at a time (not every build of the
+// library is thread-safe: a sweep's workers write runs together), with the
+// library's printing of its error stack on stderr held back: failures are
+// exceptions here. The caller's error handler (h5py's, say) is put back.
+class Session {
+ public:
+  Session() : lock_(mutex()) {
+    H5Eget_auto2(H5E_DEFAULT, &handler_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~Session() { H5Eset_auto2(H5E_DEFAULT, handler_, data_); }
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
+  H5E_auto2_t handler_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// An HDF5 identifier, closed with the object; a negative one (a failed
+// call) throws, naming `what` and the library's reason.
+class Id {
+ public:
+  Id(hid_t id, herr_t (*closer)(hid_t), const std::string& what) : id_(id), close_(closer) {
+    if (id_ < 0) throw std::runtime_error(fmt::format("{} ({})", what, hdf5_error()));
+  }
+  ~Id() {
+    if (id_ >= 0) close_(id_);
+  }
+  Id(Id&& other) noexcept : id_(std::exchange(other.id_, -1)), close_(other.close_) {}
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  Id& operator=(Id&&) = delete;
+  operator hid_t() const { return id_; }  // NOLINT: used where HDF5 takes an hid_t
+  /// Closes now, throwing when that fails (a file's close writes what it holds).
+  void close(const std::string& what) {
+    const herr_t status = close_(id_);
+    id_ = -1;
+    if (status < 0) throw std::runtime_error(fmt::format("{} ({})", what, hdf5_error()));
+  }
+
+ private:
+  hid_t id_;
+  herr_t (*close_)(hid_t);
+};
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error(fmt::format("{} ({})", what, hdf5_error()));
+}
+
+class Writer {
+ public:
+  explicit Writer(const fs::path& path) : path_(path.string()), fapl_(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, at("")) {
+    // The 1.8 file format (compact groups), which every HDF5 from 1.8 on
+    // reads (h5py's included): nothing of the 1.10 format is used.
+    check(H5Pset_libver_bounds(fapl_, H5F_LIBVER_V18, H5F_LIBVER_V18), at(""));
+    file_ = std::make_unique<Id>(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl_), H5Fclose,
+                                 fmt::format("{}: cannot create it", path_));
+  }
+
+  [[nodiscard]] hid_t file() const { return *file_; }
+
+  Id group(const char* name) const {
+    return {H5Gcreate2(*file_, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, at(name)};
+  }
+
+  // A UTF-8 text attribute (variable length: h5py reads it as str).
+  void text(hid_t object, const char* name, const std::string& value) const {
+    const Id type = text_type();
+    const Id space(H5Screate(H5S_SCALAR), H5Sclose, at(name));
+    const Id attribute(H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, at(name));
+    const char* p = value.c_str();
+    check(H5Awrite(attribute, type, static_cast<const void*>(&p)), at(name));
+  }
+
+  // A 1-D attribute of UTF-8 texts.
+  void texts(hid_t object, const char* name, const std::vector<std::string>& values) const {
+    const Id type = text_type();
+    const hsize_t n = values.size();
+    const Id space(H5Screate_simple(1, &n, nullptr), H5Sclose, at(name));
+    const Id attribute(H5Acreate2(object, name, type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose, at(name));
+    std::vector<const char*> p;
+    for (const auto& v : values) p.push_back(v.c_str());
+    if (!p.empty()) check(H5Awrite(attribute, type, p.data()), at(name));
+  }
+
+  // A dataset of `dims` (1-D or 2-D, row-major `data`): float64, or int32
+  // with `integers`. 2-D ones are chunked by whole rows and, at a gzip
+  // `level` above 0, shuffled (each double's bytes grouped by place) and
+  // compressed.
+  Id dataset(hid_t group, const std::string& name, std::vector<hsize_t> dims, const void* data, int level = 0,
+             bool integers = false) const {
+    const Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, at(name));
+    const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, at(name));
+    check(H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER), at(name));
+    if (dims.size() == 2 && dims[0] > 0 && dims[1] > 0) {
+      const hsize_t row = dims[1] * sizeof(double);
+      const std::array<hsize_t, 2> chunk{std::clamp<hsize_t>(chunk_bytes / row, 1, dims[0]),
+                                         std::min<hsize_t>(dims[1], chunk_bytes / sizeof(double))};
+      check(H5Pset_chunk(dcpl, 2, chunk.data()), at(name));
+      if (level > 0) {
+        check(H5Pset_shuffle(dcpl), at(name));
+        check(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), at(name));
+      }
+    }
+    const hid_t file_type = integers ? H5T_STD_I32LE : H5T_IEEE_F64LE;
+    const hid_t memory_type = integers ? H5T_NATIVE_INT32 : H5T_NATIVE_DOUBLE;
+    Id set(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose, at(name));
+    hsize_t size = 1;
+    for (auto d : dims) size *= d;
+    if (size > 0) check(H5Dwrite(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), at(name));
+    return set;
+  }
+
+  void close() { file_->close(fmt::format("{}: cannot write it to the end", path_)); }
+
+ private:
+  [[nodiscard]] std::string at(std::string_view name) const {
+    return name.empty() ? fmt::format("{}: cannot write it", path_) : fmt::format("{}: cannot write {}", path_, name);
+  }
+  [[nodiscard]] Id text_type() const {
+    Id type(H5Tcopy(H5T_C_S1), H5Tclose, at("a text"));
+    check(H5Tset_size(type, H5T_VARIABLE), at("a text"));
+    check(H5Tset_cset(type, H5T_CSET_UTF8), at("a text"));
+    return type;
+  }
+
+  std::string path_;
+  Id fapl_;
+  std::unique_ptr<Id> file_;
+};
+
+}  // namespace
+
+void write_results_h5(const fs::path& path, const Case& c, const RunResult& result) {
+  const Session session;
+  Writer w(path);
+  w.text(w.file(), "case", c.to_toml());
+  w.text(w.file(), "units", c.units);
+  {
+    const Id history = w.group("history");
+    std::vector<std::string> names;
+    for (const auto& b : budget_columns) names.emplace_back(b.name);
+    names.insert(names.end(), result.columns.begin(), result.columns.end());
+    w.texts(history, "columns", names);
+    const std::size_t rows = result.history.size(), n = result.columns.size();
+    std::vector<double> column(rows);
+    for (const auto& b : budget_columns) {
+      for (std::size_t k = 0; k < rows; ++k) column[k] = result.history[k].*b.value;
+      w.dataset(history, std::string(b.name), {rows}, column.data());
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < rows; ++k) column[k] = result.extra[k * n + i];
+      w.dataset(history, result.columns[i], {rows}, column.data());
+    }
+  }
+  {
+    const Fields& f = result.fields;
+    const Id fields = w.group("fields");
+    w.texts(fields, "columns", {"t", "x", "u", "v", "sigma", "eps_p", "body"});
+    w.dataset(fields, "t", {f.count()}, f.t.data());
+    w.dataset(fields, "x", {f.nodes()}, f.x.data());
+    for (const auto& [name, values] :
+         {std::pair{"u", &f.u}, std::pair{"v", &f.v}, std::pair{"sigma", &f.sigma}, std::pair{"eps_p", &f.eps_p}})
+      w.dataset(fields, name, {f.count(), f.nodes()}, values->data(), c.output.compression);
+    std::vector<std::int32_t> body(f.body.begin(), f.body.end());
+    body.resize(f.nodes());
+    const Id set = w.dataset(fields, "body", {f.nodes()}, body.data(), 0, true);
+    w.texts(set, "names", f.body_names);
+  }
+  w.close();
+}
+
+HistoryColumns read_results_h5_history(const fs::path& path) {
+  const Session session;
+  const std::string file_name = path.string();
+  auto at = [&](std::string_view what) { return fmt::format("{}: {}", file_name, what); };
+  const Id file(H5Fopen(file_name.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, at("cannot open it"));
+  const Id history(H5Gopen2(file, "history", H5P_DEFAULT), H5Gclose, at("no /history"));
+  HistoryColumns out;
+  {
+    const Id attribute(H5Aopen(history, "columns", H5P_DEFAULT), H5Aclose, at("no /history attribute columns"));
+    const Id space(H5Aget_space(attribute), H5Sclose, at("/history's columns"));
+    const hssize_t n = H5Sget_simple_extent_npoints(space);
+    if (n < 0 || H5Sget_simple_extent_ndims(space) != 1)
+      throw std::runtime_error(at("/history's columns are not a list of names"));
+    Id type(H5Tcopy(H5T_C_S1), H5Tclose, at("/history's columns"));
+    check(H5Tset_size(type, H5T_VARIABLE), at("/history's columns"));
+    check(H5Tset_cset(type, H5T_CSET_UTF8), at("/history's columns"));
+    std::vector<char*> names(static_cast<std::size_t>(n), nullptr);
+    check(H5Aread(attribute, type, names.data()), at("/history's columns are not a list of names"));
+    for (char* name : names) out.names.emplace_back(name != nullptr ? name : "");
+#if H5_VERSION_GE(1, 12, 0)
+    H5Treclaim(type, space, H5P_DEFAULT, names.data());
+#else
+    H5Dvlen_reclaim(type, space, H5P_DEFAULT, names.data());
+#endif
+  }
+  for (const auto& name : out.names) {
+    const Id set(H5Dopen2(history, name.c_str(), H5P_DEFAULT), H5Dclose, at(fmt::format("no /history/{}", name)));
+    const Id space(H5Dget_space(set), H5Sclose, at(fmt::format("/history/{}", name)));
+    const hssize_t rows = H5Sget_simple_extent_npoints(space);
+    if (rows < 0 || H5Sget_simple_extent_ndims(space) != 1 ||
+        (!out.values.empty() && static_cast<std::size_t>(rows) != out.values.front().size()))
+      throw std::runtime_error(at(fmt::format("/history/{} is not a column as long as /history/t", name)));
+    auto& values = out.values.emplace_back(static_cast<std::size_t>(rows));
+    if (rows > 0)
+      check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            at(fmt::format("cannot read /history/{}", name)));
+  }
+  return out;
+}
+
+}  // namespace barimpact
