@@ -19,6 +19,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -34,6 +35,8 @@
 #include <chrono>
 #include <exception>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -41,6 +44,7 @@
 #include "barimpact/case/case.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/check.hpp"
+#include "barimpact/run/figure_names.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/study/bearing.hpp"
@@ -507,9 +511,7 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
                     "run or sweep)",
                     run_dir));
   std::vector<std::string> names;
-  for (const char* figure : {"displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces",
-                             "gauges", "masses", "plastic_map", "plastic_snapshots"})
-    // plot.py writes these; a line adds joint_forces, gauges and masses, a yielding bar the plastic ones
+  for (const auto figure : barimpact::run_figure_names)
     for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
   // DIR/figures belongs to the run directory it is in, drawn or not; asked
   // before figures/ is there (a folder the marker does not list makes the
@@ -536,131 +538,208 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   return exit_bad_input;
 }
 
+// ---- The commands' options: each adds its subcommand and returns what it
+// runs once parsed (its arguments live as long as that action).
+
+struct Command {
+  CLI::App* app;
+  std::function<int()> action;
+};
+
+const std::string jobs_help = "Threads, 1 .. 1024 (default, or 0: all cores)";
+
+void add_sets(CLI::App* command, std::vector<std::string>& sets, const std::string& help) {
+  command->add_option("--set", sets, help)->take_all()->allow_extra_args(false);
+}
+
+// run and exact: the same files, from the scheme or from the exact solution.
+Command add_run(CLI::App& app, bool exact) {
+  struct Args {
+    std::string case_path, out;
+    std::vector<std::string> sets;
+    WriteFlags flags;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = exact ? app.add_subcommand("exact", "Tabulate the exact solution the case admits (same files as run)")
+                  : app.add_subcommand("run",
+                                       "Run one case and write history.csv, fields.csv (or results.h5: "
+                                       "output.format), case.toml, summary.json");
+  c->add_option("case", a->case_path, "Case file (TOML)")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")->required();
+  add_write_flags(c, a->flags);
+  add_sets(c, a->sets,
+           exact ? "Override a case key: section.key=value"
+                 : "Override a case key: section.key=value (value read as TOML, a bare word as a string)");
+  return {c, [a, exact] { return run_command(a->case_path, a->out, a->sets, exact, a->flags); }};
+}
+
+Command add_check(CLI::App& app) {
+  struct Args {
+    std::string case_path;
+    std::vector<std::string> sets;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand(
+      "check", "Validate a case without running it: steps, stable step, penalty time constants, a time estimate");
+  c->add_option("case", a->case_path, "Case file (TOML)")->required();
+  add_sets(c, a->sets, "Override a case key: section.key=value");
+  return {c, [a] { return check_command(a->case_path, a->sets); }};
+}
+
+Command add_sweep(CLI::App& app) {
+  struct Args {
+    std::string file, out;
+    barimpact::SweepOptions options;
+    bool no_batch = false;
+    WriteFlags flags;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand("sweep", "Run every case of a sweep file (runs/<id>/ and sweep.csv); resumes");
+  c->add_option("sweep", a->file, "Sweep file (TOML)")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or a sweep's (rerunning resumes)")->required();
+  add_write_flags(c, a->flags);
+  c->add_option("--jobs", a->options.jobs, jobs_help);
+  c->add_flag("--no-batch", a->no_batch, "Run every case alone (no SIMD batches)");
+  return {c, [a] {
+            a->options.batch = !a->no_batch;
+            a->options.interrupt = &interrupted;
+            return sweep_command(a->file, a->out, a->options, a->flags);
+          }};
+}
+
+Command add_bearing(CLI::App& app) {
+  auto a = std::make_shared<BearingArgs>();
+  auto* c = app.add_subcommand(
+      "bearing", "Bearing graph of a pile-driving case: the blow count against the static capacity (bearing.csv)");
+  c->add_option("case", a->case_path, "Case file (TOML) with Smith's soil")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or a bearing's (resumes)")->required();
+  c->add_option("--capacity", a->capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")->required();
+  c->add_option("--toe-share", a->toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
+  c->add_option("--jobs", a->options.jobs, jobs_help);
+  c->add_flag("--no-plot", a->no_plot, "Skip bearing.png");
+  add_write_flags(c, a->flags);
+  return {c, [a] {
+            a->options.interrupt = &interrupted;
+            a->options.batch = false;  // Smith's soil runs on central differences
+            return bearing_command(*a);
+          }};
+}
+
+Command add_hopkinson(CLI::App& app) {
+  struct Args {
+    std::string setup, out;
+    bool no_plot = false;
+    WriteFlags flags;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand(
+      "hopkinson", "Analyse a split Hopkinson bar test's gauge signals (hopkinson.csv, summary.json, figures)");
+  c->add_option("setup", a->setup, "Setup file (TOML): bars, specimen, the two gauges' signals")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")->required();
+  c->add_flag("--no-plot", a->no_plot, "Skip the figures");
+  add_write_flags(c, a->flags);
+  return {c, [a] { return hopkinson_command(a->setup, a->out, a->no_plot, a->flags); }};
+}
+
+// converge records the command line that made it (convergence.md).
+Command add_converge(CLI::App& app, int argc, char** argv) {
+  auto a = std::make_shared<ConvergeArgs>();
+  auto* c =
+      app.add_subcommand("converge", "Convergence and work-precision study of a case (convergence.csv/.md, plots)");
+  c->add_option("case", a->case_path, "Case file (TOML)")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or a study's (rerunning resumes)")->required();
+  add_write_flags(c, a->flags);
+  add_sets(c, a->sets, "Override a case key: section.key=value");
+  auto& study = a->arguments;
+  c->add_option("--levels", study.levels, "Refinement levels, 2 .. 12 (default 4)");
+  c->add_option("--refine", study.refine, "both (h and dt together, default), h, dt, or none")
+      ->check(CLI::IsMember({"both", "h", "dt", "none"}));
+  c->add_option("--ratio", study.ratio, "Refinement ratio per level, 2 .. 16 (default 2)");
+  c->add_option("--vary", study.vary,
+                "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n (wins over the study's own "
+                "time.step or elements: refused where --refine refines them too)");
+  c->add_option("--schemes", a->schemes, "Compare schemes: a,b,c (default: the case's)");
+  c->add_option("--reference", study.reference, "auto (exact if the case admits one, else finest), rigid, finest")
+      ->check(CLI::IsMember({"auto", "rigid", "finest"}));
+  c->add_option("--jobs", study.jobs, jobs_help);
+  return {c, [a, argc, argv] {
+            a->command = "barimpact";
+            for (int i = 1; i < argc; ++i) {
+              const std::string arg = argv[i];
+              a->command += " " + (arg.find_first_of(" *;()") == std::string::npos ? arg : "'" + arg + "'");
+            }
+            return converge_command(*a);
+          }};
+}
+
+Command add_plot(CLI::App& app) {
+  struct Args {
+    std::string dir, out;
+    bool force = false;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand("plot", "Draw the figures of a run or sweep directory (PNG and SVG) with matplotlib");
+  c->add_option("dir", a->dir, "A directory written by barimpact run or sweep")->required();
+  c->add_option("--out", a->out, "Where the figures go (default: DIR/figures), by the output rule of run");
+  c->add_flag("--force", a->force,
+              "Write the figures beside other files (never in $HOME, / or a parent of the working directory)");
+  return {c, [a] { return plot_command(a->dir, a->out, a->force); }};
+}
+
+std::string version_text() {
+  std::vector<std::string_view> paths;
+  for (auto p : barimpact::supported_simd_paths()) paths.push_back(barimpact::to_string(p));
+  try {
+    return fmt::format("barimpact 0.1.0\nbatch kernels: {} (this processor runs: {}; BARIMPACT_SIMD forces one)",
+                       barimpact::to_string(barimpact::simd_path()), fmt::join(paths, ", "));
+  } catch (const barimpact::InputError& e) {
+    return fmt::format("barimpact 0.1.0\nbatch kernels: {}", e.what());
+  }
+}
+
+// An unknown first word gets the command list, not CLI11's "extra arguments".
+bool known_command(int argc, char** argv, const std::vector<Command>& commands) {
+  if (argc < 2 || argv[1][0] == '-') return true;
+  return std::any_of(commands.begin(), commands.end(), [&](const Command& c) { return c.app->get_name() == argv[1]; });
+}
+
+// The error's one line and exit status (see the header).
+int report(const std::exception_ptr& failure) {
+  try {
+    std::rethrow_exception(failure);
+  } catch (const barimpact::InputError& e) {
+    fmt::print(stderr, "barimpact: error: {}\n", e.what());
+    return exit_bad_input;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "barimpact: error: out of memory (reduce bar.elements or raise output.every)\n");
+    return 1;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "barimpact: internal error: {}\n", e.what());
+    return 1;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", [] {
-    std::vector<std::string_view> paths;
-    for (auto p : barimpact::supported_simd_paths()) paths.push_back(barimpact::to_string(p));
-    try {
-      return fmt::format("barimpact 0.1.0\nbatch kernels: {} (this processor runs: {}; BARIMPACT_SIMD forces one)",
-                         barimpact::to_string(barimpact::simd_path()), fmt::join(paths, ", "));
-    } catch (const barimpact::InputError& e) {
-      return fmt::format("barimpact 0.1.0\nbatch kernels: {}", e.what());
-    }
-  });
-
-  std::string case_path, out_dir;
-  std::vector<std::string> sets;
-  auto* run = app.add_subcommand(
-      "run", "Run one case and write history.csv, fields.csv (or results.h5: output.format), case.toml, summary.json");
-  run->add_option("case", case_path, "Case file (TOML)")->required();
-  WriteFlags run_flags, exact_flags, sweep_flags;
-  run->add_option("--out", out_dir, "Output directory: a new or empty one, or one barimpact wrote (replaced)")
-      ->required();
-  add_write_flags(run, run_flags);
-  run->add_option("--set", sets, "Override a case key: section.key=value (value read as TOML, a bare word as a string)")
-      ->take_all()
-      ->allow_extra_args(false);
-
-  const std::vector<std::string_view> commands{"run",   "check",   "exact",     "converge",
-                                               "sweep", "bearing", "hopkinson", "plot"};
-  if (argc > 1 && argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
-    fmt::print(
-        stderr,
-        "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, hopkinson, "
-        "plot; see barimpact --help)\n",
-        argv[1]);
+  app.set_version_flag("--version", version_text);
+  const std::vector<Command> commands{add_run(app, false),
+                                      add_check(app),
+                                      add_run(app, true),
+                                      add_sweep(app),
+                                      add_bearing(app),
+                                      add_hopkinson(app),
+                                      add_converge(app, argc, argv),
+                                      add_plot(app)};
+  if (!known_command(argc, argv, commands)) {
+    fmt::print(stderr,
+               "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, "
+               "hopkinson, plot; see barimpact --help)\n",
+               argv[1]);
     return exit_bad_input;
   }
-  std::string check_case;
-  std::vector<std::string> check_sets;
-  auto* check = app.add_subcommand(
-      "check", "Validate a case without running it: steps, stable step, penalty time constants, a time estimate");
-  check->add_option("case", check_case, "Case file (TOML)")->required();
-  check->add_option("--set", check_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
-
-  std::string exact_case, exact_out;
-  std::vector<std::string> exact_sets;
-  auto* exact = app.add_subcommand("exact", "Tabulate the exact solution the case admits (same files as run)");
-  exact->add_option("case", exact_case, "Case file (TOML)")->required();
-  exact->add_option("--out", exact_out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")
-      ->required();
-  add_write_flags(exact, exact_flags);
-  exact->add_option("--set", exact_sets, "Override a case key: section.key=value")->take_all()->allow_extra_args(false);
-
-  const std::string jobs_help = "Threads, 1 .. 1024 (default, or 0: all cores)";
-  std::string sweep_file, sweep_out;
-  barimpact::SweepOptions sweep_options;
-  bool no_batch = false;
-  auto* sweep = app.add_subcommand("sweep", "Run every case of a sweep file (runs/<id>/ and sweep.csv); resumes");
-  sweep->add_option("sweep", sweep_file, "Sweep file (TOML)")->required();
-  sweep->add_option("--out", sweep_out, "Output directory: a new or empty one, or a sweep's (rerunning resumes)")
-      ->required();
-  add_write_flags(sweep, sweep_flags);
-  sweep->add_option("--jobs", sweep_options.jobs, jobs_help);
-  sweep->add_flag("--no-batch", no_batch, "Run every case alone (no SIMD batches)");
-
-  BearingArgs bearing_args;
-  auto* bearing = app.add_subcommand(
-      "bearing", "Bearing graph of a pile-driving case: the blow count against the static capacity (bearing.csv)");
-  bearing->add_option("case", bearing_args.case_path, "Case file (TOML) with Smith's soil")->required();
-  bearing->add_option("--out", bearing_args.out, "Output directory: a new or empty one, or a bearing's (resumes)")
-      ->required();
-  bearing->add_option("--capacity", bearing_args.capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")
-      ->required();
-  bearing->add_option("--toe-share", bearing_args.toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
-  bearing->add_option("--jobs", bearing_args.options.jobs, jobs_help);
-  bearing->add_flag("--no-plot", bearing_args.no_plot, "Skip bearing.png");
-  add_write_flags(bearing, bearing_args.flags);
-
-  std::string hopkinson_setup, hopkinson_out;
-  WriteFlags hopkinson_flags;
-  bool hopkinson_no_plot = false;
-  auto* hopkinson = app.add_subcommand(
-      "hopkinson", "Analyse a split Hopkinson bar test's gauge signals (hopkinson.csv, summary.json, figures)");
-  hopkinson->add_option("setup", hopkinson_setup, "Setup file (TOML): bars, specimen, the two gauges' signals")
-      ->required();
-  hopkinson
-      ->add_option("--out", hopkinson_out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")
-      ->required();
-  hopkinson->add_flag("--no-plot", hopkinson_no_plot, "Skip the figures");
-  add_write_flags(hopkinson, hopkinson_flags);
-
-  ConvergeArgs conv_args;
-  auto* conv =
-      app.add_subcommand("converge", "Convergence and work-precision study of a case (convergence.csv/.md, plots)");
-  conv->add_option("case", conv_args.case_path, "Case file (TOML)")->required();
-  conv->add_option("--out", conv_args.out, "Output directory: a new or empty one, or a study's (rerunning resumes)")
-      ->required();
-  add_write_flags(conv, conv_args.flags);
-  conv->add_option("--set", conv_args.sets, "Override a case key: section.key=value")
-      ->take_all()
-      ->allow_extra_args(false);
-  auto& study = conv_args.arguments;
-  conv->add_option("--levels", study.levels, "Refinement levels, 2 .. 12 (default 4)");
-  conv->add_option("--refine", study.refine, "both (h and dt together, default), h, dt, or none")
-      ->check(CLI::IsMember({"both", "h", "dt", "none"}));
-  conv->add_option("--ratio", study.ratio, "Refinement ratio per level, 2 .. 16 (default 2)");
-  conv->add_option("--vary", study.vary,
-                   "A key along the levels: key=v1,v2,... | key=a:b:n | key=log:a:b:n (wins over the study's own "
-                   "time.step or elements: refused where --refine refines them too)");
-  conv->add_option("--schemes", conv_args.schemes, "Compare schemes: a,b,c (default: the case's)");
-  conv->add_option("--reference", study.reference, "auto (exact if the case admits one, else finest), rigid, finest")
-      ->check(CLI::IsMember({"auto", "rigid", "finest"}));
-  conv->add_option("--jobs", study.jobs, jobs_help);
-
-  std::string plot_dir, plot_out;
-  auto* plot = app.add_subcommand("plot", "Draw the figures of a run or sweep directory (PNG and SVG) with matplotlib");
-  plot->add_option("dir", plot_dir, "A directory written by barimpact run or sweep")->required();
-  bool plot_force = false;
-  plot->add_option("--out", plot_out, "Where the figures go (default: DIR/figures), by the output rule of run");
-  plot->add_flag("--force", plot_force,
-                 "Write the figures beside other files (never in $HOME, / or a parent of the "
-                 "working directory)");
-
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -673,42 +752,12 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "barimpact: error: {} (see barimpact --help)\n", e.what());
     return exit_bad_input;
   }
-
   install_signal_handlers();
   try {
-    if (run->parsed()) return run_command(case_path, out_dir, sets, false, run_flags);
-    if (check->parsed()) return check_command(check_case, check_sets);
-    if (exact->parsed()) return run_command(exact_case, exact_out, exact_sets, true, exact_flags);
-    if (sweep->parsed()) {
-      sweep_options.batch = !no_batch;
-      sweep_options.interrupt = &interrupted;
-      return sweep_command(sweep_file, sweep_out, sweep_options, sweep_flags);
-    }
-    if (conv->parsed()) {
-      conv_args.command = "barimpact";
-      for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        conv_args.command += " " + (arg.find_first_of(" *;()") == std::string::npos ? arg : "'" + arg + "'");
-      }
-      return converge_command(conv_args);
-    }
-    if (plot->parsed()) return plot_command(plot_dir, plot_out, plot_force);
-    if (hopkinson->parsed())
-      return hopkinson_command(hopkinson_setup, hopkinson_out, hopkinson_no_plot, hopkinson_flags);
-    if (bearing->parsed()) {
-      bearing_args.options.interrupt = &interrupted;
-      bearing_args.options.batch = false;  // Smith's soil runs on central differences
-      return bearing_command(bearing_args);
-    }
-  } catch (const barimpact::InputError& e) {
-    fmt::print(stderr, "barimpact: error: {}\n", e.what());
-    return exit_bad_input;
-  } catch (const std::bad_alloc&) {
-    fmt::print(stderr, "barimpact: error: out of memory (reduce bar.elements or raise output.every)\n");
-    return 1;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "barimpact: internal error: {}\n", e.what());
-    return 1;
+    for (const auto& c : commands)
+      if (c.app->parsed()) return c.action();
+  } catch (...) {
+    return report(std::current_exception());
   }
   return 0;
 }
