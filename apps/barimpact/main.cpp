@@ -392,11 +392,21 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 #ifdef BARIMPACT_HAVE_MPI
   if (size > 1) {
     barimpact::SweepStart start;
+    std::exception_ptr refused;
     if (rank == 0) {  // the other ranks only run the points rank 0 hands out
-      barimpact::prepare_sweep(dir, o, flags.force);
-      start = barimpact::resume_sweep(plan, dir);
+      try {
+        barimpact::prepare_sweep(dir, o, flags.force);
+        start = barimpact::resume_sweep(plan, dir);
+      } catch (...) {
+        refused = std::current_exception();
+      }
     }
-    MPI_Barrier(MPI_COMM_WORLD);  // the directory exists before any rank writes
+    // The directory exists before any rank writes; a refusal ends every rank
+    // (rank 0 says why), none is left waiting.
+    int ready = refused ? 0 : 1;
+    MPI_Bcast(&ready, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (refused) std::rethrow_exception(refused);
+    if (ready == 0) return exit_bad_input;
     const auto done = mpi_sweep(plan, dir, start.todo, o, rank, size, provided >= MPI_THREAD_FUNNELED);
     if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
     outcome = barimpact::finish_sweep(plan, dir, std::move(start), done);

@@ -257,6 +257,13 @@ if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
     "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/sweep-mpi" > "$work/out" 2> "$work/err" && ok || bad "mpi sweep: $(cat "$work/err")"
   grep -q "on 2 ranks" "$work/out" && ok || bad "mpi sweep did not run distributed: $(cat "$work/out")"
   cmp -s <(cut -d, -f1-14 "$work/sweep-mpi/sweep.csv") "$work/first.csv" && ok || bad "mpi sweep.csv differs"
+  # --out refused on rank 0: every rank ends (exit 2), none waits, the user's file stays.
+  mkdir -p "$work/mpi-theirs" && echo keep > "$work/mpi-theirs/notes.txt"
+  OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 60 "$BARIMPACT_MPIEXEC" -n 2 --oversubscribe \
+    "$bin" sweep "$sweeps/penalty-to-rigid.toml" --out "$work/mpi-theirs" > /dev/null 2> "$work/err"
+  status=$?
+  [ $status -ne 124 ] && [ $status -ne 0 ] && grep -q "holds files barimpact did not write" "$work/err" &&
+    [ "$(ls "$work/mpi-theirs")" = "notes.txt" ] && ok || bad "mpi --out refusal (exit $status): $(cat "$work/err")"
 fi
 
 # Lines of bodies: the four examples run, their columns, the line's rules refused with the key.
