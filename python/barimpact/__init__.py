@@ -243,6 +243,8 @@ def _case(case, set):
 
 def _jobs(jobs):
     """--jobs: None or 0 for every core, else 1 .. 1024."""
+    # The studies' check_jobs refuses the same range but names 0, not None, and
+    # a non-integer would reach it as the binding's TypeError: refused here.
     if jobs is None or jobs == 0:
         return 0
     if not isinstance(jobs, numbers.Integral) or not 1 <= jobs <= 1024:

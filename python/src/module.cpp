@@ -194,16 +194,19 @@ std::string fspath(const py::handle& path) {
   return py::str(py::module_::import("os").attr("fspath")(path)).cast<std::string>();
 }
 
-// Runs `work` on a thread of its own while this one, without the GIL, looks
-// every 0.1 s for a signal: Python's handlers run on the main thread only, so
-// without this Ctrl-C would wait for a whole study. On a signal `stop` is
-// set (the library ends the runs under way after their step and starts no
-// other) and the exception (KeyboardInterrupt) is kept in `signal`, to be
-// raised once what was done is written, as the command exits 130 after
-// writing.
-template <class Work>
-auto interruptible(Work work, std::atomic<bool>& stop, std::optional<py::error_already_set>& signal) {
-  auto future = std::async(std::launch::async, std::move(work));
+// Runs `work(options)` on a thread of its own, with `options.interrupt` set,
+// while this one, without the GIL, looks every 0.1 s for a signal: Python's
+// handlers run on the main thread only, so without this Ctrl-C would wait
+// for a whole study. On a signal the interrupt is set (the library ends the
+// runs under way after their step and starts no other) and the exception
+// (KeyboardInterrupt) is kept, to be raised once what was done is written,
+// as the command exits 130 after writing.
+template <class Options, class Work>
+auto interruptible(Options options, Work work) {
+  std::atomic<bool> stop{false};
+  std::optional<py::error_already_set> signal;
+  options.interrupt = &stop;
+  auto future = std::async(std::launch::async, [&] { return work(options); });
   for (;;) {
     {
       py::gil_scoped_release release;
@@ -214,7 +217,9 @@ auto interruptible(Work work, std::atomic<bool>& stop, std::optional<py::error_a
       stop.store(true);
     }
   }
-  return future.get();
+  auto result = future.get();
+  if (signal) throw *signal;
+  return result;
 }
 
 // A study's warnings as (run id, warning) pairs, every one: Python shows
@@ -239,13 +244,9 @@ long count_status(const Rows& rows, std::initializer_list<std::string_view> stat
 
 py::dict converge_binding(const Case& c, const std::optional<std::string>& out, const StudyArguments& args, bool force,
                           const std::string& command) {
-  auto o = study_options(args);
-  std::atomic<bool> stop{false};
-  std::optional<py::error_already_set> signal;
-  o.interrupt = &stop;
-  const Study study =
-      interruptible([&] { return out ? write_convergence(c, o, *out, force, command) : converge(c, o); }, stop, signal);
-  if (signal) throw *signal;
+  const Study study = interruptible(study_options(args), [&](const StudyOptions& o) {
+    return out ? write_convergence(c, o, *out, force, command) : converge(c, o);
+  });
   py::dict d;
   d["csv"] = study_csv(study);
   d["markdown"] = study_markdown(study, command);
@@ -269,14 +270,11 @@ SweepPlan sweep_plan(const py::object& sweep) {
 
 py::dict sweep_binding(const py::object& sweep, const std::string& out, int jobs, bool batch, bool force) {
   const SweepPlan plan = sweep_plan(sweep);
-  std::atomic<bool> stop{false};
-  std::optional<py::error_already_set> signal;
   SweepOptions o;
   o.jobs = jobs;
   o.batch = batch;
-  o.interrupt = &stop;
-  const auto outcome = interruptible([&] { return write_sweep(plan, out, o, force); }, stop, signal);
-  if (signal) throw *signal;
+  const auto outcome =
+      interruptible(o, [&](const SweepOptions& options) { return write_sweep(plan, out, options, force); });
   py::dict d;
   d["csv"] = sweep_csv(plan, outcome.rows);
   d["cases"] = outcome.rows.size();
@@ -293,14 +291,11 @@ py::dict bearing_binding(const py::object& case_file, const std::string& out, co
   parse_capacity(capacity, o);  // the command's rules
   o.toe_share = toe_share;      // BearingPlan checks it
   const BearingPlan plan(fspath(case_file), o);
-  std::atomic<bool> stop{false};
-  std::optional<py::error_already_set> signal;
   SweepOptions options;
   options.jobs = jobs;
   options.batch = false;  // Smith's soil runs on central differences
-  options.interrupt = &stop;
-  const auto rows = interruptible([&] { return write_bearing(plan, out, options, force); }, stop, signal);
-  if (signal) throw *signal;
+  const auto rows = interruptible(
+      options, [&](const SweepOptions& sweep_options) { return write_bearing(plan, out, sweep_options, force); });
   std::vector<SweepRow> runs;
   for (const auto& r : rows) runs.push_back(r.run);
   py::dict d;
@@ -358,12 +353,60 @@ py::list history_names(const PyResult& p) {
   return names;
 }
 
-}  // namespace
+std::unique_ptr<PyResult> run_binding(const Case& c, const py::object& progress) {
+  RunOptions options;
+  std::exception_ptr failure;
+  // Called about every 0.2 s: Ctrl-C (KeyboardInterrupt) stops the run
+  // after the step under way, then the user's callback, if any.
+  options.progress_interval = progress.is_none() ? 0.2 : 0.5;
+  options.progress = [&progress, &failure](const Progress& p) {
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (progress.is_none()) return true;
+      const py::object answer =
+          progress(py::dict(py::arg("step") = p.step, py::arg("steps") = p.steps, py::arg("t") = p.t,
+                            py::arg("t_end") = p.t_end, py::arg("elapsed") = p.elapsed_seconds));
+      return answer.is_none() || answer.cast<bool>();
+    } catch (...) {
+      failure = std::current_exception();
+      return false;
+    }
+  };
+  auto result = std::make_unique<PyResult>(PyResult{c, {}});
+  {
+    py::gil_scoped_release release;
+    result->r = run(c, options);
+  }
+  if (failure) std::rethrow_exception(failure);
+  return result;
+}
 
-PYBIND11_MODULE(_core, m) {
-  m.doc() = "barimpact's C++ core; use the package `barimpact`";
-  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+py::dict check_binding(const Case& c) {
+  CaseCheck k;
+  {
+    py::gil_scoped_release released;
+    k = check_case(c);
+  }
+  py::list penalties;
+  for (const auto& p : k.penalties)
+    penalties.append(py::dict(py::arg("link") = p.link, py::arg("tau") = p.tau,
+                              py::arg("dt_over_tau") = c.time.step / p.tau, py::arg("basis") = p.basis,
+                              py::arg("resolved") = c.time.step <= p.tau));
+  return py::dict(py::arg("steps") = k.steps, py::arg("step") = c.time.step, py::arg("nodes") = k.nodes,
+                  py::arg("stable_step") = k.stable_step ? py::cast(*k.stable_step) : py::none(),
+                  py::arg("mass") = k.stable_step ? py::cast(k.mass) : py::none(), py::arg("stability") = k.stability,
+                  py::arg("penalties") = penalties, py::arg("timed_steps") = k.timed_steps,
+                  py::arg("timed_seconds") = k.timed_seconds, py::arg("estimate_seconds") = k.estimate_seconds,
+                  py::arg("trouble") = k.trouble.empty() ? py::none() : py::cast(k.trouble),
+                  py::arg("text") = check_text(c, k));
+}
 
+// ---- the module, phase by phase
+
+using ResultClass = py::class_<PyResult>;
+
+void bind_case(py::module_& m) {
   py::class_<Case>(m, "Case")
       .def(py::init(&make_case), py::arg("source") = py::none(), py::arg("set") = py::none(),
            "A validated case from a TOML file path, TOML text or a dict {section: {key: value}};\n"
@@ -374,9 +417,11 @@ PYBIND11_MODULE(_core, m) {
         return "<barimpact.Case " + c.time.scheme + ", " + std::to_string(c.bar.elements) + " elements, " +
                std::to_string(c.step_count()) + " steps>";
       });
+}
 
-  auto result_class = py::class_<PyResult>(m, "Result");
-  result_class
+// The history's column names: what r[name], `in`, len() and iteration see.
+void bind_history_names(ResultClass& result) {
+  result
       .def_property_readonly(
           "columns", [](const PyResult& p) { return py::tuple(history_names(p)); },
           "Every column of history.csv by name, in its order (what r[name] takes): the budget's, then joints, far "
@@ -399,6 +444,14 @@ PYBIND11_MODULE(_core, m) {
           "__len__", [](const PyResult& p) { return columns.size() + p.r.columns.size(); },
           "The number of history columns")
       .def_property_readonly(
+          "history_columns", [](const PyResult& p) { return history_names(p); },
+          "Every column of history.csv, in its order (a list; `columns` as a tuple)");
+}
+
+// The history's numbers as numpy views of the result's memory (no copy).
+void bind_history_views(ResultClass& result) {
+  result
+      .def_property_readonly(
           "history",
           [](py::object self) {
             const auto& h = self.cast<const PyResult&>().r.history;
@@ -408,9 +461,6 @@ PYBIND11_MODULE(_core, m) {
                         {sizeof(HistoryRow), sizeof(double)}, self);
           },
           "The budget's history rows, shape (rows, 10), columns as the first ten of history.csv (a view, no copy)")
-      .def_property_readonly(
-          "history_columns", [](const PyResult& p) { return history_names(p); },
-          "Every column of history.csv, in its order (a list; `columns` as a tuple)")
       .def(
           "__getitem__",
           [](py::object self, const std::string& name) -> py::object {
@@ -425,7 +475,22 @@ PYBIND11_MODULE(_core, m) {
                             {static_cast<py::ssize_t>(r.columns.size() * sizeof(double))}, self);
             throw py::key_error("no history column \"" + name + "\"");
           },
-          py::arg("column"), "A history column by its name in history.csv, e.g. r['joint.cushion.force'] (a view)")
+          py::arg("column"), "A history column by its name in history.csv, e.g. r['joint.cushion.force'] (a view)");
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    result.def_property_readonly(
+        columns[i],
+        [i](py::object self) {
+          const auto& h = self.cast<const PyResult&>().r.history;
+          return view(h.empty() ? nullptr : &h.front().t + i, {static_cast<py::ssize_t>(h.size())},
+                      {sizeof(HistoryRow)}, self);
+        },
+        "One history column (a strided view of `history`, no copy)");
+  }
+}
+
+// fields.csv's snapshots: the rows' bodies and positions, the times, the fields.
+void bind_fields(ResultClass& result) {
+  result
       .def_property_readonly(
           "field_body",
           [](const PyResult& p) {
@@ -447,7 +512,24 @@ PYBIND11_MODULE(_core, m) {
             const auto& f = self.cast<const PyResult&>().r.fields;
             return view(f.t.data(), {static_cast<py::ssize_t>(f.t.size())}, {sizeof(double)}, self);
           },
-          "The snapshots' times")
+          "The snapshots' times");
+  for (const auto& [name, member] : {std::pair{"u", &Fields::u}, std::pair{"v", &Fields::v},
+                                     std::pair{"sigma", &Fields::sigma}, std::pair{"eps_p", &Fields::eps_p}}) {
+    result.def_property_readonly(
+        name,
+        [member](py::object self) {
+          const auto& f = self.cast<const PyResult&>().r.fields;
+          const auto n = static_cast<py::ssize_t>(f.nodes());
+          return view((f.*member).data(), {static_cast<py::ssize_t>(f.count()), n},
+                      {n * static_cast<py::ssize_t>(sizeof(double)), sizeof(double)}, self);
+        },
+        "Field snapshots, shape (snapshots, nodes), a view");
+  }
+}
+
+// The run as a whole: its summary, its case, and writing its directory.
+void bind_run_record(ResultClass& result) {
+  result
       .def_property_readonly(
           "summary_json", [](const PyResult& p) { return summary_json(p.c, p.r.summary); }, "summary.json's text")
       .def_property_readonly(
@@ -466,63 +548,20 @@ PYBIND11_MODULE(_core, m) {
           "--out dir` does, by the same "
           "rule: a new or empty directory, or one barimpact wrote (replaced); force=True writes beside someone "
           "else's files and deletes none of them");
+}
 
-  for (std::size_t i = 0; i < columns.size(); ++i) {
-    result_class.def_property_readonly(
-        columns[i],
-        [i](py::object self) {
-          const auto& h = self.cast<const PyResult&>().r.history;
-          return view(h.empty() ? nullptr : &h.front().t + i, {static_cast<py::ssize_t>(h.size())},
-                      {sizeof(HistoryRow)}, self);
-        },
-        "One history column (a strided view of `history`, no copy)");
-  }
-  for (const auto& [name, member] : {std::pair{"u", &Fields::u}, std::pair{"v", &Fields::v},
-                                     std::pair{"sigma", &Fields::sigma}, std::pair{"eps_p", &Fields::eps_p}}) {
-    result_class.def_property_readonly(
-        name,
-        [member](py::object self) {
-          const auto& f = self.cast<const PyResult&>().r.fields;
-          const auto n = static_cast<py::ssize_t>(f.nodes());
-          return view((f.*member).data(), {static_cast<py::ssize_t>(f.count()), n},
-                      {n * static_cast<py::ssize_t>(sizeof(double)), sizeof(double)}, self);
-        },
-        "Field snapshots, shape (snapshots, nodes), a view");
-  }
+void bind_result(py::module_& m) {
+  auto result = ResultClass(m, "Result");
+  bind_history_names(result);
+  bind_history_views(result);
+  bind_fields(result);
+  bind_run_record(result);
+}
 
-  m.def(
-      "run",
-      [](const Case& c, const py::object& progress) {
-        RunOptions options;
-        std::exception_ptr failure;
-        // Called about every 0.2 s: Ctrl-C (KeyboardInterrupt) stops the run
-        // after the step under way, then the user's callback, if any.
-        options.progress_interval = progress.is_none() ? 0.2 : 0.5;
-        options.progress = [&progress, &failure](const Progress& p) {
-          py::gil_scoped_acquire gil;
-          try {
-            if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-            if (progress.is_none()) return true;
-            const py::object answer =
-                progress(py::dict(py::arg("step") = p.step, py::arg("steps") = p.steps, py::arg("t") = p.t,
-                                  py::arg("t_end") = p.t_end, py::arg("elapsed") = p.elapsed_seconds));
-            return answer.is_none() || answer.cast<bool>();
-          } catch (...) {
-            failure = std::current_exception();
-            return false;
-          }
-        };
-        auto result = std::make_unique<PyResult>(PyResult{c, {}});
-        {
-          py::gil_scoped_release release;
-          result->r = run(c, options);
-        }
-        if (failure) std::rethrow_exception(failure);
-        return result;
-      },
-      py::arg("case"), py::arg("progress") = py::none(),
-      "Run a case (the GIL is released); `progress(info: dict)` is called about twice a second,\n"
-      "returning False stops the run. Ctrl-C stops it too, raising KeyboardInterrupt.");
+void bind_run(py::module_& m) {
+  m.def("run", &run_binding, py::arg("case"), py::arg("progress") = py::none(),
+        "Run a case (the GIL is released); `progress(info: dict)` is called about twice a second,\n"
+        "returning False stops the run. Ctrl-C stops it too, raising KeyboardInterrupt.");
 
   m.def(
       "exact",
@@ -533,30 +572,10 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("case"), "Tabulate the exact solution the case admits (as `barimpact exact`); InputError if none");
 
-  m.def(
-      "_check",
-      [](const Case& c) {
-        CaseCheck k;
-        {
-          py::gil_scoped_release released;
-          k = check_case(c);
-        }
-        py::list penalties;
-        for (const auto& p : k.penalties)
-          penalties.append(py::dict(py::arg("link") = p.link, py::arg("tau") = p.tau,
-                                    py::arg("dt_over_tau") = c.time.step / p.tau, py::arg("basis") = p.basis,
-                                    py::arg("resolved") = c.time.step <= p.tau));
-        return py::dict(py::arg("steps") = k.steps, py::arg("step") = c.time.step, py::arg("nodes") = k.nodes,
-                        py::arg("stable_step") = k.stable_step ? py::cast(*k.stable_step) : py::none(),
-                        py::arg("mass") = k.stable_step ? py::cast(k.mass) : py::none(),
-                        py::arg("stability") = k.stability, py::arg("penalties") = penalties,
-                        py::arg("timed_steps") = k.timed_steps, py::arg("timed_seconds") = k.timed_seconds,
-                        py::arg("estimate_seconds") = k.estimate_seconds,
-                        py::arg("trouble") = k.trouble.empty() ? py::none() : py::cast(k.trouble),
-                        py::arg("text") = check_text(c, k));
-      },
-      py::arg("case"), "check_case and check_text (run/check.hpp); use barimpact.check");
+  m.def("_check", &check_binding, py::arg("case"), "check_case and check_text (run/check.hpp); use barimpact.check");
+}
 
+void bind_studies(py::module_& m) {
   m.def(
       "_converge",
       [](const Case& c, const std::optional<std::string>& out, int levels, int ratio,
@@ -587,7 +606,10 @@ PYBIND11_MODULE(_core, m) {
 
   m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,
         py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");
+}
 
+// The output rule for what Python writes itself (figures, plot's directory).
+void bind_output_rule(py::module_& m) {
   m.def(
       "_prepare_output_directory",
       [](const py::object& target, const std::string& command, const std::vector<std::string>& entries, bool force) {
@@ -607,7 +629,9 @@ PYBIND11_MODULE(_core, m) {
         write_output_marker(d, output_command(d), entries);
       },
       py::arg("dir"), py::arg("entries"), "Adds `entries` to the marker of a directory barimpact wrote");
+}
 
+void bind_exact_solutions(py::module_& m) {
   m.def(
       "_exact_example1",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
@@ -630,4 +654,17 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(u, v, strain, R);
       },
       py::arg("x"), py::arg("t"), py::arg("length"), py::arg("stiffness"), py::arg("density"), py::arg("v0"));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "barimpact's C++ core; use the package `barimpact`";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  bind_case(m);
+  bind_result(m);
+  bind_run(m);
+  bind_studies(m);
+  bind_output_rule(m);
+  bind_exact_solutions(m);
 }
