@@ -493,10 +493,9 @@ def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
     return result
 
 
-# What plot.py may draw (main.cpp's list, and a blow's figures): the names
-# the figures' directory is marked with before it fills.
-_FIGURES = ("displacement", "reaction", "energy", "stress_map", "snapshots", "impacts", "joint_forces", "gauges",
-            "masses", "plastic_map", "plastic_snapshots", "blow_head", "blow_toe", "blow_envelopes")
+# What plot.py may draw: the names the figures' directory is marked with
+# before it fills, the command's list (run/figure_names.hpp).
+_FIGURES = _core._figure_names
 
 
 def plot(source, out=None, *, force=False, formats=("png", "svg")):

@@ -19,6 +19,7 @@
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/check.hpp"
+#include "barimpact/run/figure_names.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
@@ -629,6 +630,9 @@ void bind_output_rule(py::module_& m) {
         write_output_marker(d, output_command(d), entries);
       },
       py::arg("dir"), py::arg("entries"), "Adds `entries` to the marker of a directory barimpact wrote");
+
+  m.attr("_figure_names") =
+      py::tuple(py::cast(std::vector<std::string>(run_figure_names.begin(), run_figure_names.end())));
 }
 
 void bind_exact_solutions(py::module_& m) {

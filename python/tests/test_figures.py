@@ -292,3 +292,14 @@ def test_load_reads_what_the_run_wrote(tmp_path):
     assert np.array_equal(data.u, np.asarray(r.u)) and np.array_equal(data.sigma, np.asarray(r.sigma))
     assert list(data.body) == list(r.field_body)
     assert np.array_equal(data.history["R"], np.asarray(r.R))
+
+
+@pytest.mark.parametrize("example", ["lines/pile-hammer.toml", "plastic/paper-example1-yielding.toml",
+                                     "pile/steel-pipe-sand.toml"])
+def test_every_figure_drawn_is_in_the_list_the_directory_is_marked_with(example, tmp_path):
+    """A figure missing from run/figure_names.hpp would leave, after a plot
+    stopped half-way, a file barimpact does not own in figures/."""
+    written = barimpact.plot(barimpact.run(EXAMPLES / example), tmp_path, formats=("png",))
+    stems = {os.path.splitext(os.path.basename(p))[0] for p in written}
+    assert stems, example
+    assert stems <= set(barimpact._core._figure_names), stems - set(barimpact._core._figure_names)
