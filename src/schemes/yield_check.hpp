@@ -14,8 +14,9 @@ namespace barimpact::detail {
 
 // From level m's plastic strains pm and accumulated strains am, at up.
 template <bool isotropic>
-inline bool yields(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
-                   const double* __restrict up, const double* __restrict pm, const double* __restrict am) {
+[[gnu::always_inline]] inline bool yields(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
+                                          const double* __restrict up, const double* __restrict pm,
+                                          const double* __restrict am) {
   const double e = law.modulus, hm = law.plastic_modulus, sy = law.yield_stress;
   int any = 0;
   for (std::size_t j = first; j < last; ++j) {
@@ -27,16 +28,16 @@ inline bool yields(std::size_t first, std::size_t last, const Plasticity& law, d
   return any != 0;
 }
 
-// The same while nothing has yielded (p = alpha = 0), in the return map's
-// own arithmetic (so that it yields exactly where the map would): |E (u_{j+1}
-// - u_j) / h| > sigma_y.
-inline bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
-                             const double* __restrict up) {
-  const double e = law.modulus, sy = law.yield_stress;
-  int any = 0;
-  for (std::size_t j = first; j < last; ++j) any |= std::abs(e * ((up[j + 1] - up[j]) * inv_h)) > sy ? 1 : 0;
-  return any != 0;
-}
+// The loops as compiled per processor (yield_check.cpp): isotropic and
+// kinematic hardening from a plastic state, and, while nothing has yielded
+// (p = alpha = 0), |E (u_{j+1} - u_j) / h| > sigma_y in the return map's own
+// arithmetic (so that it yields exactly where the map would).
+bool yields_isotropic(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
+                      const double* __restrict up, const double* __restrict pm, const double* __restrict am);
+bool yields_kinematic(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
+                      const double* __restrict up, const double* __restrict pm, const double* __restrict am);
+bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
+                      const double* __restrict up);
 
 // Whether any element of the bodies `ranges` (plastic_body.hpp) yields at
 // up = `scale` times the array (scale 1 is exact), from the state p, a
@@ -47,7 +48,7 @@ inline bool any_yields(const Ranges& ranges, bool pristine, double scale, const 
   for (const auto& r : ranges) {
     const double inv_h = r.inv_h * scale;
     if (pristine ? yields_from_rest(r.first, r.last, r.law, inv_h, up)
-                 : (r.law.isotropic ? yields<true> : yields<false>)(r.first, r.last, r.law, inv_h, up, p, a))
+                 : (r.law.isotropic ? yields_isotropic : yields_kinematic)(r.first, r.last, r.law, inv_h, up, p, a))
       return true;
   }
   return false;
