@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../../src/schemes/yield_check.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/exact/lines.hpp"
@@ -124,6 +125,37 @@ step = 0.001
         ASSERT_EQ(bonds.next()[j], states[j].strain) << "step " << n << " bond " << j;
       }
       u = up;
+    }
+  }
+}
+
+// The yield checks, chosen by the processor (yield_check.cpp: AVX2 or
+// any x86-64), against the return map element by element, right at the
+// yield stress and one ulp past it: the same answer on the path taken here.
+TEST(YieldCheck, AgreesWithTheReturnMapAtTheYieldStress) {
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> strain(-0.9, 0.9);
+  for (const Hardening h : {Hardening::kinematic, Hardening::isotropic}) {
+    const Plasticity law(2.0, bilinear(1.0, 0.5, h));
+    for (int trial = 0; trial < 200; ++trial) {
+      const std::size_t bonds = 3 + static_cast<std::size_t>(trial % 37);
+      // Bond `at` strained exactly to sigma_y / E (u[at] = 0), or one ulp
+      // past it; the bonds before it elastic, after it unstrained.
+      std::vector<double> u(bonds + 1, 0.0), p(bonds, 0.0), a(bonds, 0.0);
+      const std::size_t at = static_cast<std::size_t>(trial) % bonds;
+      for (std::size_t j = at; j-- > 0;) u[j] = u[j + 1] - strain(random) / law.modulus;
+      const double edge = law.yield_stress / law.modulus;
+      for (std::size_t j = at + 1; j <= bonds; ++j) u[j] = trial % 2 == 0 ? edge : std::nextafter(edge, 1.0);
+      bool reference = false;
+      for (std::size_t j = 0; j < bonds; ++j) {
+        PlasticState state;
+        double dgamma = 0.0;
+        (void)law.stress(u[j + 1] - u[j], state, dgamma);
+        reference = reference || dgamma > 0.0;
+      }
+      EXPECT_EQ(detail::yields_from_rest(0, bonds, law, 1.0, u.data()), reference) << trial;
+      const auto from_state = h == Hardening::isotropic ? detail::yields_isotropic : detail::yields_kinematic;
+      EXPECT_EQ(from_state(0, bonds, law, 1.0, u.data(), p.data(), a.data()), reference) << trial;
     }
   }
 }
