@@ -286,6 +286,72 @@ int converge_command(ConvergeArgs& a) {
 // spinning on a core the cases need).
 constexpr int tag_request = 1, tag_case = 2, tag_row = 3;
 
+// Rank 0 hands out chunks of cases to the other ranks until each has been
+// told there are none left, and gathers their rows.
+template <class Take>
+void serve_ranks(int active, Take& take, std::vector<barimpact::SweepRow>& rows, std::mutex& mutex) {
+  while (active > 0) {
+    MPI_Status status;
+    int arrived = 0;
+    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
+    if (!arrived) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
+    }
+    if (status.MPI_TAG == tag_request) {
+      int dummy = 0;
+      MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      std::vector<long long> chunk;
+      for (std::size_t i : take()) chunk.push_back(static_cast<long long>(i));
+      if (chunk.empty()) --active;
+      MPI_Send(chunk.data(), static_cast<int>(chunk.size()), MPI_LONG_LONG, status.MPI_SOURCE, tag_case,
+               MPI_COMM_WORLD);
+    } else {
+      int length = 0;
+      MPI_Get_count(&status, MPI_CHAR, &length);
+      std::string text(static_cast<std::size_t>(length), '\0');
+      MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, tag_row, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      std::lock_guard lock(mutex);
+      rows.push_back(barimpact::row_from_json(text));
+    }
+  }
+}
+
+// Another rank runs the chunks rank 0 hands out, sending each row back.
+void run_handed_out(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
+                    const barimpact::SweepOptions& one) {
+  while (true) {
+    int dummy = 0;
+    MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
+    long long chunk[barimpact::PaperBatch::width];
+    MPI_Status status;
+    MPI_Recv(chunk, static_cast<int>(barimpact::PaperBatch::width), MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD,
+             &status);
+    int count = 0;
+    MPI_Get_count(&status, MPI_LONG_LONG, &count);
+    if (count == 0) break;
+    std::vector<std::size_t> indices(chunk, chunk + count);
+    for (const auto& row : barimpact::run_sweep(plan, dir, indices, one)) {
+      const std::string text = barimpact::row_to_json(row);
+      MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_row, MPI_COMM_WORLD);
+    }
+  }
+}
+
+// A rank failing once the cases are handed out cannot tell the others, who
+// wait on it: it ends them all (the runs written stay; rerunning resumes).
+[[noreturn]] void abort_sweep(int rank) {
+  try {
+    throw;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "barimpact: error: rank {}: {} (the sweep is stopped; rerun it to resume)\n", rank, e.what());
+  } catch (...) {
+    fmt::print(stderr, "barimpact: error: rank {}: unknown failure (the sweep is stopped; rerun it to resume)\n", rank);
+  }
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::abort();  // MPI_Abort does not return
+}
+
 std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
                                            const std::vector<std::size_t>& todo, const barimpact::SweepOptions& o,
                                            int rank, int size, bool threads) {
@@ -316,58 +382,73 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
     // Without MPI_THREAD_FUNNELED from the library, rank 0 only dispatches.
     std::thread local = threads ? std::thread(run_here) : std::thread();
     int active = size - 1;
-    while (active > 0) {
-      MPI_Status status;
-      int arrived = 0;
-      MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
-      if (!arrived) {
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        continue;
-      }
-      if (status.MPI_TAG == tag_request) {
-        int dummy = 0;
-        MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        std::vector<long long> chunk;
-        for (std::size_t i : take()) chunk.push_back(static_cast<long long>(i));
-        if (chunk.empty()) --active;
-        MPI_Send(chunk.data(), static_cast<int>(chunk.size()), MPI_LONG_LONG, status.MPI_SOURCE, tag_case,
-                 MPI_COMM_WORLD);
-      } else {
-        int length = 0;
-        MPI_Get_count(&status, MPI_CHAR, &length);
-        std::string text(static_cast<std::size_t>(length), '\0');
-        MPI_Recv(text.data(), length, MPI_CHAR, status.MPI_SOURCE, tag_row, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        std::lock_guard lock(mutex);
-        rows.push_back(barimpact::row_from_json(text));
-      }
+    try {
+      serve_ranks(active, take, rows, mutex);
+    } catch (...) {
+      abort_sweep(rank);
     }
     if (local.joinable()) local.join();
     if (local_error) std::rethrow_exception(local_error);
   } else {
-    while (true) {
-      int dummy = 0;
-      MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
-      long long chunk[barimpact::PaperBatch::width];
-      MPI_Status status;
-      MPI_Recv(chunk, static_cast<int>(barimpact::PaperBatch::width), MPI_LONG_LONG, 0, tag_case, MPI_COMM_WORLD,
-               &status);
-      int count = 0;
-      MPI_Get_count(&status, MPI_LONG_LONG, &count);
-      if (count == 0) break;
-      std::vector<std::size_t> indices(chunk, chunk + count);
-      for (const auto& row : barimpact::run_sweep(plan, dir, indices, one)) {
-        const std::string text = barimpact::row_to_json(row);
-        MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_row, MPI_COMM_WORLD);
-      }
+    try {
+      run_handed_out(plan, dir, one);
+    } catch (...) {
+      abort_sweep(rank);
     }
   }
   return rows;
 }
 #endif
 
+#ifdef BARIMPACT_HAVE_MPI
+// A distributed sweep: every rank's checks and rank 0's directory first,
+// then the worst exit status among the ranks reaches all of them
+// (MPI_Allreduce), so that a refusal on any rank ends every rank, each with
+// that status, and none is left waiting at a collective (the failing rank
+// says why). Returns an exit status for a rank other than 0, else nullopt
+// with `outcome` filled.
+std::optional<int> mpi_sweep_command(const std::string& sweep_path, const std::filesystem::path& dir,
+                                     const barimpact::SweepOptions& o, const WriteFlags& flags, int rank, int size,
+                                     bool threads, barimpact::SweepOutcome& outcome) {
+  std::optional<barimpact::SweepPlan> plan;
+  barimpact::SweepStart start;
+  std::exception_ptr failure;
+  try {
+    barimpact::check_jobs(o.jobs);
+    if (o.batch) (void)barimpact::simd_path();
+    plan = barimpact::SweepPlan::from_file(sweep_path);
+    if (rank == 0) {  // the other ranks only run the points rank 0 hands out
+      barimpact::prepare_sweep(dir, o, flags.force);
+      start = barimpact::resume_sweep(*plan, dir);
+    }
+  } catch (...) {
+    failure = std::current_exception();
+  }
+  int status = 0, worst = 0;
+  if (failure) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const barimpact::InputError&) {
+      status = exit_bad_input;
+    } catch (...) {
+      status = 1;
+    }
+  }
+  MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  if (failure) std::rethrow_exception(failure);
+  if (worst != 0) return worst;
+  const auto done = mpi_sweep(*plan, dir, start.todo, o, rank, size, threads);
+  if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
+  outcome = barimpact::finish_sweep(*plan, dir, std::move(start), done);
+  return std::nullopt;
+}
+#endif
+
 int sweep_command(const std::string& sweep_path, const std::string& out_dir, const barimpact::SweepOptions& o,
                   const WriteFlags& flags) {
   int size = 1;
+  const std::filesystem::path dir(out_dir);
+  barimpact::SweepOutcome outcome;
 #ifdef BARIMPACT_HAVE_MPI
   int rank = 0, provided = 0;
   const bool distributed = std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr;
@@ -382,37 +463,17 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
       if (on) MPI_Finalize();
     }
   } finalize{distributed};
-#endif
-  // Checked on every rank: a refusal on rank 0 alone would leave the others at its barrier.
-  barimpact::check_jobs(o.jobs);
-  if (o.batch) (void)barimpact::simd_path();
-  const auto plan = barimpact::SweepPlan::from_file(sweep_path);
-  const std::filesystem::path dir(out_dir);
-  barimpact::SweepOutcome outcome;
-#ifdef BARIMPACT_HAVE_MPI
   if (size > 1) {
-    barimpact::SweepStart start;
-    std::exception_ptr refused;
-    if (rank == 0) {  // the other ranks only run the points rank 0 hands out
-      try {
-        barimpact::prepare_sweep(dir, o, flags.force);
-        start = barimpact::resume_sweep(plan, dir);
-      } catch (...) {
-        refused = std::current_exception();
-      }
-    }
-    // The directory exists before any rank writes; a refusal ends every rank
-    // (rank 0 says why), none is left waiting.
-    int ready = refused ? 0 : 1;
-    MPI_Bcast(&ready, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    if (refused) std::rethrow_exception(refused);
-    if (ready == 0) return exit_bad_input;
-    const auto done = mpi_sweep(plan, dir, start.todo, o, rank, size, provided >= MPI_THREAD_FUNNELED);
-    if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
-    outcome = barimpact::finish_sweep(plan, dir, std::move(start), done);
+    if (const auto status =
+            mpi_sweep_command(sweep_path, dir, o, flags, rank, size, provided >= MPI_THREAD_FUNNELED, outcome))
+      return *status;
   } else
 #endif
-    outcome = barimpact::write_sweep(plan, dir, o, flags.force);
+  {
+    barimpact::check_jobs(o.jobs);
+    if (o.batch) (void)barimpact::simd_path();
+    outcome = barimpact::write_sweep(barimpact::SweepPlan::from_file(sweep_path), dir, o, flags.force);
+  }
   const auto& rows = outcome.rows;
   auto count = [&](auto&& pred) { return std::count_if(rows.begin(), rows.end(), pred); };
   const auto complete = count([](const auto& r) { return r.status == "complete"; });

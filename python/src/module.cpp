@@ -461,7 +461,7 @@ void bind_history_views(ResultClass& result) {
                         {static_cast<py::ssize_t>(h.size()), static_cast<py::ssize_t>(columns.size())},
                         {sizeof(HistoryRow), sizeof(double)}, self);
           },
-          "The budget's history rows, shape (rows, 10), columns as the first ten of history.csv (a view, no copy)")
+          "The budget's history rows, shape (rows, 11), columns as the first eleven of history.csv (a view, no copy)")
       .def(
           "__getitem__",
           [](py::object self, const std::string& name) -> py::object {

@@ -13,6 +13,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <system_error>
 
 namespace barimpact {
 
@@ -119,7 +120,9 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
     write(staging_);
     fs::remove(staging_ / staging_flag);
     write_output_marker(staging_, command_, directory_entries(staging_));
-  } catch (const std::runtime_error& e) {  // std::system_error, or results.h5's errors
+  } catch (const std::system_error& e) {
+    throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
+  } catch (const Hdf5Error& e) {
     throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
   }
   // The target is judged again now: it may have changed during the run.

@@ -18,8 +18,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Field chunks of about this many bytes: whole snapshots (a snapshot's
-// rows, or as many snapshots as fit), so that reading one is one chunk.
+// Field chunks of about this many bytes: as many whole snapshots as fit,
+// so that reading one is one chunk; a larger snapshot in pieces of it.
 constexpr hsize_t chunk_bytes = 256 * 1024;
 
 // The innermost message of the calling thread's HDF5 error stack (where the
@@ -66,7 +66,7 @@ class Session {
 class Id {
  public:
   Id(hid_t id, herr_t (*closer)(hid_t), const std::string& what) : id_(id), close_(closer) {
-    if (id_ < 0) throw std::runtime_error(fmt::format("{} ({})", what, hdf5_error()));
+    if (id_ < 0) throw Hdf5Error(fmt::format("{} ({})", what, hdf5_error()));
   }
   ~Id() {
     if (id_ >= 0) close_(id_);
@@ -80,7 +80,7 @@ class Id {
   void close(const std::string& what) {
     const herr_t status = close_(id_);
     id_ = -1;
-    if (status < 0) throw std::runtime_error(fmt::format("{} ({})", what, hdf5_error()));
+    if (status < 0) throw Hdf5Error(fmt::format("{} ({})", what, hdf5_error()));
   }
 
  private:
@@ -89,7 +89,7 @@ class Id {
 };
 
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error(fmt::format("{} ({})", what, hdf5_error()));
+  if (status < 0) throw Hdf5Error(fmt::format("{} ({})", what, hdf5_error()));
 }
 
 class Writer {
@@ -227,7 +227,7 @@ HistoryColumns read_results_h5_history(const fs::path& path) {
     const Id space(H5Aget_space(attribute), H5Sclose, at("/history's columns"));
     const hssize_t n = H5Sget_simple_extent_npoints(space);
     if (n < 0 || H5Sget_simple_extent_ndims(space) != 1)
-      throw std::runtime_error(at("/history's columns are not a list of names"));
+      throw Hdf5Error(at("/history's columns are not a list of names"));
     Id type(H5Tcopy(H5T_C_S1), H5Tclose, at("/history's columns"));
     check(H5Tset_size(type, H5T_VARIABLE), at("/history's columns"));
     check(H5Tset_cset(type, H5T_CSET_UTF8), at("/history's columns"));
@@ -246,7 +246,7 @@ HistoryColumns read_results_h5_history(const fs::path& path) {
     const hssize_t rows = H5Sget_simple_extent_npoints(space);
     if (rows < 0 || H5Sget_simple_extent_ndims(space) != 1 ||
         (!out.values.empty() && static_cast<std::size_t>(rows) != out.values.front().size()))
-      throw std::runtime_error(at(fmt::format("/history/{} is not a column as long as /history/t", name)));
+      throw Hdf5Error(at(fmt::format("/history/{} is not a column as long as /history/t", name)));
     auto& values = out.values.emplace_back(static_cast<std::size_t>(rows));
     if (rows > 0)
       check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),

@@ -28,16 +28,30 @@ template <bool isotropic>
   return any != 0;
 }
 
-// The loops as compiled per processor (yield_check.cpp): isotropic and
-// kinematic hardening from a plastic state, and, while nothing has yielded
-// (p = alpha = 0), |E (u_{j+1} - u_j) / h| > sigma_y in the return map's own
-// arithmetic (so that it yields exactly where the map would).
-bool yields_isotropic(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
-                      const double* __restrict up, const double* __restrict pm, const double* __restrict am);
-bool yields_kinematic(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
-                      const double* __restrict up, const double* __restrict pm, const double* __restrict am);
-bool yields_from_rest(std::size_t first, std::size_t last, const Plasticity& law, double inv_h,
-                      const double* __restrict up);
+// While nothing has yielded (p = alpha = 0): |E (u_{j+1} - u_j) / h| >
+// sigma_y, in the return map's own arithmetic (so that it yields exactly
+// where the map would).
+[[gnu::always_inline]] inline bool yields_from_rest_loop(std::size_t first, std::size_t last, const Plasticity& law,
+                                                         double inv_h, const double* __restrict up) {
+  const double e = law.modulus, sy = law.yield_stress;
+  int any = 0;
+  for (std::size_t j = first; j < last; ++j) any |= std::abs(e * ((up[j + 1] - up[j]) * inv_h)) > sy ? 1 : 0;
+  return any != 0;
+}
+
+// The loops above as compiled for one processor path (yield_check.cpp).
+struct YieldLoops {
+  bool (*from_rest)(std::size_t, std::size_t, const Plasticity&, double, const double*);
+  bool (*isotropic)(std::size_t, std::size_t, const Plasticity&, double, const double*, const double*, const double*);
+  bool (*kinematic)(std::size_t, std::size_t, const Plasticity&, double, const double*, const double*, const double*);
+};
+
+// Any x86-64's loops (`wide` false), or AVX2's (nullptr where the build or
+// the processor has none): the tests compare them.
+const YieldLoops* yield_loops(bool wide);
+
+// The widest this processor runs, chosen once.
+const YieldLoops& chosen_yield_loops();
 
 // Whether any element of the bodies `ranges` (plastic_body.hpp) yields at
 // up = `scale` times the array (scale 1 is exact), from the state p, a
@@ -47,8 +61,9 @@ inline bool any_yields(const Ranges& ranges, bool pristine, double scale, const 
                        const double* a) {
   for (const auto& r : ranges) {
     const double inv_h = r.inv_h * scale;
-    if (pristine ? yields_from_rest(r.first, r.last, r.law, inv_h, up)
-                 : (r.law.isotropic ? yields_isotropic : yields_kinematic)(r.first, r.last, r.law, inv_h, up, p, a))
+    const YieldLoops& loops = chosen_yield_loops();
+    if (pristine ? loops.from_rest(r.first, r.last, r.law, inv_h, up)
+                 : (r.law.isotropic ? loops.isotropic : loops.kinematic)(r.first, r.last, r.law, inv_h, up, p, a))
       return true;
   }
   return false;

@@ -16,7 +16,8 @@
 //                     line order, a welded node once per body
 //   /fields/u, v, sigma, eps_p
 //                     (snapshots, rows) float64: [s, j] is fields.csv's row
-//                     of snapshot s and row j (chunked by snapshots; shuffled
+//                     of snapshot s and row j (chunked by whole snapshots up
+//                     to 256 KiB, a larger one in pieces; shuffled
 //                     and compressed with gzip at level output.compression,
 //                     1 by default, none at 0)
 //   /fields/body      (rows,) int32, each row's body as an index into the
@@ -27,6 +28,7 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,12 @@
 #include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
+
+/// What the HDF5 library refused (a file it cannot create, read or close),
+/// with its reason: the run directory turns it into a one-line refusal.
+struct Hdf5Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// The file's name in a run directory.
 inline constexpr std::string_view results_h5_name = "results.h5";
