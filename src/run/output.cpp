@@ -163,6 +163,17 @@ void RunDirectory::move_beside() {
       throw InputError(fmt::format("--out {}: cannot move {} into place: {}", shown_.string(), name, ec.message()));
   }
   try {
+    // A run's results in the other format, left here by an earlier run,
+    // would pass for this one's: removed when barimpact's marker lists them
+    // (as a replaced directory would lose them).
+    const auto writes = [&](std::string_view n) { return std::find(names.begin(), names.end(), n) != names.end(); };
+    if (writes("history.csv") || writes(results_h5_name)) {
+      std::vector<std::string> stale;
+      for (const std::string_view n :
+           {std::string_view("history.csv"), std::string_view("fields.csv"), results_h5_name})
+        if (!writes(n)) stale.emplace_back(n);
+      remove_listed_files(target_, command_, stale);
+    }
     write_output_marker(target_, command_, names);
   } catch (const std::exception& e) {
     throw InputError(fmt::format("--out {}: cannot write its marker: {}", shown_.string(), e.what()));

@@ -178,10 +178,9 @@ OutputMode check_output_directory(const fs::path& target, bool force, std::strin
   return OutputMode::beside;
 }
 
-void write_output_marker(const fs::path& dir, std::string_view command, const std::vector<std::string>& entries) {
-  std::set<std::string> all(entries.begin(), entries.end());
-  for (const auto& e : marker_entries(dir)) all.insert(e);
-  all.erase(std::string(output_marker));
+namespace {
+
+void write_marker(const fs::path& dir, std::string_view command, const std::set<std::string>& all) {
   const nlohmann::json j = {{"written_by", "barimpact"},
                             {"version", BARIMPACT_VERSION},
                             {"command", std::string(command)},
@@ -196,6 +195,30 @@ void write_output_marker(const fs::path& dir, std::string_view command, const st
     if (!out) throw std::system_error(errno, std::generic_category(), temporary.string());
   }
   fs::rename(temporary, dir / output_marker);
+}
+
+}  // namespace
+
+void write_output_marker(const fs::path& dir, std::string_view command, const std::vector<std::string>& entries) {
+  std::set<std::string> all(entries.begin(), entries.end());
+  for (const auto& e : marker_entries(dir)) all.insert(e);
+  all.erase(std::string(output_marker));
+  write_marker(dir, command, all);
+}
+
+void remove_listed_files(const fs::path& dir, std::string_view command, const std::vector<std::string>& names) {
+  const auto listed = marker_entries(dir);
+  std::set<std::string> kept(listed.begin(), listed.end());
+  bool removed = false;
+  for (const auto& name : names) {
+    std::error_code ec;
+    if (kept.count(name) == 0 || !fs::is_regular_file(fs::symlink_status(dir / name, ec))) continue;
+    if (fs::remove(dir / name, ec)) {
+      kept.erase(name);
+      removed = true;
+    }
+  }
+  if (removed) write_marker(dir, command, kept);
 }
 
 void remove_stale_staging(const fs::path& parent, const std::string& name) {

@@ -85,6 +85,13 @@ check "a run directory with figures/ is replaced" "$bin" run "$ex1" --out "$work
 check "--force beside a user's files" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
 check "user's files kept under --force" user_dir_intact "$work/theirs"
 check "results written under --force" test -s "$work/theirs/history.csv"
+# A later run in the other format replaces barimpact's results there, not only adds to them.
+check "--force in HDF5 after CSV" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" --set output.format=hdf5 > /dev/null
+check "no stale history.csv beside results.h5" test ! -e "$work/theirs/history.csv" -a ! -e "$work/theirs/fields.csv" -a -s "$work/theirs/results.h5"
+check "user's files kept after the format changed" user_dir_intact "$work/theirs"
+check "marker lists results.h5, not the CSV files" bash -c "grep -q results.h5 '$work/theirs/.barimpact' && ! grep -q history.csv '$work/theirs/.barimpact'"
+check "--force back to CSV" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
+check "no stale results.h5 beside history.csv" test ! -e "$work/theirs/results.h5" -a -s "$work/theirs/history.csv"
 # ... and the directory stays the user's: without --force it is still refused.
 before=$(listing "$work/theirs")
 expect_refusal "did not write" "$before" "$work/theirs" run "$ex1" --out "$work/theirs"

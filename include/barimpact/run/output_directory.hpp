@@ -51,6 +51,12 @@ enum class OutputMode {
 void write_output_marker(const std::filesystem::path& dir, std::string_view command,
                          const std::vector<std::string>& entries);
 
+/// Removes the files among `names` that the marker of `dir` lists as
+/// barimpact's (regular files only; anything else is left) and drops them
+/// from the marker.
+void remove_listed_files(const std::filesystem::path& dir, std::string_view command,
+                         const std::vector<std::string>& names);
+
 /// The names of the entries of `dir` (not recursive), sorted; empty if it does not exist.
 [[nodiscard]] std::vector<std::string> directory_entries(const std::filesystem::path& dir);
 
