@@ -151,6 +151,32 @@ class RunData:
         self.case_source = case_source
         self.units = units_of(case)
 
+    # The history by column name, as a run's Result: r["U"], r.U, r.columns.
+    @property
+    def columns(self):
+        """The history's column names, in history.csv's order."""
+        return tuple(self.history)
+
+    def __getitem__(self, column):
+        try:
+            return self.history[column]
+        except KeyError:
+            raise KeyError(f'no history column "{column}"') from None
+
+    def __contains__(self, column):
+        return column in self.history
+
+    def __getattr__(self, name):  # only for names that are not attributes
+        history = self.__dict__.get("history")
+        if history is not None and name in history:
+            return history[name]
+        raise AttributeError(f"'RunData' object has no attribute or history column '{name}'")
+
+    def to_pandas(self):
+        """The history as a pandas DataFrame (pandas must be installed)."""
+        import pandas as pd
+        return pd.DataFrame(self.history)
+
 
 def _read_fields(path):
     """fields.csv as (x, field_t, {column: (snapshots, nodes) array}, body):

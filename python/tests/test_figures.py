@@ -292,6 +292,14 @@ def test_load_reads_what_the_run_wrote(tmp_path):
     assert np.array_equal(data.u, np.asarray(r.u)) and np.array_equal(data.sigma, np.asarray(r.sigma))
     assert list(data.body) == list(r.field_body)
     assert np.array_equal(data.history["R"], np.asarray(r.R))
+    # Columns by name, as a Result's: r["U"], r.U, columns.
+    assert data.columns == tuple(r.columns)
+    assert np.array_equal(data["joint.short-long.force"], np.asarray(r["joint.short-long.force"]))
+    assert np.array_equal(data.U, np.asarray(r.U)) and "U" in data and "nothing" not in data
+    with pytest.raises(KeyError, match="no history column"):
+        data["nothing"]
+    with pytest.raises(AttributeError):
+        data.nothing
 
 
 @pytest.mark.parametrize("example", ["lines/pile-hammer.toml", "plastic/paper-example1-yielding.toml",
