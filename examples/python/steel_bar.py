@@ -18,6 +18,7 @@ case = barimpact.Case({
     "obstacle": {"kind": "elastic", "stiffness": 1e9, "gap": 5e-5},
     "time": {"end": 2e-3, "step": 1e-6},
     "output": {"every": 2, "fields_at": [i * 2e-5 for i in range(101)]},
+    "units": {"system": "SI"},
 })
 result = barimpact.run(case, progress=lambda p: print(f"  t = {p['t']:.2e} s", file=sys.stderr))
 s = result.summary
