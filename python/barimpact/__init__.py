@@ -421,8 +421,8 @@ def _nested(keys):
     return out
 
 
-def sweep(sweep, out, *, jobs=None, no_batch=False, force=False, strict=False):
-    """Every case of a sweep (`barimpact sweep SWEEP --out DIR`): `sweep` a
+def sweep(sweep_file, out, *, jobs=None, no_batch=False, force=False, strict=False):
+    """Every case of a sweep (`barimpact sweep SWEEP --out DIR`): `sweep_file` a
     sweep file, or the same as a dict ({"case": "paper-example1.toml", "set":
     {"time.end": 2.0}, "axis": [{"key": "obstacle.stiffness", "values": [100.0,
     1000.0]}], "zip": [[...]]}; `case` then from the working directory).
@@ -434,9 +434,9 @@ def sweep(sweep, out, *, jobs=None, no_batch=False, force=False, strict=False):
     "directory"}. Ctrl-C stops the cases under way, writes sweep.csv and
     raises KeyboardInterrupt; a rerun finishes them. Warnings are
     `HealthWarning`s; strict=True raises `StrictError` after writing."""
-    if isinstance(sweep, dict):
-        sweep = {k: _nested(v) if k == "set" and isinstance(v, dict) else v for k, v in sweep.items()}
-    done = _core._sweep(sweep, os.fspath(out), _jobs(jobs), not no_batch, bool(force))
+    if isinstance(sweep_file, dict):
+        sweep_file = {k: _nested(v) if k == "set" and isinstance(v, dict) else v for k, v in sweep_file.items()}
+    done = _core._sweep(sweep_file, os.fspath(out), _jobs(jobs), not no_batch, bool(force))
     summary = {k: done[k] for k in ("cases", "run", "batched", "resumed")}
     table = _table_from_csv(done["csv"], summary)
     summary.update(complete=int(np.sum(table["status"] == "complete")), directory=os.fspath(out))
@@ -498,21 +498,21 @@ def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
 _FIGURES = _core._figure_names
 
 
-def plot(source, out=None, *, force=False, formats=("png", "svg")):
+def plot(dir, out=None, *, force=False, formats=("png", "svg")):
     """The figures of a run, PNG and SVG (`barimpact plot DIR [--out
-    FIGURES]`). `source` a run directory (written by `barimpact run` or
+    FIGURES]`). `dir` a run directory (written by `barimpact run` or
     `Result.write`): the figures go to DIR/figures, or `out`, by the
     command's output rule (a new or empty directory, or one barimpact wrote;
-    `force` as --force), and DIR/figures is listed as the run's. Or `source`
+    `force` as --force), and DIR/figures is listed as the run's. Or `dir`
     a `Result` (or `RunData`): the figures go to `out` (default ./figures) as
     they are. Returns the paths written."""
-    if not isinstance(source, (str, os.PathLike)):
-        return _figures.plot(source, out, formats)
-    run_dir = _Path(os.fspath(source))
+    if not isinstance(dir, (str, os.PathLike)):
+        return _figures.plot(dir, out, formats)
+    run_dir = _Path(os.fspath(dir))
     run = _figures.is_run_directory(run_dir)
     sweep = not run and (run_dir / "sweep.csv").is_file()
     if not run and not sweep:
-        raise InputError(f"plot: {os.fspath(source)} holds no history.csv, results.h5 or sweep.csv "
+        raise InputError(f"plot: {os.fspath(dir)} holds no history.csv, results.h5 or sweep.csv "
                          "(give a directory written by barimpact run or sweep)")
     target = run_dir / "figures" if out is None else _Path(os.fspath(out))
     ours = out is None and _core._written_by_barimpact(run_dir)  # asked before figures/ is there

@@ -89,7 +89,7 @@ def converge(case: _CaseLike, out: _PathArg | None = None, *, set: _Overrides = 
     """barimpact converge CASE --out DIR [--levels N] [--ratio R] [--refine ...] [--vary ...] [--schemes ...]
     [--reference ...] [--jobs N] [--set ...] [--force] [--strict]: convergence.csv's table."""
 
-def sweep(sweep: _PathArg | Mapping[str, Any], out: _PathArg, *, jobs: int | None = None, no_batch: bool = False,
+def sweep(sweep_file: _PathArg | Mapping[str, Any], out: _PathArg, *, jobs: int | None = None, no_batch: bool = False,
           force: bool = False, strict: bool = False) -> Table:
     """barimpact sweep SWEEP --out DIR [--jobs N] [--no-batch] [--force] [--strict]: sweep.csv's table."""
 
@@ -103,7 +103,7 @@ def hopkinson(setup: _PathArg | Mapping[str, Any], out: _PathArg | None = None, 
               force: bool = False, strict: bool = False) -> HopkinsonTable:
     """barimpact hopkinson SETUP [--out DIR] [--no-plot] [--force] [--strict]: hopkinson.csv's table."""
 
-def plot(source: _PathArg | Result | RunData, out: _PathArg | None = None, *, force: bool = False,
+def plot(dir: _PathArg | Result | RunData, out: _PathArg | None = None, *, force: bool = False,
          formats: Sequence[str] = ("png", "svg")) -> list[Path]:
     """barimpact plot DIR [--out FIGURES] [--force], or the figures of a Result into `out`."""
 
