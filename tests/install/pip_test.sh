@@ -19,8 +19,10 @@ cd "$source_dir"
 "$python" -m venv --system-site-packages "$work/venv" && ok || bad "python3 -m venv"
 "$work/venv/bin/pip" install --no-build-isolation --no-index . > "$work/pip.log" 2>&1 && ok ||
   bad "pip install: $(grep -i error "$work/pip.log" | head -5)"
-"$python" -m build --no-isolation --wheel --outdir "$work/dist" . > "$work/build.log" 2>&1 && ok ||
+# As the README gives it: an sdist, then a wheel built from that sdist.
+"$python" -m build --no-isolation --outdir "$work/dist" . > "$work/build.log" 2>&1 && ok ||
   bad "python3 -m build: $(grep -i error "$work/build.log" | head -5)"
+ls "$work"/dist/barimpact-*.tar.gz > /dev/null 2>&1 && ok || bad "python3 -m build made no sdist"
 "$python" -m venv --system-site-packages "$work/wheel-venv" &&
   "$work/wheel-venv/bin/pip" install --no-index "$work"/dist/barimpact-*.whl > "$work/wheel.log" 2>&1 && ok ||
   bad "pip install of the wheel: $(tail -3 "$work/wheel.log")"
