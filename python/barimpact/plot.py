@@ -241,7 +241,7 @@ def load(run_dir, with_fields=True):
     if not is_run_directory(d):
         raise ValueError(f"{run_dir}: no history.csv or results.h5 (not a directory written by barimpact run)")
     case = tomllib.loads((d / "case.toml").read_text())
-    if case.get("output", {}).get("format") == "hdf5":  # --force may have left the other format beside it
+    if case.get("output", {}).get("format") == "hdf5":  # the file the case says (a user's may lie beside it)
         history, (x, field_t, fields, body) = _read_results_h5(d / "results.h5", with_fields)
     else:
         with open(d / "history.csv") as stream:

@@ -116,14 +116,18 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
 }
 
 void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
+  // What the file system or HDF5 refused; any other failure is not the output's.
+  const auto cannot_write = [&](const std::exception& e) {
+    return InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
+  };
   try {
     write(staging_);
     fs::remove(staging_ / staging_flag);
     write_output_marker(staging_, command_, directory_entries(staging_));
   } catch (const std::system_error& e) {
-    throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
+    throw cannot_write(e);
   } catch (const Hdf5Error& e) {
-    throw InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
+    throw cannot_write(e);
   }
   // The target is judged again now: it may have changed during the run.
   std::error_code ec;
@@ -278,7 +282,7 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
     s.energy_error_max = number_or_nan(j, "energy_error_max");
     s.run_seconds = number_or_nan(j, "run_seconds");
     s.warnings = j.value("warnings", std::vector<std::string>{});
-    // The file the case says the run wrote (--force may have left the other beside it).
+    // The file the case says the run wrote (a user's file of the other name may lie beside it under --force).
     if (Case::from_file(dir / "case.toml").output.format == OutputFormat::hdf5)
       read_results_history(dir / results_h5_name, r);
     else
