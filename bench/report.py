@@ -266,6 +266,55 @@ directories, with bearing.csv and every run's files written and no figure
 """
 
 
+def large_run_section(binary, python_dir):
+    """The README's large case (20,000 elements, 80,000 steps, a history row
+    every step, 101 snapshots) in both formats: run, plot and load times
+    (one each, whole processes) and the files' sizes."""
+    import tempfile
+    import time
+    here = os.path.dirname(os.path.abspath(__file__))
+    case = os.path.join(here, "..", "examples", "paper-example1.toml")
+    env = dict(os.environ, PYTHONPATH=python_dir, MPLBACKEND="Agg")
+
+    def timed(args):
+        start = time.perf_counter()
+        subprocess.run(args, capture_output=True, check=True, env=env)
+        return time.perf_counter() - start
+
+    def megabytes(path):
+        if os.path.isfile(path):
+            return os.path.getsize(path) / 1e6
+        return sum(os.path.getsize(os.path.join(d, f)) for d, _, fs in os.walk(path) for f in fs) / 1e6
+
+    rows = []
+    with tempfile.TemporaryDirectory() as work:
+        for format, files in (("csv", ("history.csv", "fields.csv")), ("hdf5", ("results.h5",))):
+            out = os.path.join(work, format)
+            run = timed([binary, "run", case, "--out", out, "--set", f"output.format={format}", "--set",
+                         "bar.elements=20000", "--set", "time.step=5e-5"])
+            plot = timed([binary, "plot", out])
+            load = timed(["/usr/bin/python3", "-c", f"import barimpact; barimpact.load({out!r})"])
+            size = sum(megabytes(os.path.join(out, f)) for f in files)
+            rows.append(f"| {format} | {size:.1f} | {run:.1f} | {plot:.1f} | {megabytes(os.path.join(out, 'figures')):.2f} "
+                        f"| {load:.2f} |")
+    return f"""## A large run: CSV or HDF5, and its figures
+
+The README's large case: Example 1 on 20,000 elements for 80,000 steps,
+a history row every step and 101 snapshots. Wall seconds of whole
+processes (one each; `load` includes Python's start-up and the import),
+sizes in MB. Targets: `barimpact plot` under 15 s and under 5 MB.
+
+    build/release/barimpact run examples/paper-example1.toml --out out/big --set output.format=hdf5 --set bar.elements=20000 --set time.step=5e-5
+    build/release/barimpact plot out/big
+    python3 -c "import barimpact; barimpact.load('out/big')"
+
+| output.format | results (MB) | run (s) | plot (s) | figures (MB) | load (s) |
+|---|---:|---:|---:|---:|---:|
+{chr(10).join(rows)}
+
+"""
+
+
 def main():
     binary, out = sys.argv[1], sys.argv[2]
     build = os.path.dirname(os.path.dirname(os.path.abspath(binary)))
@@ -316,6 +365,7 @@ def main():
     sweep = subprocess.run(["bash", os.path.join(here, "sweep_throughput.sh"), os.path.join(build, "barimpact")],
                            capture_output=True, text=True, check=True).stdout.strip()
     bearing = bearing_time(os.path.join(build, "barimpact")) if any(n == "BM_Pile/smith-soil" for n, _ in samples) else ""
+    large = large_run_section(os.path.join(build, "barimpact"), os.path.join(build, "python"))
     env = dict(os.environ, PYTHONPATH=os.path.join(build, "python"))
     scipy = subprocess.run(["/usr/bin/python3", os.path.join(here, "scipy_baseline.py"), "100", "1000", "10000"],
                            capture_output=True, text=True, check=True, env=env).stdout.strip()
@@ -393,7 +443,7 @@ solves from both ends at once (two independent chains). Interior rows use
 the uniform mesh's constant stencils, so a step streams only its state and
 two factor arrays.
 
-{line_section(samples)}{plastic_section(samples)}{pile_section(samples, bearing)}## Sweeps: SIMD batches, threads, MPI
+{line_section(samples)}{plastic_section(samples)}{pile_section(samples, bearing)}{large}## Sweeps: SIMD batches, threads, MPI
 
 {sweep}
 
