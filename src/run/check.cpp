@@ -22,7 +22,7 @@ void read_stability(const Case& c, CaseCheck& k) {
   const std::string& s = c.time.scheme;
   if (s == "central-difference" || s == "paoli-schatzman") {
     const bool consistent = s == "paoli-schatzman";
-    k.stable_step = c.single_bar ? stable_step(c, consistent) : line_stable_step(build_line(c), consistent);
+    k.stable_step = line_stable_step(build_line(c), consistent);
     k.mass = consistent ? "consistent" : "lumped";
     k.stability = "explicit: steps above the stable step are refused";
   } else if (s == "characteristic") {
@@ -54,7 +54,7 @@ double time_steps(const Case& c, long long steps, std::string& trouble) {
 CaseCheck check_case(const Case& c, double timing_budget) {
   CaseCheck k;
   k.steps = c.step_count();
-  k.nodes = c.single_bar ? static_cast<std::size_t>(c.bar.elements) + 1 : build_line(c).nodes();
+  k.nodes = build_line(c).nodes();
   read_stability(c, k);
   k.penalties = penalty_time_constants(c);
   // Enough steps to time reliably (about timing_budget node-steps, a few

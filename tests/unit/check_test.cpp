@@ -7,6 +7,8 @@
 #include <cmath>
 
 #include "../support/run_case.hpp"
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact {
@@ -126,13 +128,13 @@ TEST(Check, ReportsTheExplicitSchemesStableStepWithItsMass) {
   const Case lumped = case_from("[time]\nscheme = \"central-difference\"\nstep = 0.005\n");
   const auto k = check_case(lumped);
   ASSERT_TRUE(k.stable_step);
-  EXPECT_EQ(*k.stable_step, stable_step(lumped, false));
+  EXPECT_EQ(*k.stable_step, line_stable_step(build_line(lumped), false));
   EXPECT_EQ(k.mass, "lumped");
   const Case consistent =
       case_from("[time]\nscheme = \"paoli-schatzman\"\nstep = 0.001\n[obstacle]\nkind = \"rigid\"\n");
   const auto kc = check_case(consistent);
   ASSERT_TRUE(kc.stable_step);
-  EXPECT_EQ(*kc.stable_step, stable_step(consistent, true));
+  EXPECT_EQ(*kc.stable_step, line_stable_step(build_line(consistent), true));
   EXPECT_EQ(kc.mass, "consistent");
   // The paper's scheme at alpha = 1/4 is unconditionally stable: no limit.
   EXPECT_FALSE(check_case(case_from("")).stable_step);

@@ -92,10 +92,6 @@ struct SchemeMisfit {
 /// schemes (auto_step_fraction of their stable step). Returns the first misfit, if any.
 [[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
 
-/// The largest stable step of the explicit schemes (central differences,
-/// lumped or consistent mass) for `c`'s mesh, bar and obstacle.
-[[nodiscard]] double stable_step(const Case& c, bool consistent_mass);
-
 /// time.step = "auto" takes this fraction of the explicit scheme's stable step.
 inline constexpr double auto_step_fraction = 0.9;
 
