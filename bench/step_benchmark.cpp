@@ -16,8 +16,9 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/case/line_builder.hpp"
 #include "barimpact/model/mesh.hpp"
-#include "barimpact/schemes/mass_redistribution_scheme.hpp"
+#include "barimpact/schemes/line_mass_redistribution.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/scheme.hpp"
 #include "barimpact/schemes/simd.hpp"
@@ -304,7 +305,7 @@ void BM_BareCentralDifference(benchmark::State& state) {
 
 // The bare loop of the characteristic scheme: the lumped pass at Courant 1
 // and the free end advanced in characteristic variables (G read off the
-// grid, F from the boundary condition), as CharacteristicScheme does.
+// grid, F from the boundary condition), as the characteristic scheme does.
 void BM_BareCharacteristic(benchmark::State& state) {
   const std::size_t n = static_cast<std::size_t>(state.range(0)) + 1, l = n - 1;
   const double h = 1.0 / static_cast<double>(n - 1), dt = h, dt2 = dt * dt;
@@ -453,7 +454,8 @@ void BM_BareMassRedistribution(benchmark::State& state) {
   const BareSetup s(state);
   const std::size_t n = s.n, l = s.l;
   const double dt = s.dt, c2 = 2.0 / (dt * dt);
-  const Tridiagonal mt = barimpact::redistributed_mass(s.mesh, 1.0);
+  // The one bar of bench_case (rho = 1 on [0, 1]) as the line engine builds it.
+  const Tridiagonal mt = barimpact::redistributed_mass(barimpact::build_line(bench_case(state.range(0))));
   Tridiagonal reduced{std::vector<double>(l), std::vector<double>(l - 1)};
   for (std::size_t j = 0; j < l; ++j) {
     reduced.diag[j] = c2 * mt.diag[j + 1] + 0.5 * s.ka.diag[j + 1];

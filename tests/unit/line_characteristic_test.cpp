@@ -87,39 +87,6 @@ std::pair<Case, Case> single_and_line(const std::string& example, const std::vec
   return {single, line};
 }
 
-// On one bar the line engine is today's scheme: the stencil inside, the end
-// in characteristic variables, the same reports (1e-12: the order of the
-// sums differs). D_contact too, but for contact from t = 0, where the single
-// bar books the first half step with half the force (see below).
-TEST(LineCharacteristic, MatchesTheSingleBarSchemeOnOneBar) {
-  struct Run {
-    const char* example;
-    std::vector<std::string> sets;
-    bool same_contact;
-  };
-  for (const Run& run_ : {Run{"paper-example1.toml", {"obstacle.kind=rigid"}, false},
-                          Run{"paper-example1.toml",
-                              {"obstacle.kind=rigid", "obstacle.gap=0.25", "bar.length=2", "bar.stiffness=4"},
-                              true},
-                          Run{"clamped-periodic.toml", {"time.end=9"}, true}}) {
-    const auto [single, line] = single_and_line(run_.example, run_.sets);
-    const RunResult a = run(single), b = run(line);
-    ASSERT_TRUE(b.summary.complete) << b.summary.message;
-    ASSERT_EQ(a.history.size(), b.history.size());
-    for (std::size_t k = 0; k < a.history.size(); ++k) {
-      const HistoryRow &x = a.history[k], &y = b.history[k];
-      for (auto [p, q] : {std::pair{x.U, y.U}, std::pair{x.E_kin, y.E_kin}, std::pair{x.E_strain, y.E_strain}})
-        ASSERT_NEAR(p, q, 1e-12 * (1.0 + std::abs(p))) << run_.example << " row " << k;
-      // V and R are differences of u over dt: round-off / dt.
-      for (auto [p, q] : {std::pair{x.V, y.V}, std::pair{x.R, y.R}})
-        ASSERT_NEAR(p, q, 1e-10 * (1.0 + std::abs(p))) << run_.example << " row " << k;
-      if (run_.same_contact) {
-        ASSERT_NEAR(x.D_contact, y.D_contact, 1e-12) << run_.example << " row " << k;
-      }
-    }
-  }
-}
-
 // (a) and (d) through the line engine: exact at the nodes (U) and in the
 // force (R, away from the steps where it jumps), the budget closed to
 // round-off from row 0 (the single bar's is off by Z |V|^2 dt / 8 there,

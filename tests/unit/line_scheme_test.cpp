@@ -42,35 +42,6 @@ double column(const RunResult& r, const std::string& name, std::size_t row) {
   return 0.0;
 }
 
-// The line engine on one bar against the single-bar scheme: the same
-// equations with per-bond coefficients, so the same numbers up to the order
-// of summation (1e-12 of the scale: a few hundred steps of round-off).
-TEST(LineCentralDifference, MatchesTheSingleBarSchemeOnOneBar) {
-  for (const char* kind : {"elastic", "rigid", "viscoelastic"}) {
-    Case single =
-        testing::example("paper-example1.toml",
-                         {"time.scheme=central-difference", "time.step=0.002", "time.end=3", "output.fields_at=[1.0]",
-                          std::string("obstacle.kind=") + kind, "obstacle.viscosity=2", "bar.viscosity=0.01"});
-    Case line = single;
-    line.single_bar = false;
-    line.bodies = {bar("bar", 1.0, 100, single.initial.velocity)};
-    line.bodies[0].viscosity = 0.01;
-    line.near_end.law = std::string(kind) == "elastic" ? JointLaw::elastic
-                        : std::string(kind) == "rigid" ? JointLaw::rigid
-                                                       : JointLaw::viscoelastic;
-    line.near_end.stiffness = single.obstacle.stiffness;
-    line.near_end.viscosity = single.obstacle.viscosity;
-    const RunResult a = run(single), b = run(line);
-    ASSERT_EQ(a.history.size(), b.history.size());
-    for (std::size_t k = 0; k < a.history.size(); ++k) {
-      const HistoryRow &x = a.history[k], &y = b.history[k];
-      for (auto [p, q] : {std::pair{x.U, y.U}, std::pair{x.V, y.V}, std::pair{x.R, y.R}, std::pair{x.E_kin, y.E_kin},
-                          std::pair{x.E_strain, y.E_strain}, std::pair{x.D_visc, y.D_visc}})
-        ASSERT_NEAR(p, q, 1e-12 * (1.0 + std::abs(p))) << kind << " row " << k;
-    }
-  }
-}
-
 // Saint-Venant: two rods of one material, the lower at v = 1, the upper at
 // rest, through a rigid joint. Momentum is conserved exactly by the impulses
 // (equal and opposite), and the budget closes with D_contact to round-off
@@ -203,34 +174,6 @@ TEST(LineCentralDifference, SpringsDashpotsAndDrivenEndsBudgetCloses) {
     ASSERT_NEAR(r.history[k].total(), e1, 1e-10 * scale) << r.history[k].t;
   EXPECT_GT(r.history.back().D_visc, 0.0);
   EXPECT_EQ(column(r, "body.m1.u", 10), column(r, "body.m2.u", 10));  // welded: one node
-}
-
-// Newmark on a line: the single bar's scheme on one bar (same equations,
-// another order of summation: 1e-12), every penalty kind.
-TEST(LineNewmark, MatchesTheSingleBarSchemeOnOneBar) {
-  for (const char* kind : {"elastic", "viscoelastic", "none"}) {
-    Case single = testing::example(
-        "paper-example1.toml", {"time.scheme=newmark", "time.step=0.005", "time.end=3", "output.fields_at=[1.0]",
-                                std::string("obstacle.kind=") + kind, "obstacle.viscosity=2", "bar.viscosity=0.01"});
-    Case line = single;
-    line.single_bar = false;
-    line.bodies = {bar("bar", 1.0, 100, single.initial.velocity)};
-    line.bodies[0].viscosity = 0.01;
-    line.near_end.law = std::string(kind) == "elastic"        ? JointLaw::elastic
-                        : std::string(kind) == "viscoelastic" ? JointLaw::viscoelastic
-                                                              : JointLaw::free;
-    line.near_end.stiffness = single.obstacle.stiffness;
-    line.near_end.viscosity = single.obstacle.viscosity;
-    const RunResult a = run(single), b = run(line);
-    ASSERT_EQ(a.history.size(), b.history.size());
-    for (std::size_t k = 0; k < a.history.size(); ++k) {
-      const HistoryRow &x = a.history[k], &y = b.history[k];
-      for (auto [p, q] :
-           {std::pair{x.U, y.U}, std::pair{x.V, y.V}, std::pair{x.R, y.R}, std::pair{x.E_kin, y.E_kin},
-            std::pair{x.E_strain, y.E_strain}, std::pair{x.E_obstacle, y.E_obstacle}, std::pair{x.D_visc, y.D_visc}})
-        ASSERT_NEAR(p, q, 1e-12 * (1.0 + std::abs(p))) << kind << " row " << k;
-    }
-  }
 }
 
 // The trapezoidal rule conserves a line's energy without contact to

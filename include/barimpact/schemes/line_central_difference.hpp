@@ -1,5 +1,5 @@
-// `central-difference` on a line of bodies: lumped mass, explicit, as the
-// single bar's (three_level_scheme.hpp) with per-bond coefficients:
+// `central-difference`: lumped mass, explicit, with per-bond coefficients
+// (a bar with its obstacle is a line of one body):
 //
 //   m_j (u_j^{n+1} - 2 u_j^n + u_j^{n-1}) / dt^2 = F_j^n + N_j^n - N_{j-1}^n + P_j^n,
 //   N_j = k_j (u_{j+1} - u_j)^n + c_j ((u_{j+1} - u_j)^n - (u_{j+1} - u_j)^{n-1}) / dt,

@@ -1,5 +1,5 @@
-// `mass-redistribution` on a line of bodies: the single bar's idea
-// (mass_redistribution_scheme.hpp) at every rigid link. Each face of a rigid
+// `mass-redistribution`: the idea of Khenous, Laborde & Renard (2008) at
+// every rigid link. Each face of a rigid
 // link gives its share of its element's mass to its inner neighbour (the
 // element's m/6 [[2, 1], [1, 2]] becomes m on the inner node: the body's mass
 // is kept), so the face carries no inertia and is in static equilibrium at

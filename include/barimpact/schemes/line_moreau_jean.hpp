@@ -1,5 +1,5 @@
-// `moreau-jean` on a line of bodies: the single bar's velocity-level
-// theta-scheme (moreau_jean_scheme.hpp) with per-bond coefficients, every
+// `moreau-jean`: the velocity-level theta-scheme of Moreau (1988) and Jean
+// (1999) with per-bond coefficients, every
 // rigid link under Newton's impact law:
 //
 //   M (v^{n+1} - v^n) = dt (theta f^{n+1} + (1 - theta) f^n) + sum_i p_i h_i,

@@ -1,6 +1,5 @@
-// `newmark` on a line of bodies: Newmark (beta, gamma) with consistent mass,
-// as the single bar's (newmark_scheme.hpp), every penalty link solved at
-// t_{n+1}:
+// `newmark`: Newmark (beta, gamma) with consistent mass, every penalty link
+// solved at t_{n+1}:
 //
 //   M a^{n+1} + C v^{n+1} + K u^{n+1} = F^{n+1} + sum_i p_i^{n+1} h_i,
 //   u^{n+1} = u^* + beta dt^2 a^{n+1},  v^{n+1} = v^* + gamma dt a^{n+1},

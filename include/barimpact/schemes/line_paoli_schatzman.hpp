@@ -1,6 +1,5 @@
-// `paoli-schatzman` on a line of bodies: central differences with the
-// consistent mass (the single bar's, paoli_schatzman_scheme.hpp) and
-// per-bond coefficients,
+// `paoli-schatzman`: central differences with the consistent mass
+// (Paoli & Schatzman 2002) and per-bond coefficients,
 //
 //   M (u^{n+1} - 2 u^n + u^{n-1}) / dt^2 = F^n + N_j^n - N_{j-1}^n + P^n + sum_i mu_i h_i / dt^2,
 //   N_j = k_j (u_{j+1} - u_j)^n + c_j ((u_{j+1} - u_j)^n - (u_{j+1} - u_j)^{n-1}) / dt,
