@@ -173,6 +173,11 @@ namespace {
 
 Line build(const Case& c) {
   Line line;
+  std::size_t nodes = 0;  // reserved: a bar of 10^6 elements grows no copies
+  for (const auto& b : c.bodies) nodes += b.kind == BodyKind::bar ? static_cast<std::size_t>(b.elements) + 1 : 1;
+  line.x.reserve(nodes);
+  line.bonds.reserve(nodes);
+  line.point_mass.reserve(nodes);
   double x = 0.0;
   for (std::size_t i = 0; i < c.bodies.size(); ++i) {
     const BodyData& b = c.bodies[i];

@@ -38,6 +38,10 @@ double energy_scale(const std::vector<HistoryRow>& history) {
 }
 
 std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c) {
+  return penalty_time_constants(c, build_line(c));
+}
+
+std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c, const Line& line) {
   std::vector<PenaltyTimeConstant> out;
   if (c.single_bar) {
     const auto kind = c.obstacle.kind;
@@ -45,7 +49,6 @@ std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c) {
       out.push_back({"obstacle", std::sqrt(c.bar.density * c.bar.stiffness) / c.obstacle.stiffness, "Z/k"});
     return out;
   }
-  const Line line = build_line(c);
   const std::vector<double> m = line.lumped_mass();
   // The impedance A sqrt(E rho) of the element a node ends, or 0 at a point mass.
   auto impedance = [&](std::size_t node) {
@@ -94,8 +97,8 @@ void check_energy(const Case& c, const Summary& s, const std::vector<HistoryRow>
         100.0 * drift, c.time.scheme, 100.0 * bound));
 }
 
-void check_penalty(const Case& c, std::vector<std::string>& out) {
-  for (const auto& p : penalty_time_constants(c))
+void check_penalty(const Case& c, const Line& line, std::vector<std::string>& out) {
+  for (const auto& p : penalty_time_constants(c, line))
     if (p.tau < c.time.step)
       out.push_back(fmt::format(
           "penalty-unresolved: {}'s time constant {} = {:.3g} is below time.step = {:.3g}, so its force is not "
@@ -201,11 +204,12 @@ std::string join_warnings(const std::vector<std::string>& warnings) {
   return joined;
 }
 
-std::vector<std::string> check_health(const Case& c, const Summary& s, const std::vector<HistoryRow>& history) {
+std::vector<std::string> check_health(const Case& c, const Line& line, const Summary& s,
+                                      const std::vector<HistoryRow>& history) {
   std::vector<std::string> out;
   if (s.method == "exact") return out;
   check_energy(c, s, history, out);
-  check_penalty(c, out);
+  check_penalty(c, line, out);
   check_stability(c, out);
   check_chatter(c, s, out);
   return out;

@@ -28,7 +28,10 @@ bool HistoryRecorder::observe(const Scheme& s) {
 }
 
 FieldRecorder::FieldRecorder(const Case& c, const Line& line, std::vector<double> times)
-    : dt_(c.time.step), bonds_(line.bonds), times_(std::move(times)) {
+    : dt_(c.time.step), line_(&line), times_(std::move(times)) {
+  fields_.x.reserve(line.nodes());
+  fields_.node.reserve(line.nodes());
+  fields_.body.reserve(line.nodes());
   for (std::size_t b = 0; b < line.bodies.size(); ++b) {
     const BodyRange& r = line.bodies[b];
     if (r.is_mass) continue;
@@ -78,7 +81,7 @@ bool FieldRecorder::observe(const Scheme& s) {
       eps_p[r] = left_ep;
       continue;
     }
-    const Bond& b = bonds_[fields_.node[r]];
+    const Bond& b = line_->bonds[fields_.node[r]];
     const double ep = s.plastic_strain(fields_.node[r]);
     double sig = (b.axial * (u[r + 1] - u[r]) + b.damping * (v[r + 1] - v[r])) / b.h - b.axial * ep;
     if (b.area != 1.0) sig /= b.area;

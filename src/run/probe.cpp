@@ -18,7 +18,7 @@ std::size_t body_index(const Case& c, const std::string& name) {
 }
 }  // namespace
 
-Probes::Probes(const Case& c, const Line& line) : line_(line) {
+Probes::Probes(const Case& c, const Line& line) : line_(&line) {
   auto add = [&](std::string name, Kind kind, std::size_t index) {
     names_.push_back(std::move(name));
     columns_.push_back({kind, index});
@@ -81,30 +81,32 @@ double Probes::value(const Scheme& s, const Column& col) const {
     case Kind::link_opening:
       return i == Link::ground ? 0.0 : s.link_opening(i);
     case Kind::bond_force:
-      return i == Link::ground ? std::numeric_limits<double>::quiet_NaN() : -bond_tension(line_, s, i);
+      return i == Link::ground ? std::numeric_limits<double>::quiet_NaN() : -bond_tension(*line_, s, i);
     case Kind::bond_opening:
       return s.displacement_at(i + 1) - s.displacement_at(i);
     case Kind::far_force: {
       if (i != Link::ground) return s.link_force(i);
       const double f = s.far_force();
-      if (!std::isnan(f) || line_.bonds.empty()) return f;
-      return -bond_tension(line_, s, line_.bonds.size() - 1);
+      if (!std::isnan(f) || line_->bonds.empty()) return f;
+      return -bond_tension(*line_, s, line_->bonds.size() - 1);
     }
     case Kind::far_opening:
-      return i != Link::ground ? s.link_opening(i) : -s.displacement_at(line_.nodes() - 1);
+      return i != Link::ground ? s.link_opening(i) : -s.displacement_at(line_->nodes() - 1);
     case Kind::node_u:
       return s.displacement_at(i);
     case Kind::node_v:
       return s.velocity_at(i);
     case Kind::gauge_strain: {
-      const GaugePoint& g = line_.gauges[i];
-      auto strain = [&](std::size_t j) { return (s.displacement_at(j + 1) - s.displacement_at(j)) / line_.bonds[j].h; };
+      const GaugePoint& g = line_->gauges[i];
+      auto strain = [&](std::size_t j) {
+        return (s.displacement_at(j + 1) - s.displacement_at(j)) / line_->bonds[j].h;
+      };
       return 0.5 * (strain(g.left) + strain(g.right));
     }
     case Kind::gauge_velocity:
-      return gauge_velocity(s, line_.gauges[i]);
+      return gauge_velocity(s, line_->gauges[i]);
     case Kind::gauge_force:
-      return gauge_force(line_, s, line_.gauges[i]);
+      return gauge_force(*line_, s, line_->gauges[i]);
   }
   return 0.0;
 }

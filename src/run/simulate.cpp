@@ -83,7 +83,8 @@ ObstacleData near_obstacle(const Case& c) {
 }
 
 struct Recorders {
-  Line line;
+  std::optional<Line> own;  // built only for a scheme that holds no line (the fused one-bar paper scheme)
+  const Line& line;
   Probes probes;
   HistoryRecorder history;
   FieldRecorder fields;
@@ -91,8 +92,9 @@ struct Recorders {
   LinkMonitor links;
   PlasticMonitor plastic;
   std::optional<BlowMonitor> blow;
-  explicit Recorders(const Case& c)
-      : line(build_line(c)),
+  Recorders(const Case& c, const Scheme& scheme)
+      : own(scheme.line() ? std::nullopt : std::optional<Line>(build_line(c))),
+        line(scheme.line() ? *scheme.line() : *own),
         probes(c, line),
         history(c.output.every, &probes),
         fields(c, line, c.output.fields_at),
@@ -126,7 +128,7 @@ std::vector<RunResult> run_batch(const std::vector<const Case*>& cases, const st
   std::vector<LoopResult> loops(cases.size());
   std::vector<bool> live(cases.size(), true);
   for (std::size_t l = 0; l < cases.size(); ++l) {
-    rec.push_back(std::make_unique<Recorders>(*cases[l]));
+    rec.push_back(std::make_unique<Recorders>(*cases[l], batch.lane(l)));
     for (auto* o : rec[l]->all()) o->begin(batch.lane(l), steps);
   }
   batch.start();
@@ -215,7 +217,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   const auto started = std::chrono::steady_clock::now();
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
-  Recorders rec(c);
+  Recorders rec(c, scheme_ref);
   std::vector<Observer*> observers = rec.all();
   if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
@@ -278,7 +280,7 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
       s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
   }
   r.fields = rec.fields.take();
-  s.warnings = check_health(c, s, r.history);
+  s.warnings = check_health(c, rec.line, s, r.history);
   if (rec.blow) {
     s.blow = rec.blow->summary();
     if (!s.blow->finished && s.complete)

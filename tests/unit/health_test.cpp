@@ -6,6 +6,7 @@
 #include <atomic>
 
 #include "../support/run_case.hpp"
+#include "barimpact/case/line_builder.hpp"
 
 namespace barimpact {
 namespace {
@@ -33,12 +34,12 @@ TEST(Health, AConditionallyStableStepBeyondItsLimitIsNamed) {
   // 0.0057 (energy x 12 by t = 4); the estimate says 0.00556.
   const auto c = testing::example("paper-example1.toml",
                                   {"time.alpha=0", "time.end=0.05", "time.step=0.006", "output.fields_at=[]"});
-  EXPECT_TRUE(has(check_health(c, run(c).summary, {}), "unstable-step"));
+  EXPECT_TRUE(has(check_health(c, build_line(c), run(c).summary, {}), "unstable-step"));
   const auto below = testing::example("paper-example1.toml",
                                       {"time.alpha=0", "time.end=0.05", "time.step=0.005", "output.fields_at=[]"});
-  EXPECT_FALSE(has(check_health(below, run(below).summary, {}), "unstable-step"));
+  EXPECT_FALSE(has(check_health(below, build_line(below), run(below).summary, {}), "unstable-step"));
   const auto trapezoidal = testing::example("paper-example1.toml", {"time.step=0.1"});
-  EXPECT_FALSE(has(check_health(trapezoidal, run(trapezoidal).summary, {}), "unstable-step"));
+  EXPECT_FALSE(has(check_health(trapezoidal, build_line(trapezoidal), run(trapezoidal).summary, {}), "unstable-step"));
 }
 
 TEST(Health, ChatterIsManyEpisodesOfAStepOrTwo) {
@@ -46,9 +47,9 @@ TEST(Health, ChatterIsManyEpisodesOfAStepOrTwo) {
   Summary s;
   s.method = "moreau-jean";
   for (int i = 0; i < 12; ++i) s.contacts.push_back({i * 0.1, i * 0.1 + c.time.step, true, 0, 0, 1});
-  EXPECT_TRUE(has(check_health(c, s, {}), "contact-chatter"));
+  EXPECT_TRUE(has(check_health(c, build_line(c), s, {}), "contact-chatter"));
   s.contacts.resize(9);  // few episodes: a bounce or two is not chatter
-  EXPECT_FALSE(has(check_health(c, s, {}), "contact-chatter"));
+  EXPECT_FALSE(has(check_health(c, build_line(c), s, {}), "contact-chatter"));
 }
 
 TEST(Health, TheEnergyScaleOfARunFromRestIsItsWork) {

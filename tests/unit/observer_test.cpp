@@ -59,7 +59,8 @@ TEST(HistoryRecorder, RecordsEveryNthStepAndAlwaysTheLast) {
 TEST(FieldRecorder, TakesTheNearestStepOncePerStep) {
   const Case c = testing::case_from("[bar]\nelements = 2\n[time]\nstep = 0.1\nend = 1");
   CosineScheme s(0.1);
-  FieldRecorder f(c, build_line(c), {0.94, 0.26, 0.3, 0.0});
+  const Line line = build_line(c);
+  FieldRecorder f(c, line, {0.94, 0.26, 0.3, 0.0});
   const std::array<Observer*, 1> obs{&f};
   simulate(s, 10, obs);
   ASSERT_EQ(f.taken(), 3u);

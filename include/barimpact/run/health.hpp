@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/model/line.hpp"
 #include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
@@ -45,8 +46,10 @@ struct PenaltyTimeConstant {
   std::string basis;  ///< the formula that gave it, e.g. "Z/k"
 };
 
-/// Every penalty law's time constant (rigid and welded links have none).
+/// Every penalty law's time constant (rigid and welded links have none),
+/// on `c`'s line (built, or the run's).
 [[nodiscard]] std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c);
+[[nodiscard]] std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c, const Line& line);
 
 /// The largest stable step of the paper scheme with alpha < 1/4, or Newmark
 /// with 2 beta < gamma (gamma >= 1/2): omega_max dt <= (gamma/2 - beta)^(-1/2),
@@ -57,8 +60,8 @@ struct PenaltyTimeConstant {
 /// Warnings as one CSV cell: joined by " | ", which no message holds.
 [[nodiscard]] std::string join_warnings(const std::vector<std::string>& warnings);
 
-/// The warnings of a finished run (an empty list for a healthy one).
-[[nodiscard]] std::vector<std::string> check_health(const Case& c, const Summary& s,
+/// The warnings of a finished run on `line` (an empty list for a healthy one).
+[[nodiscard]] std::vector<std::string> check_health(const Case& c, const Line& line, const Summary& s,
                                                     const std::vector<HistoryRow>& history);
 
 }  // namespace barimpact

@@ -95,6 +95,7 @@ struct Fields {
 /// of the body's two elements beside the node, its end element at its ends.
 class FieldRecorder final : public Observer {
  public:
+  /// Snapshots of `line` (which must outlive the recorder) at the steps nearest `times`.
   FieldRecorder(const Case& c, const Line& line, std::vector<double> times);
   void begin(const Scheme& scheme, long long steps) override;
   bool observe(const Scheme& scheme) override;
@@ -105,7 +106,7 @@ class FieldRecorder final : public Observer {
 
  private:
   double dt_;
-  std::vector<Bond> bonds_;
+  const Line* line_;  // the run's, which outlives its recorders
   std::vector<double> times_;
   std::vector<long long> steps_;  // sorted, unique
   std::size_t taken_ = 0;

@@ -26,6 +26,7 @@ namespace barimpact {
 class Probes {
  public:
   Probes() = default;
+  /// The columns of `c`'s line; `line` is read at every step, and must outlive the probes.
   Probes(const Case& c, const Line& line);
 
   [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
@@ -53,7 +54,7 @@ class Probes {
   };
   [[nodiscard]] double value(const Scheme& s, const Column& col) const;
 
-  Line line_;
+  const Line* line_ = nullptr;
   std::vector<std::string> names_;
   std::vector<Column> columns_;
 };

@@ -31,6 +31,7 @@ class LineScheme : public Scheme {
   [[nodiscard]] long long step() const override { return n_; }
   [[nodiscard]] double time() const override { return static_cast<double>(n_) * dt_; }
   [[nodiscard]] std::size_t nodes() const override { return line_.nodes(); }
+  [[nodiscard]] const Line* line() const override { return &line_; }
   [[nodiscard]] double end_displacement() const override { return displacement_at(0); }
   [[nodiscard]] double end_velocity() const override { return velocity_at(0); }
   [[nodiscard]] double reaction() const override { return near_force_; }
@@ -40,7 +41,6 @@ class LineScheme : public Scheme {
   [[nodiscard]] double link_opening(std::size_t i) const override;
   /// The far end's force (compression > 0) at t_n.
   [[nodiscard]] double far_force() const override { return far_force_; }
-  [[nodiscard]] const Line& line() const { return line_; }
   /// A one-step implicit scheme's elastic-plastic elements (the explicit
   /// schemes keep their own and override these).
   [[nodiscard]] double plastic_strain(std::size_t bond) const override {

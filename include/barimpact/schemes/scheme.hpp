@@ -30,6 +30,8 @@ struct Energies {
   [[nodiscard]] double total() const { return kinetic + strain + obstacle - work + dissipation + contact + plastic; }
 };
 
+struct Line;
+
 class Scheme {
  public:
   virtual ~Scheme() = default;
@@ -75,6 +77,9 @@ class Scheme {
   [[nodiscard]] virtual std::string failure() const { return {}; }
   /// False once a level holds NaN or infinity.
   [[nodiscard]] virtual bool finite() const = 0;
+  /// The line the scheme steps, when it holds one (its observers read the
+  /// same, rather than building it again); null otherwise.
+  [[nodiscard]] virtual const Line* line() const { return nullptr; }
 };
 
 /// The names `time.scheme` accepts.
