@@ -20,7 +20,7 @@
 #include "barimpact/model/mesh.hpp"
 #include "barimpact/schemes/line_mass_redistribution.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
-#include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 #include "barimpact/schemes/simd.hpp"
 
 #include <initializer_list>

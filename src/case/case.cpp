@@ -13,7 +13,7 @@
 
 #include <memory>
 #include "barimpact/model/expression.hpp"
-#include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 #include "toml_input.hpp"
 
 namespace barimpact {

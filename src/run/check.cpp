@@ -9,7 +9,7 @@
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
-#include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 
@@ -19,18 +19,17 @@ namespace {
 // health.hpp): the explicit ones by a Gershgorin bound with the mass matrix
 // they use, the implicit ones below the trapezoidal rule by omega_max.
 void read_stability(const Case& c, CaseCheck& k) {
-  const std::string& s = c.time.scheme;
-  if (s == "central-difference" || s == "paoli-schatzman") {
-    const bool consistent = s == "paoli-schatzman";
+  const SchemeInfo& s = scheme_info(c.time.scheme);
+  if (s.step == StepRule::limited) {
+    const bool consistent = s.mass == MassMatrix::consistent;
     k.stable_step = line_stable_step(build_line(c), consistent);
     k.mass = consistent ? "consistent" : "lumped";
     k.stability = "explicit: steps above the stable step are refused";
-  } else if (s == "characteristic") {
-    k.stability = "characteristic: dt = h/c, exact at the nodes";
+  } else if (s.step == StepRule::transit) {
+    k.stability = fmt::format("{}: dt = h/c, exact at the nodes", s.name);
   } else if ((k.stable_step = conditional_stable_step(c))) {
     k.mass = "consistent";
-    k.stability = s == "paper" ? "implicit, conditionally stable (alpha < 1/4)"
-                               : "implicit, conditionally stable (2 beta < gamma)";
+    k.stability = fmt::format("implicit, conditionally stable ({})", s.family(c).rule);
   } else {
     k.stability = "implicit, unconditionally stable";
   }

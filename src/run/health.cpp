@@ -9,22 +9,14 @@
 
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/model/mesh.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 
+// Beyond the scheme's tolerance (registry.hpp) the run is not resolved: the
+// README's k = 1e4 penalty case at dt = 1e-3 drifts by 64%.
 double energy_balance_bound(const Case& c) {
-  // About three times the largest drift, relative to energy_scale, that a
-  // resolved run of the scheme shows on the examples (each scheme on each
-  // example it fits, at the step the CLI test uses): paper 0.85%, newmark
-  // 0.12%, central-difference 0.72%, characteristic 1.0% (an impact between
-  // grid times), paoli-schatzman 0.48%, moreau-jean 0.86%, mass
-  // redistribution 1.4%. Beyond it the run is not resolved: the README's
-  // k = 1e4 penalty case at dt = 1e-3 drifts by 64%.
-  const std::string& s = c.time.scheme;
-  if (s == "newmark") return 0.01;
-  if (s == "paoli-schatzman") return 0.02;
-  if (s == "mass-redistribution") return 0.05;
-  return 0.03;  // paper, central-difference, characteristic, moreau-jean
+  return scheme_info(c.time.scheme).energy_tolerance;
 }
 
 double energy_scale(const std::vector<HistoryRow>& history) {
@@ -142,15 +134,9 @@ double largest_frequency_squared(const Case& c) {
 }  // namespace
 
 std::optional<double> conditional_stable_step(const Case& c) {
-  double beta = 0.0, gamma = 0.5;
-  if (c.time.scheme == "paper") {
-    beta = c.time.alpha;
-  } else if (c.time.scheme == "newmark") {
-    beta = c.time.beta;
-    gamma = c.time.gamma;
-  } else {
-    return std::nullopt;
-  }
+  const auto family = scheme_info(c.time.scheme).family;
+  if (!family) return std::nullopt;
+  const auto [beta, gamma, rule] = family(c);
   if (gamma < 0.5 || 2.0 * beta >= gamma) return std::nullopt;  // unconditionally stable (or not this family's rule)
   return 1.0 / std::sqrt(largest_frequency_squared(c) * (0.5 * gamma - beta));
 }

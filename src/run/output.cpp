@@ -2,6 +2,7 @@
 
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/results_h5.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 #include <fmt/format.h>
 #include <fmt/os.h>

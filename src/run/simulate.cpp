@@ -14,6 +14,7 @@
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/run/health.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 

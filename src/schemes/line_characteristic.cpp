@@ -355,8 +355,8 @@ bool same_step(double a, double b) {
   return std::abs(a - b) <= 1e-9 * b;
 }
 
-std::optional<LineMisfit> refuse(std::string rule) {
-  return LineMisfit{"scheme", std::move(rule)};
+std::optional<SchemeMisfit> refuse(std::string rule) {
+  return SchemeMisfit{"scheme", std::move(rule)};
 }
 
 constexpr const char* scheme = "= \"characteristic\"";
@@ -364,7 +364,7 @@ constexpr const char* scheme = "= \"characteristic\"";
 // What the characteristic relations cannot carry exactly: a body force or
 // gravity (the invariants then change along the characteristics), viscosity
 // (dispersion), springs and penalty laws (no transit time: a stiff ODE).
-std::optional<LineMisfit> law_misfit(const Line& line) {
+std::optional<SchemeMisfit> law_misfit(const Line& line) {
   if (!Expression(line.body_force).is_zero() || line.gravity != 0.0)
     return refuse(
         fmt::format("{} cannot run a body force or gravity (load.body_force = \"{}\", load.gravity = {}); "
@@ -392,7 +392,7 @@ std::optional<LineMisfit> law_misfit(const Line& line) {
   return std::nullopt;
 }
 
-std::optional<LineMisfit> transit_misfit(const Case& c, const Line& line) {
+std::optional<SchemeMisfit> transit_misfit(const Case& c, const Line& line) {
   const auto bars = transits(line);
   if (bars.empty())
     return refuse(fmt::format("{} needs a bar: its step is the bars' element transit time h/c", scheme));
@@ -412,9 +412,9 @@ std::optional<LineMisfit> transit_misfit(const Case& c, const Line& line) {
                     scheme, r.name, b.transit, first, dt, hint));
   }
   if (!same_step(c.time.step, dt))
-    return LineMisfit{"step", fmt::format("= {} is not the line's element transit time h/c = {} (characteristic "
-                                          "takes one transit per step; give that value)",
-                                          c.time.step, dt)};
+    return SchemeMisfit{"step", fmt::format("= {} is not the line's element transit time h/c = {} (characteristic "
+                                            "takes one transit per step; give that value)",
+                                            c.time.step, dt)};
   return std::nullopt;
 }
 
@@ -428,16 +428,9 @@ std::optional<double> line_characteristic_step(const Line& line) {
   return bars.front().transit;
 }
 
-std::optional<LineMisfit> characteristic_line_misfit(const Case& c, const Line& line) {
+std::optional<SchemeMisfit> characteristic_line_misfit(const Case& c, const Line& line) {
   if (auto m = law_misfit(line)) return m;
   return transit_misfit(c, line);
-}
-
-std::unique_ptr<Scheme> make_characteristic_line_scheme(const Case& c) {
-  if (c.time.scheme != "characteristic") return nullptr;
-  Line line = build_line(c);
-  if (const auto m = characteristic_line_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
-  return std::make_unique<LineCharacteristic>(c, std::move(line));
 }
 
 }  // namespace barimpact

@@ -151,28 +151,12 @@ double RigidLinks::on_node(std::size_t j, const double* p) const {
   return f;
 }
 
-namespace {
-
-// The schemes that run what the rigid-contact schemes refuse.
-constexpr const char* penalty_schemes = "paper, newmark, central-difference";
-constexpr const char* mass_face_schemes = "moreau-jean, paoli-schatzman, central-difference";
-
-std::optional<LineMisfit> refuse(std::string rule) {
-  return LineMisfit{"scheme", std::move(rule)};
-}
-
-std::optional<LineMisfit> penalty_misfit(const std::string& scheme, const Line& line) {
-  for (const auto& l : line.links)
-    if (!l.law.rigid())
-      return refuse(fmt::format("= \"{}\" cannot run the {} link \"{}\" (rigid links only; schemes that can: {})",
-                                scheme, to_string(l.law.kind), l.name, penalty_schemes));
-  return std::nullopt;
-}
-
 // Mass redistribution needs, at every rigid link's face, a bar element whose
-// mass it can move inward: not a point mass, not a face of two rigid links.
-std::optional<LineMisfit> redistribution_misfit(const Line& line) {
+// mass it can move inward: not a point mass, not a face of two rigid links;
+// and no dashpots (its faces carry no inertia to damp).
+std::optional<SchemeMisfit> redistribution_misfit(const Case& /*c*/, const Line& line) {
   const std::string s = "= \"mass-redistribution\"";
+  auto refuse = [](std::string rule) { return SchemeMisfit{"scheme", std::move(rule)}; };
   for (const auto& b : line.bonds)
     if (b.viscosity > 0.0)
       return refuse(
@@ -191,44 +175,15 @@ std::optional<LineMisfit> redistribution_misfit(const Line& line) {
       if (line.point_mass[j] != 0.0 || !bar_end)
         return refuse(
             fmt::format("{} cannot run the rigid link \"{}\": it touches a mass body, which cannot give "
-                        "its mass away; schemes that can: {}",
-                        s, l.name, mass_face_schemes));
+                        "its mass away; schemes that can: moreau-jean, paoli-schatzman, central-difference",
+                        s, l.name));
       if (face[j] > 1 || face[inner] > 0)
         return refuse(
             fmt::format("{} cannot run the rigid link \"{}\": a bar between two rigid links needs 2 "
-                        "elements or more; schemes that can: {}",
-                        s, l.name, mass_face_schemes));
+                        "elements or more; schemes that can: moreau-jean, paoli-schatzman, central-difference",
+                        s, l.name));
     }
   return std::nullopt;
-}
-
-}  // namespace
-
-std::optional<LineMisfit> rigid_line_misfit(const Case& c, const Line& line) {
-  const std::string& name = c.time.scheme;
-  if (name == "moreau-jean") return penalty_misfit(name, line);
-  if (name == "mass-redistribution") {
-    if (auto m = penalty_misfit(name, line)) return m;
-    return redistribution_misfit(line);
-  }
-  if (name == "paoli-schatzman") {
-    const double limit = line_stable_step(line, true);
-    if (c.time.step > limit * (1.0 + 1e-12))
-      return LineMisfit{"step", fmt::format("= {} is above paoli-schatzman's stable limit {:.6g} for this line "
-                                            "(consistent mass)",
-                                            c.time.step, limit)};
-  }
-  return std::nullopt;
-}
-
-std::unique_ptr<Scheme> make_rigid_line_scheme(const Case& c) {
-  const std::string& name = c.time.scheme;
-  if (name != "moreau-jean" && name != "paoli-schatzman" && name != "mass-redistribution") return nullptr;
-  Line line = build_line(c);
-  if (const auto m = rigid_line_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
-  if (name == "moreau-jean") return std::make_unique<LineMoreauJean>(c, std::move(line));
-  if (name == "paoli-schatzman") return std::make_unique<LinePaoliSchatzman>(c, std::move(line));
-  return std::make_unique<LineMassRedistribution>(c, std::move(line));
 }
 
 }  // namespace barimpact

@@ -7,11 +7,6 @@
 #include <limits>
 
 #include "barimpact/case/line_builder.hpp"
-#include "barimpact/schemes/line_central_difference.hpp"
-#include "barimpact/schemes/line_characteristic.hpp"
-#include "barimpact/schemes/line_newmark.hpp"
-#include "barimpact/schemes/line_paper.hpp"
-#include "barimpact/schemes/line_rigid.hpp"
 
 namespace barimpact {
 
@@ -229,73 +224,6 @@ double line_stable_step(const Line& line, bool consistent_mass) {
   // (u^{n+1} - 2u^n + u^{n-1})/dt^2 + eta (u^n - u^{n-1})/dt + omega^2 u^n = 0
   // is stable for omega^2 dt^2 + 2 eta dt <= 4.
   return (-eta + std::sqrt(eta * eta + 4.0 * omega2)) / omega2;
-}
-
-std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line) {
-  const std::string& name = c.time.scheme;
-  // Smith's soil: central differences step it (its slip and damping
-  // explicit), newmark and the paper's scheme solve it by Newton's
-  // iteration at the new level (soil_iteration.hpp).
-  const bool soil = !line.shaft.empty() || std::any_of(line.links.begin(), line.links.end(),
-                                                       [](const Link& l) { return l.law.kind == LawKind::smith; });
-  if (soil && name != "central-difference" && name != "newmark" && name != "paper")
-    return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil (law = \"smith\", [body.shaft]) yet "
-                                            "(schemes that can: central-difference, newmark, paper)",
-                                            name)};
-  if (soil && name == "newmark" && !(c.time.beta > 0.0))
-    return LineMisfit{"beta",
-                      "= 0 (explicit newmark) cannot run Smith's soil: its iteration needs beta > 0 (or use "
-                      "scheme = \"central-difference\")"};
-  if (soil && (name == "newmark" || name == "paper"))
-    for (std::size_t b = 0; b < line.plasticity.size(); ++b)
-      if (line.plasticity[b])
-        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil beside the elastic-plastic "
-                                                "body \"{}\" yet (scheme that can: central-difference)",
-                                                name, line.bodies[b].name)};
-  if (name == "characteristic")
-    for (std::size_t b = 0; b < line.plasticity.size(); ++b)
-      if (line.plasticity[b])
-        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the elastic-plastic body \"{}\" (schemes "
-                                                "that can: central-difference, paoli-schatzman, paper, newmark, "
-                                                "moreau-jean, mass-redistribution)",
-                                                name, line.bodies[b].name)};
-  if (name == "paper" || name == "newmark") {
-    for (const auto& l : line.links)
-      if (l.law.rigid())
-        return LineMisfit{"scheme", fmt::format("= \"{}\" cannot run the rigid link \"{}\" (penalty laws only; "
-                                                "schemes that can: central-difference, moreau-jean, paoli-schatzman, "
-                                                "mass-redistribution, characteristic)",
-                                                name, l.name)};
-    return std::nullopt;
-  }
-  if (name == "central-difference") {
-    const double limit = line_stable_step(line, false);
-    if (c.time.step > limit * (1.0 + 1e-12))
-      return LineMisfit{"step", fmt::format("= {} is above central-difference's stable limit {:.6g} for this line",
-                                            c.time.step, limit)};
-    return std::nullopt;
-  }
-  if (name == "moreau-jean" || name == "paoli-schatzman" || name == "mass-redistribution")
-    return rigid_line_misfit(c, line);
-  if (name == "characteristic") return characteristic_line_misfit(c, line);
-  return LineMisfit{"scheme",
-                    fmt::format("= \"{}\" cannot run a line of bodies yet (paper, newmark, central-difference, "
-                                "moreau-jean, paoli-schatzman, mass-redistribution and characteristic can)",
-                                name)};
-}
-
-std::unique_ptr<Scheme> make_line_scheme(const Case& c) {
-  const std::string& name = c.time.scheme;
-  if (name == "central-difference") return std::make_unique<LineCentralDifference>(c, build_line(c));
-  if (name == "paper" || name == "newmark") {
-    Line line = build_line(c);
-    if (const auto m = line_scheme_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
-    if (name == "paper") return std::make_unique<LinePaper>(c, std::move(line));
-    return std::make_unique<LineNewmark>(c, std::move(line));
-  }
-  if (auto s = make_rigid_line_scheme(c)) return s;
-  if (auto s = make_characteristic_line_scheme(c)) return s;
-  throw InputError(fmt::format("time.scheme = \"{}\" cannot run a line of bodies yet", name));
 }
 
 }  // namespace barimpact

@@ -16,7 +16,7 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
-#include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 #include "barimpact/study/executor.hpp"
 
 namespace barimpact {
@@ -233,11 +233,12 @@ void check_study(const Case& base, const StudyOptions& o) {
       throw InputError(fmt::format(
           "--vary {}: --refine {} refines the elements too; vary them with --refine dt or none", key, refine));
     const auto& schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
-    if (step && std::find(schemes.begin(), schemes.end(), "characteristic") != schemes.end())
-      throw InputError(
-          fmt::format("--vary {}: the characteristic scheme sets dt = h/c itself; vary bar.elements "
-                      "instead, or leave it out of --schemes",
-                      key));
+    for (const auto& name : schemes)
+      if (step && scheme_info(name).step == StepRule::transit)
+        throw InputError(
+            fmt::format("--vary {}: the {} scheme sets dt = h/c itself; vary bar.elements "
+                        "instead, or leave it out of --schemes",
+                        key, name));
     try {  // an unknown key is the option's error, not a run's (as in a sweep file)
       (void)Case::from_string(base.to_toml(), {{key + "=" + o.vary->values.front()}}, "study", false);
     } catch (const InputError& e) {
@@ -294,7 +295,7 @@ Study converge(const Case& base, const StudyOptions& o) {
         sets.push_back({o.vary->key + "=" + t.value});
       }
       // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
-      if (scheme == "characteristic" && base.single_bar) {
+      if (scheme_info(scheme).step == StepRule::transit && base.single_bar) {
         step = base.bar.length / static_cast<double>(elements) / c;
         if (o.vary) step = varied_courant_step(base_toml, sets, step);
       }

@@ -20,6 +20,7 @@
 
 #include "../support/run_case.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {
@@ -125,7 +126,7 @@ std::vector<LineRun> line_runs() {
         }
         // At most 4,000 steps each: the pin guards the arithmetic, not the physics.
         if (c.step_count() > 4000) c.time.end = 4000 * c.time.step;
-        (void)make_line_scheme(c);
+        (void)make_scheme(c);
         runs.push_back({"line:" + example + "/" + s, std::move(c)});
       } catch (const InputError&) {
         // The scheme does not take this example: nothing to pin.

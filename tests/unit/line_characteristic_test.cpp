@@ -17,6 +17,7 @@
 #include "barimpact/exact/lines.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_characteristic.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {
@@ -290,7 +291,7 @@ TEST(LineCharacteristic, BudgetClosesOnABusyLine) {
 // time is refused on time.step.
 TEST(LineCharacteristic, RefusesWhatItCannotRunExactly) {
   auto rule_of = [](const Case& c) {
-    const auto m = line_scheme_misfit(c, build_line(c));
+    const auto m = scheme_misfit(c, build_line(c));
     return m ? m->key + ": " + m->rule : std::string();
   };
   auto expect = [&](const Case& c, const std::vector<std::string>& parts) {
@@ -308,7 +309,7 @@ TEST(LineCharacteristic, RefusesWhatItCannotRunExactly) {
   expect(c, {"scheme: ", "spring joint between \"a\" and \"b\"", "mass-redistribution"});
   c = base;
   c.joints[0].law.law = JointLaw::cushion;
-  expect(c, {"scheme: ", "cushion link \"joint.a-b\"", "central-difference, newmark, paoli-schatzman"});
+  expect(c, {"scheme: ", "cushion link \"joint.a-b\"", "paper, newmark, central-difference, paoli-schatzman"});
   c = base;
   c.near_end.law = JointLaw::elastic;
   expect(c, {"scheme: ", "elastic link \"near_end\""});

@@ -17,6 +17,7 @@
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_mass_redistribution.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {
@@ -330,19 +331,19 @@ TEST(LineRigid, RefusesWhatItCannotRun) {
   // A rigid link on a mass body: mass redistribution cannot empty a point mass.
   Case c = line_case({bar("a", 1.0, 10), mass("m", 1.0, -1.0)}, {joint("a", "m", JointLaw::rigid)},
                      "mass-redistribution", 0.01, 1.0);
-  auto misfit = line_scheme_misfit(c, build_line(c));
+  auto misfit = scheme_misfit(c, build_line(c));
   ASSERT_TRUE(misfit.has_value());
   EXPECT_EQ(misfit->key, "scheme");
   EXPECT_NE(misfit->rule.find("\"joint.a-m\""), std::string::npos) << misfit->rule;
   EXPECT_NE(misfit->rule.find("moreau-jean, paoli-schatzman, central-difference"), std::string::npos) << misfit->rule;
   EXPECT_THROW((void)make_scheme(c), InputError);
   c.time.scheme = "moreau-jean";
-  EXPECT_FALSE(line_scheme_misfit(c, build_line(c)).has_value());
+  EXPECT_FALSE(scheme_misfit(c, build_line(c)).has_value());
   // A penalty link: the implicit rigid schemes do not step it.
   c.joints[0].law.law = JointLaw::cushion;
   for (const char* scheme : {"moreau-jean", "mass-redistribution"}) {
     c.time.scheme = scheme;
-    misfit = line_scheme_misfit(c, build_line(c));
+    misfit = scheme_misfit(c, build_line(c));
     ASSERT_TRUE(misfit.has_value()) << scheme;
     EXPECT_NE(misfit->rule.find("cushion link \"joint.a-m\""), std::string::npos) << misfit->rule;
     EXPECT_NE(misfit->rule.find("newmark, central-difference"), std::string::npos) << misfit->rule;
@@ -351,17 +352,17 @@ TEST(LineRigid, RefusesWhatItCannotRun) {
   c.time.scheme = "paoli-schatzman";
   const double limit = line_stable_step(build_line(c), true);
   c.time.step = 0.99 * limit;
-  EXPECT_FALSE(line_scheme_misfit(c, build_line(c)).has_value());
+  EXPECT_FALSE(scheme_misfit(c, build_line(c)).has_value());
   c.time.step = 1.01 * limit;
-  misfit = line_scheme_misfit(c, build_line(c));
+  misfit = scheme_misfit(c, build_line(c));
   ASSERT_TRUE(misfit.has_value());
   EXPECT_EQ(misfit->key, "step");
   // Viscosity: mass redistribution's faces are in static equilibrium, elastic only.
   Case v = line_case({bar("a", 1.0, 10), bar("b", 1.0, 10)}, {joint("a", "b", JointLaw::rigid)}, "mass-redistribution",
                      0.01, 1.0);
-  EXPECT_FALSE(line_scheme_misfit(v, build_line(v)).has_value());
+  EXPECT_FALSE(scheme_misfit(v, build_line(v)).has_value());
   v.bodies[1].viscosity = 0.01;
-  EXPECT_TRUE(line_scheme_misfit(v, build_line(v)).has_value());
+  EXPECT_TRUE(scheme_misfit(v, build_line(v)).has_value());
 }
 
 }  // namespace

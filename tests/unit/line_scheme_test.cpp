@@ -13,6 +13,7 @@
 #include "barimpact/exact/lines.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {
@@ -262,22 +263,22 @@ TEST(LineSchemes, ImplicitPenaltySchemesRefuseRigidLinks) {
   for (const char* scheme : {"paper", "newmark"}) {
     Case c =
         line_case({bar("a", 1.0, 10), mass("m", 1.0, -1.0)}, {joint("a", "m", JointLaw::rigid)}, 0.01, 1.0, scheme);
-    const auto misfit = line_scheme_misfit(c, build_line(c));
+    const auto misfit = scheme_misfit(c, build_line(c));
     ASSERT_TRUE(misfit.has_value()) << scheme;
     EXPECT_EQ(misfit->key, "scheme");
     EXPECT_EQ(misfit->rule, fmt::format("= \"{}\" cannot run the rigid link \"joint.a-m\" (penalty laws only; schemes "
-                                        "that can: central-difference, moreau-jean, paoli-schatzman, "
-                                        "mass-redistribution, characteristic)",
+                                        "that can: central-difference, mass-redistribution, paoli-schatzman, "
+                                        "moreau-jean, characteristic)",
                                         scheme));
     EXPECT_THROW((void)make_scheme(c), InputError);
     c.joints[0].law.law = JointLaw::cushion;
     c.joints[0].law.stiffness = 100.0;
     c.joints[0].law.restitution = 0.5;
     c.near_end.law = JointLaw::rigid;
-    EXPECT_NE(line_scheme_misfit(c, build_line(c))->rule.find("\"near_end\""), std::string::npos);
+    EXPECT_NE(scheme_misfit(c, build_line(c))->rule.find("\"near_end\""), std::string::npos);
     c.near_end.law = JointLaw::viscoelastic;
     c.near_end.stiffness = 100.0;
-    EXPECT_FALSE(line_scheme_misfit(c, build_line(c)).has_value());
+    EXPECT_FALSE(scheme_misfit(c, build_line(c)).has_value());
   }
 }
 

@@ -17,7 +17,7 @@
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/run/blow.hpp"
 #include "barimpact/run/observer.hpp"
-#include "barimpact/schemes/scheme.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace {
 std::atomic<bool> counting{false};

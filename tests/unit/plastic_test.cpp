@@ -18,6 +18,7 @@
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/plastic_bonds.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {

@@ -169,11 +169,6 @@ class LineCharacteristic final : public LineScheme {
 /// cannot treat exactly (key "scheme", naming the schemes that can), a bar
 /// whose elements' transit time differs from the others' ("scheme"), or
 /// time.step not that transit time ("step").
-[[nodiscard]] std::optional<LineMisfit> characteristic_line_misfit(const Case& c, const Line& line);
-
-/// The characteristic line scheme of `c` when `c.time.scheme` is
-/// "characteristic" (nullptr otherwise). Throws InputError when it cannot run
-/// the line (characteristic_line_misfit).
-[[nodiscard]] std::unique_ptr<Scheme> make_characteristic_line_scheme(const Case& c);
+[[nodiscard]] std::optional<SchemeMisfit> characteristic_line_misfit(const Case& c, const Line& line);
 
 }  // namespace barimpact

@@ -170,12 +170,8 @@ class RigidLinks {
   bool coupled_ = false;                            // some D_{k,k-1} != 0
 };
 
-/// Why moreau-jean, paoli-schatzman or mass-redistribution cannot run the
-/// line of `c` (nullopt: they can, or `c.time.scheme` is none of them).
-[[nodiscard]] std::optional<LineMisfit> rigid_line_misfit(const Case& c, const Line& line);
-
-/// The line scheme of `c` when it is one of those three (nullptr otherwise).
-/// Throws InputError when it cannot run the line (rigid_line_misfit).
-[[nodiscard]] std::unique_ptr<Scheme> make_rigid_line_scheme(const Case& c);
+/// What mass redistribution cannot run beyond its laws (registry.hpp): a
+/// dashpot, a rigid link's face on a point mass or on a bar of one element.
+[[nodiscard]] std::optional<SchemeMisfit> redistribution_misfit(const Case& c, const Line& line);
 
 }  // namespace barimpact

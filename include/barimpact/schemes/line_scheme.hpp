@@ -209,17 +209,6 @@ class LineScheme : public Scheme {
   std::vector<double> steady_body_;  // a steady body force and gravity on a plastic line (else empty)
 };
 
-/// The scheme `c.time.scheme` names for a line of bodies (c.single_bar false).
-[[nodiscard]] std::unique_ptr<Scheme> make_line_scheme(const Case& c);
-
-/// Why `c.time.scheme` cannot run the line of `c`: the `time` key to blame
-/// ("scheme" or "step") and the rule, naming the law or body it cannot run.
-struct LineMisfit {
-  std::string key;
-  std::string rule;
-};
-[[nodiscard]] std::optional<LineMisfit> line_scheme_misfit(const Case& c, const Line& line);
-
 /// The largest stable step of central differences on `line` (lumped mass;
 /// `consistent_mass`: M_h, 3 times stiffer at the top of the spectrum), by
 /// Gershgorin's bound node by node with every penalty link's k and l.

@@ -82,25 +82,12 @@ class Scheme {
   [[nodiscard]] virtual const Line* line() const { return nullptr; }
 };
 
-/// The names `time.scheme` accepts.
-[[nodiscard]] std::vector<std::string_view> scheme_names();
-
-/// Why a case does not fit its scheme: the `time` key to blame and the rule.
+/// Why a case does not fit its scheme: the `time` key to blame ("scheme",
+/// "step" or a parameter) and the rule, naming the law or body it cannot run
+/// and the schemes that can (registry.hpp).
 struct SchemeMisfit {
   std::string key;
   std::string rule;
 };
-
-/// Checks that `c.time.scheme` can run `c` (obstacle kind, bar, step limit).
-/// The `characteristic` scheme sets `c.time.step = h/c` (when `step_given`
-/// it must already be that); `time.step = "auto"` sets it for the explicit
-/// schemes (auto_step_fraction of their stable step). Returns the first misfit, if any.
-[[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
-
-/// time.step = "auto" takes this fraction of the explicit scheme's stable step.
-inline constexpr double auto_step_fraction = 0.9;
-
-/// The scheme `c.time.scheme` names, set up for `c`. Throws InputError.
-[[nodiscard]] std::unique_ptr<Scheme> make_scheme(const Case& c);
 
 }  // namespace barimpact

@@ -1,0 +1,90 @@
+// The one table of schemes: for each name `time.scheme` accepts, how it is
+// made from the built line, whether it is explicit and with which mass
+// matrix, which laws and bodies it runs, how its step is set, the energy
+// drift a resolved run stays within, and what it says when it cannot run a
+// case. Everything that asks "which scheme is this?" asks this table; no
+// other file compares scheme names. Adding a scheme is one row here.
+//
+// It owns the fit of a scheme to a line (`scheme_misfit`) and the factory
+// (`make_scheme`); the schemes themselves know nothing of each other.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "barimpact/case/case.hpp"
+#include "barimpact/model/line.hpp"
+#include "barimpact/schemes/scheme.hpp"
+
+namespace barimpact {
+
+/// The mass matrix a scheme steps with.
+enum class MassMatrix { lumped, consistent, redistributed };
+
+/// How a scheme's step is set.
+enum class StepRule {
+  given,    ///< time.step, any size (implicit schemes)
+  limited,  ///< time.step below the explicit stable limit, or "auto"
+  transit,  ///< dt = h/c, the bars' element transit time, set by the scheme
+};
+
+/// An implicit scheme of Newmark's family at the case's parameters: stable
+/// for every step from 2 beta >= gamma >= 1/2, below it only conditionally
+/// (health.hpp's conditional_stable_step).
+struct NewmarkFamily {
+  double beta, gamma;
+  std::string_view rule;  ///< the condition in the scheme's own parameters, e.g. "alpha < 1/4"
+};
+
+struct SchemeInfo {
+  std::string_view name;
+  /// Makes the scheme on the case's built line (the line must fit: scheme_misfit).
+  std::unique_ptr<Scheme> (*make)(const Case& c, Line line);
+  MassMatrix mass;
+  StepRule step;
+  bool penalty_laws;  ///< elastic, viscoelastic and cushion links
+  bool rigid_laws;    ///< rigid links (Signorini with restitution)
+  bool soil;          ///< Smith's soil (law "smith", [body.shaft])
+  bool plastic;       ///< elastic-plastic bodies
+  /// About three times the largest budget drift, relative to the run's
+  /// energy, of a resolved run on the examples (health.hpp's energy-balance).
+  double energy_tolerance;
+  /// What else the scheme cannot run (a row of its own rules), or null.
+  std::optional<SchemeMisfit> (*misfit)(const Case& c, const Line& line);
+  /// Its (beta, gamma) when it is of Newmark's family, or null.
+  NewmarkFamily (*family)(const Case& c) = nullptr;
+  /// A kernel of its own for one bar and its near end (the paper's fused
+  /// sweep of one uniform stretch, which the SIMD batch shares), or null.
+  std::unique_ptr<Scheme> (*one_bar)(const Case& c) = nullptr;
+};
+
+/// Every scheme, in the order `check`, the refusals and the docs list them.
+[[nodiscard]] std::span<const SchemeInfo> schemes();
+
+/// The row of `name`. Throws InputError naming time.scheme when there is none.
+[[nodiscard]] const SchemeInfo& scheme_info(std::string_view name);
+
+/// The names `time.scheme` accepts.
+[[nodiscard]] std::vector<std::string_view> scheme_names();
+
+/// time.step = "auto" takes this fraction of the explicit scheme's stable step.
+inline constexpr double auto_step_fraction = 0.9;
+
+/// Why `c.time.scheme` cannot run the line of `c`: the laws and bodies it
+/// does not run, then its step (above an explicit limit, or not h/c).
+[[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line);
+
+/// Checks `c.time.scheme` against `c` as the case is read. `time.step =
+/// "auto"` sets the explicit schemes' step (auto_step_fraction of their
+/// stable step) and `characteristic` sets dt = h/c (when `step_given` it
+/// must already be that). Returns the first misfit, if any.
+[[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
+
+/// The scheme `c.time.scheme` names, set up for `c`. Throws InputError when
+/// it cannot run the case.
+[[nodiscard]] std::unique_ptr<Scheme> make_scheme(const Case& c);
+
+}  // namespace barimpact

@@ -1,0 +1,234 @@
+#include "barimpact/schemes/registry.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/schemes/line_central_difference.hpp"
+#include "barimpact/schemes/line_characteristic.hpp"
+#include "barimpact/schemes/line_mass_redistribution.hpp"
+#include "barimpact/schemes/line_moreau_jean.hpp"
+#include "barimpact/schemes/line_newmark.hpp"
+#include "barimpact/schemes/line_paoli_schatzman.hpp"
+#include "barimpact/schemes/line_paper.hpp"
+#include "barimpact/schemes/line_rigid.hpp"
+#include "barimpact/schemes/paper_scheme.hpp"
+
+namespace barimpact {
+
+namespace {
+
+template <class S>
+std::unique_ptr<Scheme> make(const Case& c, Line line) {
+  return std::make_unique<S>(c, std::move(line));
+}
+
+// The paper's scheme on one bar and its near end: the fused sweep of its
+// one uniform stretch (paper_scheme.hpp), which the SIMD batch shares.
+std::unique_ptr<Scheme> make_fused_paper(const Case& c) {
+  return std::make_unique<PaperScheme>(c);
+}
+
+bool has_soil(const Line& line) {
+  return !line.shaft.empty() ||
+         std::any_of(line.links.begin(), line.links.end(), [](const Link& l) { return l.law.kind == LawKind::smith; });
+}
+
+// The implicit schemes solve Smith's soil by Newton's iteration at the new
+// level (soil_iteration.hpp), which does not yet share its step with the
+// plastic iteration.
+std::optional<SchemeMisfit> implicit_soil_misfit(const Case& c, const Line& line) {
+  if (has_soil(line))
+    for (std::size_t b = 0; b < line.plasticity.size(); ++b)
+      if (line.plasticity[b])
+        return SchemeMisfit{"scheme", fmt::format("= \"{}\" cannot run Smith's soil beside the elastic-plastic "
+                                                  "body \"{}\" yet (scheme that can: central-difference)",
+                                                  c.time.scheme, line.bodies[b].name)};
+  return std::nullopt;
+}
+
+std::optional<SchemeMisfit> newmark_misfit(const Case& c, const Line& line) {
+  if (has_soil(line) && !(c.time.beta > 0.0))
+    return SchemeMisfit{"beta",
+                        "= 0 (explicit newmark) cannot run Smith's soil: its iteration needs beta > 0 (or use "
+                        "scheme = \"central-difference\")"};
+  return implicit_soil_misfit(c, line);
+}
+
+// The alpha-scheme is Newmark's average acceleration with beta = alpha
+// (docs/methods.md); newmark takes its own.
+NewmarkFamily paper_family(const Case& c) {
+  return {c.time.alpha, 0.5, "alpha < 1/4"};
+}
+NewmarkFamily newmark_family(const Case& c) {
+  return {c.time.beta, c.time.gamma, "2 beta < gamma"};
+}
+
+// name, factory, mass, step, penalty, rigid, soil, plastic, energy tolerance,
+// own rules, Newmark's family, one-bar kernel.
+// The tolerances: about three times the largest drift of a resolved run of
+// the scheme on the examples it fits (paper 0.85%, newmark 0.12%, central
+// differences 0.72%, characteristic 1.0% (an impact between grid times),
+// paoli-schatzman 0.48%, moreau-jean 0.86%, mass redistribution 1.4%).
+const std::array<SchemeInfo, 7> table{{
+    {"paper", make<LinePaper>, MassMatrix::consistent, StepRule::given, true, false, true, true, 0.03,
+     implicit_soil_misfit, paper_family, make_fused_paper},
+    {"newmark", make<LineNewmark>, MassMatrix::consistent, StepRule::given, true, false, true, true, 0.01,
+     newmark_misfit, newmark_family},
+    {"central-difference", make<LineCentralDifference>, MassMatrix::lumped, StepRule::limited, true, true, true, true,
+     0.03, nullptr},
+    {"mass-redistribution", make<LineMassRedistribution>, MassMatrix::redistributed, StepRule::given, false, true,
+     false, true, 0.05, redistribution_misfit},
+    {"paoli-schatzman", make<LinePaoliSchatzman>, MassMatrix::consistent, StepRule::limited, true, true, false, true,
+     0.02, nullptr},
+    {"moreau-jean", make<LineMoreauJean>, MassMatrix::consistent, StepRule::given, false, true, false, true, 0.03,
+     nullptr},
+    {"characteristic", make<LineCharacteristic>, MassMatrix::lumped, StepRule::transit, false, true, false, false, 0.03,
+     characteristic_line_misfit},
+}};
+
+// "a, b, c": the schemes whose row has `can`.
+std::string schemes_that(bool SchemeInfo::*can) {
+  std::string out;
+  for (const auto& s : table)
+    if (s.*can) out += (out.empty() ? "" : ", ") + std::string(s.name);
+  return out;
+}
+
+// The laws and bodies a scheme does not run, by its row.
+std::optional<SchemeMisfit> law_misfit(const SchemeInfo& s, const Line& line) {
+  auto refuse = [](std::string rule) { return SchemeMisfit{"scheme", std::move(rule)}; };
+  const std::string me = fmt::format("= \"{}\"", s.name);
+  if (!s.soil && has_soil(line))
+    return refuse(fmt::format("{} cannot run Smith's soil (law = \"smith\", [body.shaft]) yet (schemes that can: {})",
+                              me, schemes_that(&SchemeInfo::soil)));
+  if (!s.plastic)
+    for (std::size_t b = 0; b < line.plasticity.size(); ++b)
+      if (line.plasticity[b])
+        return refuse(fmt::format("{} cannot run the elastic-plastic body \"{}\" (schemes that can: {})", me,
+                                  line.bodies[b].name, schemes_that(&SchemeInfo::plastic)));
+  for (const auto& l : line.links) {
+    if (l.law.rigid() && !s.rigid_laws)
+      return refuse(fmt::format("{} cannot run the rigid link \"{}\" (penalty laws only; schemes that can: {})", me,
+                                l.name, schemes_that(&SchemeInfo::rigid_laws)));
+    if (!l.law.rigid() && l.law.kind != LawKind::smith && !s.penalty_laws)
+      return refuse(fmt::format("{} cannot run the {} link \"{}\" (rigid links only; schemes that can: {})", me,
+                                to_string(l.law.kind), l.name, schemes_that(&SchemeInfo::penalty_laws)));
+  }
+  return std::nullopt;
+}
+
+// An explicit scheme's step against its stable limit (a step at the limit,
+// Courant 1, is stable).
+std::optional<SchemeMisfit> step_misfit(const SchemeInfo& s, const Case& c, const Line& line) {
+  if (s.step != StepRule::limited) return std::nullopt;
+  const bool consistent = s.mass == MassMatrix::consistent;
+  const double limit = line_stable_step(line, consistent);
+  if (c.time.step > limit * (1.0 + 1e-12))
+    return SchemeMisfit{"step", fmt::format("= {} is above {}'s stable limit {:.6g} for this line{}", c.time.step,
+                                            s.name, limit, consistent ? " (consistent mass)" : "")};
+  return std::nullopt;
+}
+
+// time.step = "auto": 0.9 of the explicit scheme's stable limit (its
+// Gershgorin bound, already below the true limit, with a margin for the
+// soil's damping, which grows with its static force).
+std::optional<SchemeMisfit> choose_step(const SchemeInfo& s, Case& c, const Line& line) {
+  if (s.step == StepRule::transit) return std::nullopt;  // it sets dt = h/c itself
+  if (s.step != StepRule::limited) {
+    std::string explicit_names;
+    for (const auto& other : table)
+      if (other.step != StepRule::given)
+        explicit_names += (explicit_names.empty() ? "" : ", ") + std::string(other.name);
+    return SchemeMisfit{"step", fmt::format("= \"auto\" chooses a stable step for the explicit schemes ({}); \"{}\" "
+                                            "needs a number",
+                                            explicit_names, s.name)};
+  }
+  c.time.step = auto_step_fraction * line_stable_step(line, s.mass == MassMatrix::consistent);
+  if (!(c.time.step > 0) || !std::isfinite(c.time.step))
+    return SchemeMisfit{"step", "= \"auto\" finds no stable limit for this line (nothing stiff in it): give a number"};
+  return std::nullopt;
+}
+
+// The transit-time scheme steps at the bars' common h/c (an elastic-plastic
+// line it refuses, whatever the step).
+std::optional<SchemeMisfit> set_transit_step(const SchemeInfo& s, Case& c, const Line& line, bool step_given) {
+  if (s.step != StepRule::transit || line.plastic()) return std::nullopt;
+  const auto dt = line_characteristic_step(line);
+  if (!dt) return std::nullopt;
+  if (step_given && std::abs(c.time.step - *dt) > 1e-9 * *dt)
+    return SchemeMisfit{"step", fmt::format("= {} conflicts with {}, which sets dt = h/c = {} (omit time.step or "
+                                            "give that value)",
+                                            c.time.step, s.name, *dt)};
+  c.time.step = *dt;
+  return std::nullopt;
+}
+
+// Only the explicit schemes' limits, "auto" and the transit time depend on
+// the mesh.
+bool mesh_matters(const SchemeInfo& s, const Case& c) {
+  return c.time.step_auto || s.step != StepRule::given;
+}
+
+// The line a scheme is checked against: for a scheme whose fit does not
+// depend on the mesh, each bar with at most two elements (what mass
+// redistribution asks of a bar between two rigid links), so that reading a
+// case costs its bodies, not its nodes.
+Line checked_line(const SchemeInfo& s, const Case& c) {
+  if (mesh_matters(s, c)) return build_line(c);
+  Case coarse = c;
+  for (auto& b : coarse.bodies)
+    if (b.kind == BodyKind::bar) b.elements = std::min(b.elements, 2);
+  coarse.bar.elements = std::min(coarse.bar.elements, 2);  // the paper view of one bar
+  return build_line(coarse);
+}
+
+}  // namespace
+
+std::span<const SchemeInfo> schemes() {
+  return table;
+}
+
+const SchemeInfo& scheme_info(std::string_view name) {
+  for (const auto& s : table)
+    if (s.name == name) return s;
+  throw InputError(fmt::format("time.scheme: unknown scheme \"{}\"", name));
+}
+
+std::vector<std::string_view> scheme_names() {
+  std::vector<std::string_view> names;
+  for (const auto& s : table) names.push_back(s.name);
+  return names;
+}
+
+std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line) {
+  const SchemeInfo& s = scheme_info(c.time.scheme);
+  if (auto m = law_misfit(s, line)) return m;
+  if (s.misfit)
+    if (auto m = s.misfit(c, line)) return m;
+  return step_misfit(s, c, line);
+}
+
+std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
+  const SchemeInfo& s = scheme_info(c.time.scheme);
+  const Line line = checked_line(s, c);
+  if (c.time.step_auto)
+    if (auto m = choose_step(s, c, line)) return m;
+  if (auto m = set_transit_step(s, c, line, step_given)) return m;
+  return scheme_misfit(c, line);
+}
+
+std::unique_ptr<Scheme> make_scheme(const Case& c) {
+  const SchemeInfo& s = scheme_info(c.time.scheme);
+  Line line = checked_line(s, c);
+  if (const auto m = scheme_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
+  if (s.one_bar && c.single_bar) return s.one_bar(c);
+  if (!mesh_matters(s, c)) line = build_line(c);
+  return s.make(c, std::move(line));
+}
+
+}  // namespace barimpact
