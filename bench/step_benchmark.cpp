@@ -22,6 +22,7 @@
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/registry.hpp"
 #include "barimpact/schemes/simd.hpp"
+#include "barimpact/study/paper_batch.hpp"
 
 #include <initializer_list>
 #include <string>

@@ -56,8 +56,8 @@
 #include <mpi.h>
 #endif
 #include "barimpact/run/simulate.hpp"
-#include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/simd.hpp"
+#include "barimpact/study/paper_batch.hpp"
 
 namespace {
 

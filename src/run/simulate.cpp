@@ -83,91 +83,26 @@ ObstacleData near_obstacle(const Case& c) {
   return o;
 }
 
-struct Recorders {
-  std::optional<Line> own;  // built only for a scheme that holds no line (the fused one-bar paper scheme)
-  const Line& line;
-  Probes probes;
-  HistoryRecorder history;
-  FieldRecorder fields;
-  ContactMonitor contact;
-  LinkMonitor links;
-  PlasticMonitor plastic;
-  std::optional<BlowMonitor> blow;
-  Recorders(const Case& c, const Scheme& scheme)
-      : own(scheme.line() ? std::nullopt : std::optional<Line>(build_line(c))),
-        line(scheme.line() ? *scheme.line() : *own),
-        probes(c, line),
-        history(c.output.every, &probes),
-        fields(c, line, c.output.fields_at),
-        contact(near_obstacle(c)),
-        links(line),
-        plastic(line, c.output.every) {
-    if (reports_blow(c, line)) blow.emplace(c, line);
-    observers = {&history, &fields, &contact, &links, &plastic};
-    if (blow) observers.push_back(&*blow);
-  }
-  Recorders(const Recorders&) = delete;  // blow watches `line`, observers point into it
-  const std::vector<Observer*>& all() const { return observers; }
-  std::vector<Observer*> observers;
-};
-
-RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
-                  std::chrono::steady_clock::time_point started, bool finite_rows = true);
-
 }  // namespace
+
+RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
+    : case_(c),
+      own_(scheme.line() ? std::nullopt : std::optional<Line>(build_line(c))),
+      line_(scheme.line() ? *scheme.line() : *own_),
+      probes_(c, line_),
+      history_(c.output.every, &probes_),
+      fields_(c, line_, c.output.fields_at),
+      contact_(near_obstacle(c)),
+      links_(line_),
+      plastic_(line_, c.output.every) {
+  if (reports_blow(c, line_)) blow_.emplace(c, line_);
+  observers_ = {&history_, &fields_, &contact_, &links_, &plastic_};
+  if (blow_) observers_.push_back(&*blow_);
+}
 
 RunResult run(const Case& c, const RunOptions& options) {
   auto scheme = make_scheme(c);
   return run_scheme(c, *scheme, c.step_count(), options);
-}
-
-std::vector<RunResult> run_batch(const std::vector<const Case*>& cases, const std::atomic<bool>* interrupt) {
-  const auto started = std::chrono::steady_clock::now();
-  PaperBatch batch(cases);
-  const long long steps = cases.front()->step_count();
-  std::vector<std::unique_ptr<Recorders>> rec;
-  std::vector<LoopResult> loops(cases.size());
-  std::vector<bool> live(cases.size(), true);
-  for (std::size_t l = 0; l < cases.size(); ++l) {
-    rec.push_back(std::make_unique<Recorders>(*cases[l], batch.lane(l)));
-    for (auto* o : rec[l]->all()) o->begin(batch.lane(l), steps);
-  }
-  batch.start();
-  // The loop of simulate(), lane by lane: a lane that turns non-finite stops
-  // being observed (its numbers keep being computed, and are ignored).
-  auto observe = [&](std::size_t l) {
-    Scheme& s = batch.lane(l);
-    if (!s.finite()) {
-      live[l] = false;
-      loops[l].status = RunStatus::non_finite;
-      loops[l].message = s.step() == 0
-                             ? std::string("the initial state is not finite")
-                             : fmt::format("the state became non-finite at step {} (t = {})", s.step(), s.time());
-      return;
-    }
-    loops[l].steps_done = s.step();
-    for (auto* o : rec[l]->all()) o->observe(s);
-  };
-  for (std::size_t l = 0; l < cases.size(); ++l) observe(l);
-  for (long long n = 1; n <= steps && std::find(live.begin(), live.end(), true) != live.end(); ++n) {
-    batch.advance();
-    for (std::size_t l = 0; l < cases.size(); ++l)
-      if (live[l]) observe(l);
-    if (interrupt != nullptr && interrupt->load(std::memory_order_relaxed) && n < steps) {
-      for (std::size_t l = 0; l < cases.size(); ++l)
-        if (live[l]) {
-          loops[l].status = RunStatus::interrupted;
-          loops[l].message = fmt::format("interrupted at step {} (t = {})", n, batch.lane(l).time());
-        }
-      break;
-    }
-  }
-  std::vector<RunResult> out;
-  for (std::size_t l = 0; l < cases.size(); ++l) {
-    out.push_back(collect(*cases[l], loops[l], steps, *rec[l], started));
-    out.back().summary.run_seconds /= static_cast<double>(cases.size());  // each lane's share of the batch
-  }
-  return out;
 }
 
 namespace {
@@ -218,19 +153,22 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   const auto started = std::chrono::steady_clock::now();
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
-  Recorders rec(c, scheme_ref);
-  std::vector<Observer*> observers = rec.all();
+  RunRecorder rec(c, scheme_ref);
+  std::vector<Observer*> observers = rec.observers();
   if (options.progress) observers.push_back(&progress);
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
-  return collect(c, loop, steps, rec, started, finite_rows);
+  return rec.finish(loop, steps, started, finite_rows);
 }
 
-RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& rec,
-                  std::chrono::steady_clock::time_point started, bool finite_rows) {
+}  // namespace
+
+RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::steady_clock::time_point started,
+                              bool finite_rows) {
+  const Case& c = case_;
   RunResult r;
-  r.history = rec.history.rows();
-  r.columns = rec.probes.names();
-  r.extra = rec.history.extra();
+  r.history = history_.rows();
+  r.columns = probes_.names();
+  r.extra = history_.extra();
   if (finite_rows && loop.status == RunStatus::complete) {
     // The state can stay finite while what is read off it overflows (a
     // blowing-up run squares (u^{n+1} - u^n)/dt in its energies first): the
@@ -258,20 +196,20 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
   s.steps = steps;
   s.steps_done = loop.steps_done;
   s.t_end = static_cast<double>(loop.steps_done) * c.time.step;
-  s.contacts = rec.contact.intervals();
-  s.link_names = rec.links.names();
-  s.link_episodes = rec.links.episodes();
-  s.max_penetration = rec.contact.max_penetration();
-  s.max_reaction = rec.contact.max_reaction();
-  if (rec.plastic.any()) {
+  s.contacts = contact_.intervals();
+  s.link_names = links_.names();
+  s.link_episodes = links_.episodes();
+  s.max_penetration = contact_.max_penetration();
+  s.max_reaction = contact_.max_reaction();
+  if (plastic_.any()) {
     PlasticSummary& p = s.plastic.emplace();
-    p.largest_strain = rec.plastic.largest();
-    const std::size_t j = rec.plastic.bond();
-    p.body = rec.line.bodies[rec.line.bonds[j].body].name;
-    p.x = 0.5 * (rec.line.x[j] + rec.line.x[j + 1]);
-    p.t = rec.plastic.time();
-    for (std::size_t b = 0; b < rec.line.bodies.size(); ++b)
-      if (rec.line.plasticity[b]) p.work.emplace_back(rec.line.bodies[b].name, rec.plastic.work()[b]);
+    p.largest_strain = plastic_.largest();
+    const std::size_t j = plastic_.bond();
+    p.body = line_.bodies[line_.bonds[j].body].name;
+    p.x = 0.5 * (line_.x[j] + line_.x[j + 1]);
+    p.t = plastic_.time();
+    for (std::size_t b = 0; b < line_.bodies.size(); ++b)
+      if (line_.plasticity[b]) p.work.emplace_back(line_.bodies[b].name, plastic_.work()[b]);
   }
   if (!r.history.empty()) {
     auto total = [](const HistoryRow& h) { return h.total(); };
@@ -280,10 +218,10 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
     for (const auto& h : r.history)
       s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
   }
-  r.fields = rec.fields.take();
-  s.warnings = check_health(c, rec.line, s, r.history);
-  if (rec.blow) {
-    s.blow = rec.blow->summary();
+  r.fields = fields_.take();
+  s.warnings = check_health(c, line_, s, r.history);
+  if (blow_) {
+    s.blow = blow_->summary();
     if (!s.blow->finished && s.complete)
       s.warnings.push_back(fmt::format(
           "blow-unfinished: the pile had not come to rest by t = {:.6g} (every node below 1% of the impact velocity "
@@ -293,8 +231,6 @@ RunResult collect(const Case& c, LoopResult loop, long long steps, Recorders& re
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
-
-}  // namespace
 
 std::string_view to_string(RunStatus status) {
   switch (status) {

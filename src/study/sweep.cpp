@@ -16,9 +16,9 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
-#include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "barimpact/study/executor.hpp"
+#include "barimpact/study/paper_batch.hpp"
 
 namespace barimpact {
 
@@ -274,10 +274,9 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
     if (!cases[i] || taken[i]) continue;
     std::vector<std::size_t> g{i};
     taken[i] = true;
-    if (options.batch && cases[i]->bar.elements <= PaperBatch::largest_mesh &&
-        PaperScheme::batchable(*cases[i], *cases[i]))
+    if (options.batch && cases[i]->bar.elements <= PaperBatch::largest_mesh && batchable(*cases[i], *cases[i]))
       for (std::size_t k = i + 1; k < todo.size() && g.size() < PaperBatch::width; ++k)
-        if (cases[k] && !taken[k] && PaperScheme::batchable(*cases[i], *cases[k])) {
+        if (cases[k] && !taken[k] && batchable(*cases[i], *cases[k])) {
           g.push_back(k);
           taken[k] = true;
         }

@@ -7,8 +7,8 @@
 #include <utility>
 
 #include "../support/run_case.hpp"
-#include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/simd.hpp"
+#include "barimpact/study/paper_batch.hpp"
 
 namespace barimpact {
 namespace {
@@ -93,9 +93,9 @@ TEST(PaperBatch, RefusesCasesThatCannotShareIt) {
   const Case b = testing::case_from("[bar]\nelements = 50");
   const Case v = testing::case_from("[obstacle]\nkind = \"viscoelastic\"\nviscosity = 0.1");
   const Case t = testing::case_from("[load]\nbody_force = \"t\"");
-  EXPECT_FALSE(PaperScheme::batchable(a, b));
-  EXPECT_FALSE(PaperScheme::batchable(a, v));
-  EXPECT_FALSE(PaperScheme::batchable(a, t));
+  EXPECT_FALSE(batchable(a, b));
+  EXPECT_FALSE(batchable(a, v));
+  EXPECT_FALSE(batchable(a, t));
   EXPECT_THROW((void)run_batch({&a, &b}), InputError);
 }
 

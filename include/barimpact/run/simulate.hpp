@@ -3,6 +3,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +13,7 @@
 #include "barimpact/case/case.hpp"
 #include "barimpact/run/blow.hpp"
 #include "barimpact/run/observer.hpp"
+#include "barimpact/run/probe.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact {
@@ -90,11 +92,38 @@ struct RunOptions {
 /// Throws InputError when the case does not fit its scheme.
 [[nodiscard]] RunResult run(const Case& c, const RunOptions& options = {});
 
-/// Runs up to four batchable paper-scheme cases together in a PaperBatch
-/// (PaperScheme::batchable): the same results as run() on each, bit for
-/// bit, for about a third of the cost per case.
-[[nodiscard]] std::vector<RunResult> run_batch(const std::vector<const Case*>& cases,
-                                               const std::atomic<bool>* interrupt = nullptr);
+/// The standard observers of one run of `c` (the history with its probes,
+/// field snapshots, contact and link episodes, plastic strains, the blow)
+/// and the RunResult they add up to. The loop is the caller's: `run`'s
+/// simulate, or a batch's over its lanes. They read the scheme's own line,
+/// or build one for a scheme that holds none; `c` and `scheme` must
+/// outlive the recorder.
+class RunRecorder {
+ public:
+  RunRecorder(const Case& c, const Scheme& scheme);
+  RunRecorder(const RunRecorder&) = delete;  // the observers point into it
+  RunRecorder& operator=(const RunRecorder&) = delete;
+
+  [[nodiscard]] const std::vector<Observer*>& observers() const { return observers_; }
+  /// The run's result once its loop ended as `loop` (of `steps` requested,
+  /// begun at `started`); `finite_rows`: a history row that is not finite
+  /// ends a complete run there as non-finite.
+  [[nodiscard]] RunResult finish(LoopResult loop, long long steps, std::chrono::steady_clock::time_point started,
+                                 bool finite_rows = true);
+
+ private:
+  const Case& case_;
+  std::optional<Line> own_;  // built only for a scheme that holds no line (the fused one-bar paper scheme)
+  const Line& line_;
+  Probes probes_;
+  HistoryRecorder history_;
+  FieldRecorder fields_;
+  ContactMonitor contact_;
+  LinkMonitor links_;
+  PlasticMonitor plastic_;
+  std::optional<BlowMonitor> blow_;
+  std::vector<Observer*> observers_;
+};
 
 /// Tabulates the exact solution the case admits (exact.hpp) on its time
 /// grid, through the same observers: same history columns as `run`, rows up

@@ -42,6 +42,8 @@
 
 namespace barimpact {
 
+class PaperBatch;
+
 class PaperScheme final : public Scheme {
  public:
   /// Preconditions: `c` validated, obstacle kind none or elastic.
@@ -67,10 +69,6 @@ class PaperScheme final : public Scheme {
   /// The level z^{n+1}, node j at [j * stride()] (exposed for tests of the scheme itself).
   [[nodiscard]] const double* next_level() const { return next_; }
   [[nodiscard]] std::size_t stride() const { return stride_; }
-
-  /// Whether `a` and `b` can share a PaperBatch: same mesh size and step
-  /// count, a load that does not depend on t, no dashpot.
-  [[nodiscard]] static bool batchable(const Case& a, const Case& b);
 
  private:
   friend class PaperBatch;
@@ -139,54 +137,6 @@ class PaperScheme final : public Scheme {
   long long n_ = 0;
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // increments of level n
-};
-
-/// Up to `width` paper-scheme cases stepped together, one per lane of a
-/// SIMD register: their levels, pivots and loads interleaved
-/// (node j of lane l at [width j + l]), the same arithmetic as PaperScheme's
-/// kernel lane by lane, so that each lane's results are PaperScheme's to the
-/// last bit (tested). The sweeps are latency-bound; `width` independent
-/// chains in one register make them several times cheaper per case.
-/// Each lane stays a PaperScheme: observers see it through the Scheme
-/// interface.
-class PaperBatch {
- public:
-  /// Cases per register: 4 doubles, one AVX2 register (two SSE2 ones; the
-  /// path is chosen at run time, simd.hpp). (Eight, one AVX-512
-  /// register, measured no faster on AMD Zen 4, which runs it as two halves,
-  /// and slower from M = 10^5, where eight cases leave the cache.)
-  static constexpr std::size_t width = 4;
-  /// The largest mesh worth batching: beyond it the lanes' levels and
-  /// factors leave the cache and a batch is no faster per case than single
-  /// runs (measured 2.0-2.4x at M = 10^5, 0.8-1.3x at 10^6; docs/benchmarks.md).
-  static constexpr int largest_mesh = 200'000;
-  /// Storage aligned to a register: every load of all lanes is one aligned access.
-  template <class T>
-  struct RegisterAligned {
-    using value_type = T;
-    RegisterAligned() = default;
-    template <class U>
-    explicit RegisterAligned(const RegisterAligned<U>&) {}
-    T* allocate(std::size_t n) { return static_cast<T*>(::operator new (n * sizeof(T), std::align_val_t{8 * width})); }
-    void deallocate(T* p, std::size_t) { ::operator delete (p, std::align_val_t{8 * width}); }
-    friend bool operator==(const RegisterAligned&, const RegisterAligned&) = default;
-  };
-  using Lanes = std::vector<double, RegisterAligned<double>>;
-
-  /// 1 to `width` cases, pairwise batchable. Throws InputError otherwise.
-  explicit PaperBatch(const std::vector<const Case*>& cases);
-  void start();
-  void advance();
-  [[nodiscard]] std::size_t size() const { return lanes_.size(); }
-  [[nodiscard]] PaperScheme& lane(std::size_t i) { return *lanes_[i]; }
-
- private:
-  std::vector<std::unique_ptr<PaperScheme>> lanes_;
-  std::array<Lanes, 3> levels_;
-  Lanes inv_, up_, load_;
-  std::size_t nodes_ = 0;
-  bool steady_load_ = false;
-  SimdPath path_ = SimdPath::scalar;  // the kernel's instructions (simd.hpp), chosen at construction
 };
 
 }  // namespace barimpact

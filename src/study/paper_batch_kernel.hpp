@@ -1,5 +1,5 @@
 // One level of PaperBatch: PaperScheme::solve_level on `width` interleaved
-// lanes (internal to src/schemes). The kernel is compiled once per SIMD
+// lanes (internal to src/study). The kernel is compiled once per SIMD
 // path (paper_batch_kernel.cpp with BARIMPACT_KERNEL naming it, and the
 // path's compiler flags); schemes/simd.hpp chooses one at run time. Every
 // path does the same IEEE operations in the same order (no FMA

@@ -10,7 +10,7 @@
 
 #include <type_traits>
 
-#include "twisted_solve.hpp"
+#include "../schemes/twisted_solve.hpp"
 
 namespace barimpact::batch_kernel {
 
