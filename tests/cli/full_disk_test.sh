@@ -59,12 +59,15 @@ expect_full() {  # path, then the arguments
   ok
 }
 
-# run, into a new path (its missing parents are removed again).
+# run: CSV and HDF5, into a new path (its missing parents are removed again).
 fresh 200k
 expect_full "$disk/ex1" run "$ex1" --out "$disk/ex1"
 [ ! -e "$disk/ex1" ] && ok || bad "a half-written ex1 is there"
 expect_full "$disk/made/below/ex1" run "$ex1" --out "$disk/made/below/ex1"
 [ ! -e "$disk/made" ] && ok || bad "the parents made for the run are left"
+fresh 200k
+expect_full "$disk/ex1-h5" run "$ex1" --out "$disk/ex1-h5" --set output.format=hdf5
+[ -z "$(ls -A "$disk")" ] && ok || bad "the HDF5 run left: $(ls -A "$disk")"
 fresh 100k
 expect_full "$disk/exact" exact "$examples/clamped-periodic.toml" --out "$disk/exact"
 
