@@ -88,6 +88,17 @@ expect_full "$disk/mine" run "$ex1" --out "$disk/mine" --force
 [ "$(listing "$disk/mine")" = "$before" ] && ok || bad "--force: the user's directory changed"
 [ "$(cat "$disk/mine/notes.txt")" = "my notes" ] && ok || bad "--force: the user's file changed"
 
+# sweep (runs written by worker threads) and converge: the runs written
+# whole before the disk filled stay (a rerun resumes), each with its marker.
+fresh 200k
+expect_full "$disk/sweep" sweep "$examples/sweeps/penalty-to-rigid.toml" --out "$disk/sweep" --jobs 2
+for run in "$disk"/sweep/runs/*; do
+  [ -e "$run" ] || continue
+  [ -f "$run/.barimpact" ] && [ -f "$run/summary.json" ] && ok || bad "a sweep run is not whole: $run"
+done
+fresh 64k
+expect_full "$disk/converge" converge "$ex1" --out "$disk/converge" --levels 2
+
 # hopkinson: the analysis of a run's gauges into a disk too small for it.
 "$bin" run "$examples/hopkinson/shpb.toml" --out "$work/shpb" --set output.fields_at=[] > /dev/null 2>&1 && ok ||
   bad "shpb run"
