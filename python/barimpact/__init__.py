@@ -48,14 +48,15 @@ from . import convergence as _convergence_figures
 from . import hopkinson as _hopkinson_figures
 from . import plot as _figures
 from . import _core
-from ._core import Case, InputError, Result
+from ._core import Case, InputError, OutputError, Result
 
 InputError.__module__ = "barimpact"  # tracebacks say barimpact.InputError, where users catch it
+OutputError.__module__ = "barimpact"
 from .plot import RunData, load
 
-__all__ = ["Case", "Result", "InputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable", "RunData",
-           "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
-           "exact_example1"]
+__all__ = ["Case", "Result", "InputError", "OutputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
+           "read_table", "exact_example1"]
 
 
 class HealthWarning(UserWarning):
@@ -326,7 +327,9 @@ def run(case, progress=None, *, out=None, set=None, force=False, strict=False):
     steps, t, t_end, elapsed); returning False stops the run (the result is
     then marked incomplete). With `out`, writes history.csv, fields.csv
     (or results.h5, when the case says `[output] format = "hdf5"`), case.toml
-    and summary.json there by the command's output rule (`force` as --force).
+    and summary.json there by the command's output rule (`force` as --force);
+    what the file system refuses (a full disk) raises `OutputError`, an
+    InputError and an OSError, with nothing half-written left there.
     The health checks' warnings are `HealthWarning`s; strict=True raises
     `StrictError` after writing instead (the command's exit 4)."""
     result = _core.run(_case(case, set), progress)
