@@ -488,7 +488,8 @@ def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
     without it nothing is written. InputError (one line) for a signal it
     cannot analyse. Warnings are `HealthWarning`s; strict=True raises
     `StrictError` after writing."""
-    draw = None if no_plot or out is None else _hopkinson_figures.plot_hopkinson
+    draw = None if no_plot or out is None else (
+        lambda staging: _hopkinson_figures.plot_hopkinson_into(staging, _out(out)))
     table, summary, lines = _core._hopkinson(setup, _out(out), bool(force), draw)
     result = HopkinsonTable(table, json.loads(summary))
     _warn(lines)

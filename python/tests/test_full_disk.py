@@ -1,10 +1,11 @@
 """A full disk: writing results that do not fit raises (the module's
 InputError, or OSError: barimpact.OutputError is both) naming the path and
-the system's reason; the interpreter lives on, nothing staged is left
-behind. The file systems are small tmpfs mounts, which need root: without,
-the tests are skipped (saying why). Each case runs in a child interpreter,
-which must end normally: a crash (as HDF5's at exit) fails the test, not
-the whole session."""
+the system's reason (a figure: an OSError naming it, none half-written);
+the interpreter lives on, nothing staged is left behind. The file systems
+are small tmpfs mounts, which need root: without, the tests are skipped
+(saying why). Each case runs in a child interpreter, which must end
+normally: a crash (as HDF5's at exit) fails the test, not the whole
+session."""
 import json
 import os
 import subprocess
@@ -58,6 +59,12 @@ def leftovers(d):
     return sorted(str(p) for p in d.rglob("*") if ".partial-" in p.name or ".old-" in p.name)
 
 
+def whole_figure(path):
+    """A PNG up to its IEND chunk, an SVG up to its closing tag."""
+    data = path.read_bytes()
+    return data.endswith(b"IEND\xaeB`\x82") if path.suffix == ".png" else data.rstrip().endswith(b"</svg>")
+
+
 def assert_refused(refused, path):
     assert refused is not None, f"{path} was written"
     assert "InputError" in refused["kinds"] and "OSError" in refused["kinds"]
@@ -73,11 +80,17 @@ def test_run_and_exact_on_a_full_disk_raise_and_the_interpreter_lives_on(disk):
         f"barimpact.exact({str(EXAMPLES / 'clamped-periodic.toml')!r}, out={str(disk / 'exact')!r},"
         " set={'bar.elements': 400})",
         f"barimpact.run({str(EX1)!r}, out={str(small)!r}, set={{'time.end': 0.5, 'output.fields_at': []}})",
+        f"barimpact.plot({str(small)!r})",
     ])
     for r, name in zip(refused, ("ex1", "h5", "exact")):
         assert_refused(r, disk / name)
         assert not (disk / name).exists()
     assert refused[3] is None and (small / "summary.json").is_file()  # the module still works
+    # Its figures do not fit: an OSError naming the figure, no part of it left.
+    assert "OSError" in refused[4]["kinds"]
+    assert str(small / "figures") in refused[4]["message"] and "No space left on device" in refused[4]["message"]
+    figures = [p for p in (small / "figures").iterdir() if p.suffix in (".png", ".svg")]
+    assert all(whole_figure(p) for p in figures), figures
     assert leftovers(disk) == []
 
 
