@@ -8,7 +8,8 @@
 //   barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
 //                      [--vary key=spec] [--schemes a,b] [--reference auto|rigid|finest] [--jobs N]
 //
-// Exit status: 0 done, 2 bad input (one line on stderr, nothing written),
+// Exit status: 0 done, 2 bad input or results the file system refused (a
+// full disk; one line on stderr, nothing half-written left),
 // 3 the state became non-finite (rows so far kept, summary.json marks them
 // incomplete; for converge and sweep: no run produced a result), 4 warnings
 // under --strict (results written), 130 / 143 interrupted by SIGINT / SIGTERM
@@ -197,7 +198,16 @@ std::string python_path() {
   return path;
 }
 
-// Runs the Python package (figures) as a child; false if it is not there or fails.
+// A failure the figures' child has already reported in its one line: the
+// command ends with its exit status, adding nothing.
+struct Reported {
+  int status;
+};
+
+// Runs the Python package (figures) as a child; false if it is not there or
+// fails. Its own refusal (exit 2: the disk refused a figure, which it names)
+// ends the command with exit 2 (Reported); a figure it could not write whole
+// is not left behind.
 bool run_python(std::vector<std::string> args) {
   if (python_package_dir().empty()) return false;
   const std::string path = python_path();
@@ -213,7 +223,9 @@ bool run_python(std::vector<std::string> args) {
     _exit(127);
   }
   int status = 0;
-  return pid > 0 && waitpid(pid, &status, 0) == pid && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (pid <= 0 || waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return false;
+  if (WEXITSTATUS(status) == exit_bad_input) throw Reported{exit_bad_input};
+  return WEXITSTATUS(status) == 0;
 }
 
 // How a study (converge, sweep) of many runs ended, and its exit status:
@@ -525,7 +537,7 @@ int hopkinson_command(const std::string& setup_path, const std::string& out, boo
   dir.commit([&](const std::filesystem::path& staging) {
     barimpact::write_text(staging / "hopkinson.csv", barimpact::hopkinson_csv(result));
     barimpact::write_text(staging / "summary.json", barimpact::hopkinson_summary_json(result));
-    plotted = !no_plot && run_python({"hopkinson-plot", staging.string()});
+    plotted = !no_plot && run_python({"hopkinson-plot", staging.string(), "--as", out});
   });
   const auto& a = result.alignment;
   fmt::print(
@@ -778,6 +790,8 @@ bool known_command(int argc, char** argv, const std::vector<Command>& commands) 
 int report(const std::exception_ptr& failure) {
   try {
     std::rethrow_exception(failure);
+  } catch (const Reported& r) {
+    return r.status;
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());
     return exit_bad_input;

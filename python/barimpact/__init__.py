@@ -48,14 +48,15 @@ from . import convergence as _convergence_figures
 from . import hopkinson as _hopkinson_figures
 from . import plot as _figures
 from . import _core
-from ._core import Case, InputError, Result
+from ._core import Case, InputError, OutputError, Result
 
 InputError.__module__ = "barimpact"  # tracebacks say barimpact.InputError, where users catch it
+OutputError.__module__ = "barimpact"
 from .plot import RunData, load
 
-__all__ = ["Case", "Result", "InputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable", "RunData",
-           "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
-           "exact_example1"]
+__all__ = ["Case", "Result", "InputError", "OutputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
+           "read_table", "exact_example1"]
 
 
 class HealthWarning(UserWarning):
@@ -326,7 +327,9 @@ def run(case, progress=None, *, out=None, set=None, force=False, strict=False):
     steps, t, t_end, elapsed); returning False stops the run (the result is
     then marked incomplete). With `out`, writes history.csv, fields.csv
     (or results.h5, when the case says `[output] format = "hdf5"`), case.toml
-    and summary.json there by the command's output rule (`force` as --force).
+    and summary.json there by the command's output rule (`force` as --force);
+    what the file system refuses (a full disk) raises `OutputError`, an
+    InputError and an OSError, with nothing half-written left there.
     The health checks' warnings are `HealthWarning`s; strict=True raises
     `StrictError` after writing instead (the command's exit 4)."""
     result = _core.run(_case(case, set), progress)
@@ -485,7 +488,8 @@ def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
     without it nothing is written. InputError (one line) for a signal it
     cannot analyse. Warnings are `HealthWarning`s; strict=True raises
     `StrictError` after writing."""
-    draw = None if no_plot or out is None else _hopkinson_figures.plot_hopkinson
+    draw = None if no_plot or out is None else (
+        lambda staging: _hopkinson_figures.plot_hopkinson_into(staging, _out(out)))
     table, summary, lines = _core._hopkinson(setup, _out(out), bool(force), draw)
     result = HopkinsonTable(table, json.loads(summary))
     _warn(lines)

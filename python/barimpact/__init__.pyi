@@ -8,11 +8,12 @@ import numpy.typing as npt
 
 from ._core import Case as Case
 from ._core import InputError as InputError
+from ._core import OutputError as OutputError
 from ._core import Result as Result
 
-__all__ = ["Case", "Result", "InputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable", "RunData",
-           "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load", "read_table",
-           "exact_example1"]
+__all__ = ["Case", "Result", "InputError", "OutputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
+           "read_table", "exact_example1"]
 
 _PathArg = Union[str, os.PathLike[str]]
 _CaseLike = Union[Case, _PathArg, Mapping[str, Any]]

@@ -31,6 +31,28 @@ def _plot(dirs, out):
     return written
 
 
+def _run(args):
+    """The subcommand's work: the paths it wrote, to print."""
+    if args.command == "bearing-plot":
+        from .bearing import plot_bearing
+        return plot_bearing(args.dir)
+    if args.command == "hopkinson-plot":
+        from .hopkinson import plot_hopkinson_into
+        plot_hopkinson_into(args.dir, args.shown or args.dir)
+        return []  # into the staging directory: its paths would mislead
+    if args.command == "converge-plot":
+        from .convergence import plot_study
+        return plot_study(args.dir)
+    return _plot(args.dir, args.out)
+
+
+def _message(e):
+    """One line: a file's error as PATH: REASON (a full disk names the figure)."""
+    if isinstance(e, OSError) and e.filename is not None and e.strerror:
+        return f"{e.filename}: {e.strerror}"
+    return str(e)
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="barimpact")
     sub = parser.add_subparsers(dest="command", required=True)
@@ -43,25 +65,14 @@ def main(argv=None):
     b.add_argument("dir")
     h = sub.add_parser("hopkinson-plot", help="draw the figures of a barimpact hopkinson directory")
     h.add_argument("dir")
+    h.add_argument("--as", dest="shown", default=None,
+                   help="the directory the figures are moved to (DIR is its staging), which errors name")
     args = parser.parse_args(argv)
-    if args.command == "bearing-plot":
-        from .bearing import plot_bearing
-        for path in plot_bearing(args.dir):
-            print(path)
-        return 0
-    if args.command == "hopkinson-plot":
-        from .hopkinson import plot_hopkinson
-        plot_hopkinson(args.dir)  # into the staging directory: its paths would mislead
-        return 0
-    if args.command == "converge-plot":
-        from .convergence import plot_study
-        for path in plot_study(args.dir):
-            print(path)
-        return 0
     try:
-        written = _plot(args.dir, args.out)
+        written = _run(args)
     except (OSError, ValueError, ImportError) as e:  # ImportError: results.h5 without h5py
-        print(f"barimpact: error: plot: {e}", file=sys.stderr)
+        # The command the user gave: plot, converge, bearing, hopkinson. Exit 2, as the command's own refusals.
+        print(f"barimpact: error: {args.command.removesuffix('-plot')}: {_message(e)}", file=sys.stderr)
         return 2
     for path in written:
         print(path)

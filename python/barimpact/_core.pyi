@@ -17,6 +17,10 @@ _Array = npt.NDArray[np.float64]
 class InputError(ValueError):
     """Bad input, with the command line's one-line message."""
 
+class OutputError(InputError, OSError):
+    """What the file system refused while results were written (a full disk):
+    the path and the system's reason in one line; nothing half-written is left."""
+
 class Case:
     """A validated case from a TOML file path, TOML text or a dict; `set` overrides keys."""
 

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .plot import DPI  # noqa: E402
+from .plot import DPI, _save  # noqa: E402
 
 
 def _float(text):
@@ -63,8 +63,5 @@ def plot_bearing(directory, formats=("png", "svg")):
     ax2.grid(True, alpha=0.3)
     ax2.legend()
     written = []
-    for fmt in formats:
-        fig.savefig(d / f"bearing.{fmt}", dpi=DPI)
-        written.append(d / f"bearing.{fmt}")
-    plt.close(fig)
+    _save(fig, d, "bearing", formats, written)
     return written

@@ -86,3 +86,15 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=8, loc="lower right")
     _save(fig, out, "equilibrium", formats, written)
     return written
+
+
+def plot_hopkinson_into(staging, shown, formats=("png", "svg")):
+    """plot_hopkinson into the staging directory of `shown`, the directory
+    the results are moved to once whole: an OSError (a full disk) names the
+    figure there, not in the staging directory, which is gone by then."""
+    try:
+        return plot_hopkinson(staging, formats)
+    except OSError as e:
+        if e.filename is None or Path(e.filename).parent != Path(staging):
+            raise
+        raise OSError(e.errno, e.strerror, str(Path(shown) / Path(e.filename).name)) from e

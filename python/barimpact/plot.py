@@ -28,6 +28,7 @@ default) leaves the bare names.
 `compare(sources, out)` draws several runs in one figure, each curve named
 by the case keys that differ between the runs.
 """
+import contextlib
 import json
 import os
 import tomllib
@@ -456,12 +457,33 @@ def _figure(title, grid=True):
     return fig, ax
 
 
+def _replace_whole(path, write, staged=None):
+    """Calls write(staged) for a hidden file beside `path` (by default
+    .NAME.partial-PID, which barimpact's output rule knows as its own), then
+    renames it over `path`: no reader sees half of it. What the file system
+    refuses (a full disk) is an OSError naming `path`; no part of it is left."""
+    path = Path(path)
+    staged = path.with_name(staged or f".{path.name}.partial-{os.getpid()}")
+    try:
+        write(staged)
+        os.replace(staged, path)
+    except BaseException as e:
+        with contextlib.suppress(OSError):
+            staged.unlink(missing_ok=True)
+        if isinstance(e, OSError) and e.errno is not None:
+            raise OSError(e.errno, e.strerror, str(path)) from e
+        raise
+
+
 def _save(fig, out, name, formats, written):
-    for fmt in formats:
-        path = out / f"{name}.{fmt}"
-        fig.savefig(path, dpi=DPI)
-        written.append(path)
-    plt.close(fig)
+    """The figure in each format, each file whole or not at all; closed either way."""
+    try:
+        for fmt in formats:
+            path = Path(out) / f"{name}.{fmt}"
+            _replace_whole(path, lambda staged, fmt=fmt: fig.savefig(staged, dpi=DPI, format=fmt))
+            written.append(path)
+    finally:
+        plt.close(fig)
 
 
 def _near_end(case, units):
@@ -741,9 +763,7 @@ def mark_figures(run_dir):
     if data.get("written_by") != "barimpact" or "figures" in data.get("entries", []):
         return
     data["entries"] = sorted(data.get("entries", []) + ["figures"])
-    staging = marker.with_name(f".barimpact.{os.getpid()}")
-    staging.write_text(json.dumps(data, indent=2) + "\n")
-    staging.replace(marker)
+    _write_marker(marker, data)
 
 
 def mark_written(directory, names):
@@ -766,9 +786,13 @@ def mark_written(directory, names):
     except ValueError:
         return
     data["entries"] = sorted(set(data.get("entries", [])) | set(names))
-    staging = marker.with_name(f".barimpact.{os.getpid()}")
-    staging.write_text(json.dumps(data, indent=2) + "\n")
-    staging.replace(marker)
+    _write_marker(marker, data)
+
+
+def _write_marker(marker, data):
+    """The marker replaced whole (staged as the command stages it), or left as it was."""
+    _replace_whole(marker, lambda staged: staged.write_text(json.dumps(data, indent=2) + "\n"),
+                   f".barimpact.{os.getpid()}")
 
 
 # --- entry points ---------------------------------------------------------------------

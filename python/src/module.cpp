@@ -665,6 +665,9 @@ void bind_exact_solutions(py::module_& m) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "barimpact's C++ core; use the package `barimpact`";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  // What the file system refused (a full disk): caught as either kind.
+  py::register_exception<OutputError>(m, "OutputError",
+                                      py::make_tuple(m.attr("InputError"), py::handle(PyExc_OSError)));
   bind_case(m);
   bind_result(m);
   bind_run(m);

@@ -28,4 +28,10 @@ std::string one_line(const std::string& what) {
 
 InputError::InputError(const std::string& what) : std::runtime_error(one_line(what)) {}
 
+OutputError::OutputError(const std::filesystem::path& path, const std::string& reason)
+    : OutputError(fmt::format("cannot write {}: {}", path.string(), reason), path, reason) {}
+
+OutputError::OutputError(const std::string& what, const std::filesystem::path& path, const std::string& reason)
+    : InputError(what), path_(path), reason_(reason) {}
+
 }  // namespace barimpact

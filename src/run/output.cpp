@@ -3,9 +3,9 @@
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/results_h5.hpp"
 #include "barimpact/schemes/registry.hpp"
+#include "output_file.hpp"
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,6 +19,7 @@
 namespace barimpact {
 
 namespace fs = std::filesystem;
+using detail::OutputFile;
 
 RunDirectory::RunDirectory(fs::path target, bool force, std::string command, bool remove_stale)
     : target_(std::move(target)), command_(std::move(command)) {
@@ -36,10 +37,17 @@ RunDirectory::RunDirectory(fs::path target, bool force, std::string command, boo
   if (remove_stale) remove_stale_staging(parent, name);
   staging_ = parent / fmt::format(".{}.partial-{}", name, ::getpid());
   fs::remove_all(staging_, ec);
-  if (!fs::create_directory(staging_, ec) || ec)
-    throw InputError(fmt::format("--out {}: cannot write in {} ({})", shown_.string(), parent.string(),
-                                 ec ? ec.message() : "not created"));
-  write_text(staging_ / staging_flag, "a barimpact run's results while they are written\n");
+  if (!fs::create_directory(staging_, ec) || ec) {
+    const std::string reason = ec ? ec.message() : "not created";
+    throw OutputError(fmt::format("--out {}: cannot write in {} ({})", shown_.string(), parent.string(), reason),
+                      parent, reason);
+  }
+  try {
+    write_text(staging_ / staging_flag, "a barimpact run's results while they are written\n");
+  } catch (const OutputError& e) {
+    fs::remove_all(staging_, ec);  // a constructor that throws has no destructor run
+    throw refused(e);
+  }
 }
 
 RunDirectory::~RunDirectory() {
@@ -49,13 +57,26 @@ RunDirectory::~RunDirectory() {
   }
 }
 
+OutputError RunDirectory::refused(const OutputError& e) const {
+  // The file by its name in the results (the staging directory is gone by the time this is read).
+  const auto inside = [&](const fs::path& dir) {
+    const fs::path name = e.path().lexically_relative(dir);
+    return name.empty() || *name.begin() == ".." ? fs::path() : name;
+  };
+  fs::path name = inside(staging_);
+  if (name.empty()) name = inside(target_);
+  if (name.empty()) name = e.path();
+  return {fmt::format("--out {}: cannot write {}: {}", shown_.string(), name.string(), e.reason()), shown_ / name,
+          e.reason()};
+}
+
 namespace {
 
 // Shortest text that reads back to the same double.
 constexpr std::string_view budget_header = "t,U,V,R,E_kin,E_strain,E_obstacle,W_ext,D_visc,D_contact,D_plastic";
 
 void write_history(const fs::path& path, const RunResult& result) {
-  auto out = fmt::output_file(path.string());
+  OutputFile out(path);
   const std::size_t n = result.columns.size();
   out.print("{}", budget_header);
   for (const auto& name : result.columns) out.print(",{}", name);
@@ -71,7 +92,7 @@ void write_history(const fs::path& path, const RunResult& result) {
 }
 
 void write_fields(const fs::path& path, const RunResult& result) {
-  auto out = fmt::output_file(path.string());
+  OutputFile out(path);
   out.print("t,x,u,v,sigma,eps_p,body\n");
   const Fields& f = result.fields;
   for (std::size_t s = 0; s < f.count(); ++s)
@@ -88,15 +109,14 @@ nlohmann::json number_or_null(double v) {
 }  // namespace
 
 void write_text(const fs::path& path, const std::string& text) {
-  auto out = fmt::output_file(path.string());
-  out.print("{}", text);
+  OutputFile out(path);
+  out.write(text);
   out.close();
 }
 
 void replace_text(const fs::path& path, const std::string& text) {
-  const auto staging = path.parent_path() / fmt::format(".{}.partial-{}", path.filename().string(), ::getpid());
-  write_text(staging, text);
-  fs::rename(staging, path);
+  detail::replace_file(path.parent_path() / fmt::format(".{}.partial-{}", path.filename().string(), ::getpid()), path,
+                       text);
 }
 
 std::string_view history_file(OutputFormat format) {
@@ -118,75 +138,96 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
 
 void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
   // What the file system or HDF5 refused; any other failure is not the output's.
-  const auto cannot_write = [&](const std::exception& e) {
-    return InputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()));
+  const auto cannot_write = [&](const std::exception& e, const std::string& reason) {
+    return OutputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()), shown_,
+                       reason);
   };
   try {
     write(staging_);
     fs::remove(staging_ / staging_flag);
     write_output_marker(staging_, command_, directory_entries(staging_));
+  } catch (const OutputError& e) {
+    throw refused(e);
   } catch (const std::system_error& e) {
-    throw cannot_write(e);
+    throw cannot_write(e, e.code().message());
   } catch (const Hdf5Error& e) {
-    throw cannot_write(e);
+    throw cannot_write(e, e.what());
   }
   // The target is judged again now: it may have changed during the run.
   std::error_code ec;
   if (fs::is_directory(target_, ec) && fs::is_empty(target_, ec)) fs::remove(target_, ec);
-  if (beside_ || (fs::exists(target_, ec) && !written_by_barimpact(target_))) {
+  if (beside_ || (fs::exists(target_, ec) && !written_by_barimpact(target_)))
     move_beside();
-    return;
-  }
+  else
+    move_into_place();
+  committed_ = true;
+  if (parents_) parents_->keep();
+}
+
+// The staging directory renamed to the target; a directory barimpact wrote
+// there before is set aside first, put back if the rename fails, and
+// removed once the new results are in place.
+void RunDirectory::move_into_place() {
+  std::error_code ec;
   fs::path old;
+  const auto cannot = [&](std::string_view what) {
+    return OutputError(fmt::format("--out {}: cannot {}: {}", shown_.string(), what, ec.message()), shown_,
+                       ec.message());
+  };
   if (fs::exists(target_, ec)) {
     old = target_.parent_path() / fmt::format(".{}.old-{}", target_.filename().string(), ::getpid());
     fs::rename(target_, old, ec);
-    if (ec)
-      throw InputError(
-          fmt::format("--out {}: cannot replace the existing directory: {}", shown_.string(), ec.message()));
+    if (ec) throw cannot("replace the existing directory");
   }
   fs::rename(staging_, target_, ec);
-  if (ec)
-    throw InputError(fmt::format("--out {}: cannot move the results into place: {}", shown_.string(), ec.message()));
-  committed_ = true;
-  if (parents_) parents_->keep();
+  if (ec) {
+    const OutputError failure = cannot("move the results into place");
+    std::error_code ignored;
+    if (!old.empty()) fs::rename(old, target_, ignored);
+    throw failure;
+  }
   if (!old.empty()) fs::remove_all(old, ec);  // barimpact's own files only (written_by_barimpact)
 }
 
 // --force on a directory that holds someone else's files: each of
-// barimpact's files replaces only the file of its own name.
+// barimpact's files replaces only the file of its own name. The marker is
+// written first: when the disk refuses it, nothing has moved yet.
 void RunDirectory::move_beside() {
   const auto names = directory_entries(staging_);
   for (const auto& name : names) {
     std::error_code ec;
-    if (name == output_marker) continue;
-    if (fs::is_directory(target_ / name, ec))
+    if (name != output_marker && fs::is_directory(target_ / name, ec))
       throw InputError(fmt::format("--out {}: holds a directory {} where barimpact writes a file of that name",
                                    shown_.string(), name));
+  }
+  // A run's results in the other format, left here by an earlier run, would
+  // pass for this one's: removed when barimpact's marker lists them (as a
+  // replaced directory would lose them).
+  const auto writes = [&](std::string_view n) { return std::find(names.begin(), names.end(), n) != names.end(); };
+  std::vector<std::string> stale;
+  if (writes("history.csv") || writes(results_h5_name))
+    for (const std::string_view n : {std::string_view("history.csv"), std::string_view("fields.csv"), results_h5_name})
+      if (!writes(n)) stale.emplace_back(n);
+  try {
+    write_output_marker(target_, command_, names);
+  } catch (const OutputError& e) {
+    throw refused(e);
+  }
+  for (const auto& name : names) {
+    std::error_code ec;
+    if (name == output_marker) continue;
     fs::rename(staging_ / name, target_ / name, ec);
     if (ec)
-      throw InputError(fmt::format("--out {}: cannot move {} into place: {}", shown_.string(), name, ec.message()));
+      throw OutputError(fmt::format("--out {}: cannot move {} into place: {}", shown_.string(), name, ec.message()),
+                        shown_ / name, ec.message());
   }
   try {
-    // A run's results in the other format, left here by an earlier run,
-    // would pass for this one's: removed when barimpact's marker lists them
-    // (as a replaced directory would lose them).
-    const auto writes = [&](std::string_view n) { return std::find(names.begin(), names.end(), n) != names.end(); };
-    if (writes("history.csv") || writes(results_h5_name)) {
-      std::vector<std::string> stale;
-      for (const std::string_view n :
-           {std::string_view("history.csv"), std::string_view("fields.csv"), results_h5_name})
-        if (!writes(n)) stale.emplace_back(n);
-      remove_listed_files(target_, command_, stale);
-    }
-    write_output_marker(target_, command_, names);
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("--out {}: cannot write its marker: {}", shown_.string(), e.what()));
+    remove_listed_files(target_, command_, stale);
+  } catch (const OutputError& e) {
+    throw refused(e);
   }
   std::error_code ec;
   fs::remove_all(staging_, ec);
-  committed_ = true;
-  if (parents_) parents_->keep();
 }
 
 namespace {

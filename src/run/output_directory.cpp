@@ -13,6 +13,7 @@
 #include <set>
 
 #include "barimpact/case/case.hpp"
+#include "output_file.hpp"
 
 namespace barimpact {
 
@@ -188,13 +189,7 @@ void write_marker(const fs::path& dir, std::string_view command, const std::set<
                              "barimpact replaces or resumes this directory; it never touches what is not "
                              "listed in entries"},
                             {"entries", std::vector<std::string>(all.begin(), all.end())}};
-  const fs::path temporary = dir / fmt::format("{}.{}", output_marker, ::getpid());
-  {
-    std::ofstream out(temporary);
-    out << j.dump(2) << '\n';
-    if (!out) throw std::system_error(errno, std::generic_category(), temporary.string());
-  }
-  fs::rename(temporary, dir / output_marker);
+  detail::replace_file(dir / fmt::format("{}.{}", output_marker, ::getpid()), dir / output_marker, j.dump(2) + "\n");
 }
 
 }  // namespace
@@ -279,11 +274,14 @@ void prepare_output_directory(const fs::path& target, std::string_view command, 
   (void)check_output_directory(target, force, option);
   std::error_code ec;
   fs::create_directories(target, ec);
-  if (ec) throw InputError(fmt::format("{} {}: cannot create it ({})", option, target.string(), ec.message()));
+  if (ec)
+    throw OutputError(fmt::format("{} {}: cannot create it ({})", option, target.string(), ec.message()), target,
+                      ec.message());
   try {
     write_output_marker(target, command, entries);
-  } catch (const std::exception& e) {
-    throw InputError(fmt::format("{} {}: cannot write in it ({})", option, target.string(), e.what()));
+  } catch (const OutputError& e) {
+    throw OutputError(fmt::format("{} {}: cannot write in it ({})", option, target.string(), e.what()), e.path(),
+                      e.reason());
   }
 }
 

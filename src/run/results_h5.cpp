@@ -1,5 +1,7 @@
 #include "barimpact/run/results_h5.hpp"
 
+#include "output_file.hpp"
+
 #include <fmt/format.h>
 #include <hdf5.h>
 
@@ -21,6 +23,8 @@ namespace {
 // Field chunks of about this many bytes: as many whole snapshots as fit,
 // so that reading one is one chunk; a larger snapshot in pieces of it.
 constexpr hsize_t chunk_bytes = 256 * 1024;
+// The in-memory file grows by this much at a time.
+constexpr std::size_t memory_increment = 1024 * 1024;
 
 // The innermost message of the calling thread's HDF5 error stack (where the
 // error was found), then the stack cleared.
@@ -92,12 +96,53 @@ void check(herr_t status, const std::string& what) {
   if (status < 0) throw Hdf5Error(fmt::format("{} ({})", what, hdf5_error()));
 }
 
+// Bob Jenkins' lookup3 hash (hashlittle), which HDF5 checksums its metadata with.
+std::uint32_t lookup3(const unsigned char* k, std::size_t length) {
+  const auto rot = [](std::uint32_t x, int r) { return (x << r) | (x >> (32 - r)); };
+  const auto word = [](const unsigned char* p) {
+    return std::uint32_t{p[0]} | std::uint32_t{p[1]} << 8 | std::uint32_t{p[2]} << 16 | std::uint32_t{p[3]} << 24;
+  };
+  std::uint32_t a = 0xdeadbeef + static_cast<std::uint32_t>(length), b = a, c = a;
+  for (; length > 12; length -= 12, k += 12) {
+    a += word(k), b += word(k + 4), c += word(k + 8);
+    a -= c, a ^= rot(c, 4), c += b, b -= a, b ^= rot(a, 6), a += c, c -= b, c ^= rot(b, 8), b += a;
+    a -= c, a ^= rot(c, 16), c += b, b -= a, b ^= rot(a, 19), a += c, c -= b, c ^= rot(b, 4), b += a;
+  }
+  if (length == 0) return c;
+  std::array<unsigned char, 12> tail{};  // the last bytes, zero-padded: as lookup3's switch adds them
+  std::copy(k, k + length, tail.begin());
+  a += word(tail.data()), b += word(tail.data() + 4), c += word(tail.data() + 8);
+  c ^= b, c -= rot(b, 14), a ^= c, a -= rot(c, 11), b ^= a, b -= rot(a, 25), c ^= b, c -= rot(b, 16);
+  a ^= c, a -= rot(c, 4), b ^= a, b -= rot(a, 14), c ^= b, c -= rot(b, 24);
+  return c;
+}
+
+// H5Fget_file_image clears the superblock's status flags in the image it
+// returns without updating the superblock's checksum (HDF5 1.10: version 2
+// and 3 superblocks, which the 1.8 format writes), so that no library would
+// open the file: the checksum is computed again over the fields before it
+// (file format specification, "Superblock"; the same value where HDF5 is fixed).
+void seal_superblock(std::vector<char>& image) {
+  constexpr std::size_t fixed = 12;  // signature, version, sizes of offsets and lengths, flags
+  if (image.size() < fixed || (image[8] != 2 && image[8] != 3)) return;
+  const std::size_t at = fixed + 4 * static_cast<std::size_t>(static_cast<unsigned char>(image[9]));
+  if (image.size() < at + 4) return;
+  const std::uint32_t sum = lookup3(reinterpret_cast<const unsigned char*>(image.data()), at);
+  for (std::size_t i = 0; i < 4; ++i) image[at + i] = static_cast<char>((sum >> (8 * i)) & 0xff);
+}
+
+// The file is made in memory (HDF5's core driver, nothing on disk) and
+// written out by the caller as one image through the checked writer: HDF5
+// never holds a file of the run directory open, so a full disk is one
+// refusal with the system's reason, and no handle outlives the staging
+// directory. It costs the compressed file's size in memory, twice at the end.
 class Writer {
  public:
   explicit Writer(const fs::path& path) : path_(path.string()), fapl_(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, at("")) {
     // The 1.8 file format (compact groups), which every HDF5 from 1.8 on
     // reads (h5py's included): nothing of the 1.10 format is used.
     check(H5Pset_libver_bounds(fapl_, H5F_LIBVER_V18, H5F_LIBVER_V18), at(""));
+    check(H5Pset_fapl_core(fapl_, memory_increment, false), at(""));
     file_ = std::make_unique<Id>(H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl_), H5Fclose,
                                  fmt::format("{}: cannot create it", path_));
   }
@@ -156,7 +201,18 @@ class Writer {
     return set;
   }
 
-  void close() { file_->close(fmt::format("{}: cannot write it to the end", path_)); }
+  /// The whole file's bytes, then the file closed (in memory: nothing to refuse but memory).
+  std::vector<char> image() {
+    const std::string what = fmt::format("{}: cannot write it to the end", path_);
+    check(H5Fflush(*file_, H5F_SCOPE_GLOBAL), what);
+    const ssize_t size = H5Fget_file_image(*file_, nullptr, 0);
+    if (size < 0) check(-1, what);
+    std::vector<char> bytes(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(*file_, bytes.data(), bytes.size()) != size) check(-1, what);
+    file_->close(what);
+    seal_superblock(bytes);
+    return bytes;
+  }
 
  private:
   [[nodiscard]] std::string at(std::string_view name) const {
@@ -176,43 +232,56 @@ class Writer {
 
 }  // namespace
 
+namespace {
+
+void write_history(const Writer& w, const RunResult& result) {
+  const Id history = w.group("history");
+  std::vector<std::string> names;
+  for (const auto& b : budget_columns) names.emplace_back(b.name);
+  names.insert(names.end(), result.columns.begin(), result.columns.end());
+  w.texts(history, "columns", names);
+  const std::size_t rows = result.history.size(), n = result.columns.size();
+  std::vector<double> column(rows);
+  for (const auto& b : budget_columns) {
+    for (std::size_t k = 0; k < rows; ++k) column[k] = result.history[k].*b.value;
+    w.dataset(history, std::string(b.name), {rows}, column.data());
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < rows; ++k) column[k] = result.extra[k * n + i];
+    w.dataset(history, result.columns[i], {rows}, column.data());
+  }
+}
+
+void write_fields(const Writer& w, const Case& c, const Fields& f) {
+  const Id fields = w.group("fields");
+  w.texts(fields, "columns", {"t", "x", "u", "v", "sigma", "eps_p", "body"});
+  w.dataset(fields, "t", {f.count()}, f.t.data());
+  w.dataset(fields, "x", {f.nodes()}, f.x.data());
+  for (const auto& [name, values] :
+       {std::pair{"u", &f.u}, std::pair{"v", &f.v}, std::pair{"sigma", &f.sigma}, std::pair{"eps_p", &f.eps_p}})
+    w.dataset(fields, name, {f.count(), f.nodes()}, values->data(), c.output.compression);
+  std::vector<std::int32_t> body(f.body.begin(), f.body.end());
+  body.resize(f.nodes());
+  const Id set = w.dataset(fields, "body", {f.nodes()}, body.data(), 0, true);
+  w.texts(set, "names", f.body_names);
+}
+
+}  // namespace
+
 void write_results_h5(const fs::path& path, const Case& c, const RunResult& result) {
-  const Session session;
-  Writer w(path);
-  w.text(w.file(), "case", c.to_toml());
-  w.text(w.file(), "units", c.units);
+  std::vector<char> image;
   {
-    const Id history = w.group("history");
-    std::vector<std::string> names;
-    for (const auto& b : budget_columns) names.emplace_back(b.name);
-    names.insert(names.end(), result.columns.begin(), result.columns.end());
-    w.texts(history, "columns", names);
-    const std::size_t rows = result.history.size(), n = result.columns.size();
-    std::vector<double> column(rows);
-    for (const auto& b : budget_columns) {
-      for (std::size_t k = 0; k < rows; ++k) column[k] = result.history[k].*b.value;
-      w.dataset(history, std::string(b.name), {rows}, column.data());
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t k = 0; k < rows; ++k) column[k] = result.extra[k * n + i];
-      w.dataset(history, result.columns[i], {rows}, column.data());
-    }
+    const Session session;
+    Writer w(path);
+    w.text(w.file(), "case", c.to_toml());
+    w.text(w.file(), "units", c.units);
+    write_history(w, result);
+    write_fields(w, c, result.fields);
+    image = w.image();
   }
-  {
-    const Fields& f = result.fields;
-    const Id fields = w.group("fields");
-    w.texts(fields, "columns", {"t", "x", "u", "v", "sigma", "eps_p", "body"});
-    w.dataset(fields, "t", {f.count()}, f.t.data());
-    w.dataset(fields, "x", {f.nodes()}, f.x.data());
-    for (const auto& [name, values] :
-         {std::pair{"u", &f.u}, std::pair{"v", &f.v}, std::pair{"sigma", &f.sigma}, std::pair{"eps_p", &f.eps_p}})
-      w.dataset(fields, name, {f.count(), f.nodes()}, values->data(), c.output.compression);
-    std::vector<std::int32_t> body(f.body.begin(), f.body.end());
-    body.resize(f.nodes());
-    const Id set = w.dataset(fields, "body", {f.nodes()}, body.data(), 0, true);
-    w.texts(set, "names", f.body_names);
-  }
-  w.close();
+  detail::OutputFile out(path);
+  out.write(std::string_view(image.data(), image.size()));
+  out.close();
 }
 
 HistoryColumns read_results_h5_history(const fs::path& path) {

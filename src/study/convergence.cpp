@@ -68,7 +68,7 @@ struct Task {
 
 // One run of the study: read back from its directory when a previous
 // (interrupted) study left it there for this very case, else run and kept.
-void run_task(Task& t, const StudyOptions& o) {
+void run_task(Task& t, const StudyOptions& o, OutputStop& stop) {
   if (!t.c) return;
   const bool keep = !o.runs.empty();
   const std::string case_toml = keep ? t.c->to_toml() : std::string();
@@ -82,7 +82,7 @@ void run_task(Task& t, const StudyOptions& o) {
       return;
     }
   }
-  if (o.interrupt != nullptr && o.interrupt->load()) {
+  if ((o.interrupt != nullptr && o.interrupt->load()) || stop.stopped()) {
     t.status = "interrupted";
     t.message = "interrupted before it began";
     return;
@@ -99,6 +99,10 @@ void run_task(Task& t, const StudyOptions& o) {
       RunDirectory dir(o.runs / t.id, false, "converge", false);  // runs/ is cleaned once, in converge()
       dir.commit(*t.c, t.result);
     }
+  } catch (const OutputError& e) {
+    stop.record(e);  // a full disk ends the study (converge rethrows it)
+    t.status = "refused";
+    t.message = e.what();
   } catch (const std::exception& e) {
     t.status = "refused";
     t.message = e.what();
@@ -262,7 +266,8 @@ Study converge(const Case& base, const StudyOptions& o) {
   std::error_code ec;
   if (!o.runs.empty()) {
     if (!fs::create_directories(o.runs, ec) && ec)
-      throw InputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()));
+      throw OutputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()), o.runs,
+                        ec.message());
     remove_stale_staging(o.runs, "");  // what a killed study left
     remove_stale_staging(o.runs.parent_path(), "");
   }
@@ -320,7 +325,9 @@ Study converge(const Case& base, const StudyOptions& o) {
     }
   }
 
-  run_parallel(tasks.size(), o.jobs, [&](std::size_t i) { run_task(tasks[i], o); });
+  OutputStop stop(o.runs.parent_path());
+  run_parallel(tasks.size(), o.jobs, [&](std::size_t i) { run_task(tasks[i], o, stop); });
+  stop.rethrow();
 
   // References and errors.
   Study study;

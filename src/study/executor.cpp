@@ -27,6 +27,24 @@ void run_parallel(std::size_t count, int jobs, const std::function<void(std::siz
   for (auto& t : pool) t.join();
 }
 
+void OutputStop::record(const OutputError& e) {
+  const std::lock_guard lock(mutex_);
+  stopped_.store(true);
+  if (first_) return;
+  // A run's file by its name in the study: runs/<id>/history.csv.
+  const auto name = e.path().lexically_relative(out_);
+  if (name.empty() || *name.begin() == "..")
+    first_.emplace(e);
+  else
+    first_.emplace(fmt::format("--out {}: cannot write {}: {}", out_.string(), name.string(), e.reason()), e.path(),
+                   e.reason());
+}
+
+void OutputStop::rethrow() const {
+  const std::lock_guard lock(mutex_);
+  if (first_) throw *first_;
+}
+
 void check_jobs(int jobs) {
   if (jobs < 0 || jobs > 1024)
     throw InputError(fmt::format("--jobs: must be 1 .. 1024, or 0 for all cores (got {})", jobs));

@@ -243,20 +243,48 @@ bool read_row(const SweepPlan& plan, const fs::path& dir, std::size_t point, Swe
   return true;
 }
 
+namespace {
+
+// Groups of up to four cases that can share a SIMD batch (on a mesh small
+// enough for a batch to pay); the rest alone. Refused cases (empty) in none.
+std::vector<std::vector<std::size_t>> batch_groups(const std::vector<std::optional<Case>>& cases, bool batch) {
+  std::vector<std::vector<std::size_t>> groups;
+  std::vector<bool> taken(cases.size(), false);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    if (!cases[i] || taken[i]) continue;
+    std::vector<std::size_t> g{i};
+    taken[i] = true;
+    if (batch && cases[i]->bar.elements <= PaperBatch::largest_mesh && batchable(*cases[i], *cases[i]))
+      for (std::size_t k = i + 1; k < cases.size() && g.size() < PaperBatch::width; ++k)
+        if (cases[k] && !taken[k] && batchable(*cases[i], *cases[k])) {
+          g.push_back(k);
+          taken[k] = true;
+        }
+    groups.push_back(std::move(g));
+  }
+  return groups;
+}
+
+// The row of a point that left no run: its status and why.
+SweepRow failed_row(const SweepPoint& p, const std::string& why, const char* status) {
+  SweepRow row;
+  row.id = p.id;
+  for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
+  row.status = status;
+  row.message = why;
+  row.t_end = row.first_contact = row.lift_off = row.rebound_velocity = row.max_penetration = row.max_reaction =
+      row.energy_error_relative = row.run_seconds = std::numeric_limits<double>::quiet_NaN();
+  return row;
+}
+
+}  // namespace
+
 std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, const std::vector<std::size_t>& todo,
                                 const SweepOptions& options) {
   if (options.batch) (void)simd_path();  // a bad BARIMPACT_SIMD stops the sweep here, not case by case
   std::vector<SweepRow> rows(todo.size());
   auto refused = [&](std::size_t i, const std::string& why, const char* status = "refused") {
-    const auto& p = plan.points()[todo[i]];
-    SweepRow& row = rows[i];
-    row = SweepRow{};
-    row.id = p.id;
-    for (const auto& [k, v] : p.values) row.values.push_back(plain_text(v));
-    row.status = status;
-    row.message = why;
-    row.t_end = row.first_contact = row.lift_off = row.rebound_velocity = row.max_penetration = row.max_reaction =
-        row.energy_error_relative = row.run_seconds = std::numeric_limits<double>::quiet_NaN();
+    rows[i] = failed_row(plan.points()[todo[i]], why, status);
   };
   std::vector<std::optional<Case>> cases(todo.size());
   for (std::size_t i = 0; i < todo.size(); ++i) {
@@ -266,28 +294,14 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
       refused(i, e.what());
     }
   }
-  // Groups of up to four cases that can share a SIMD batch (on a mesh small
-  // enough for a batch to pay); the rest alone.
-  std::vector<std::vector<std::size_t>> groups;
-  std::vector<bool> taken(todo.size(), false);
-  for (std::size_t i = 0; i < todo.size(); ++i) {
-    if (!cases[i] || taken[i]) continue;
-    std::vector<std::size_t> g{i};
-    taken[i] = true;
-    if (options.batch && cases[i]->bar.elements <= PaperBatch::largest_mesh && batchable(*cases[i], *cases[i]))
-      for (std::size_t k = i + 1; k < todo.size() && g.size() < PaperBatch::width; ++k)
-        if (cases[k] && !taken[k] && batchable(*cases[i], *cases[k])) {
-          g.push_back(k);
-          taken[k] = true;
-        }
-    groups.push_back(std::move(g));
-  }
+  const auto groups = batch_groups(cases, options.batch);
   auto interrupted = [&] { return options.interrupt != nullptr && options.interrupt->load(); };
+  OutputStop stop(dir);  // a full disk ends the sweep: the runs written so far stay, and a rerun resumes
   run_parallel(groups.size(), options.jobs, [&](std::size_t gi) {
     const auto& g = groups[gi];
     std::vector<RunResult> results;
     try {
-      if (interrupted()) {
+      if (interrupted() || stop.stopped()) {
         for (auto i : g) refused(i, "interrupted before it began", "interrupted");
         return;
       }
@@ -315,11 +329,15 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
         out.commit(*cases[g[k]], results[k]);
         rows[g[k]] = row_from_summary(p, results[k].summary);
         rows[g[k]].batched = g.size() > 1;
+      } catch (const OutputError& e) {
+        stop.record(e);
+        refused(g[k], e.what());
       } catch (const std::exception& e) {
         refused(g[k], e.what());
       }
     }
   });
+  stop.rethrow();
   return rows;
 }
 

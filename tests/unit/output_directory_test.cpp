@@ -1,6 +1,8 @@
 #include "barimpact/run/output_directory.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/mount.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -199,11 +201,59 @@ TEST_F(OutputDirectory, AResultsFileThatCannotBeWrittenIsOneLine) {
   try {
     write_results_h5(root_ / "no" / "such" / "results.h5", c, run(c));
     FAIL() << "written";
-  } catch (const std::runtime_error& e) {
+  } catch (const OutputError& e) {  // the file system's refusal, by path and reason
     const std::string what = e.what();
-    EXPECT_NE(what.find("results.h5: cannot create it"), std::string::npos) << what;
+    EXPECT_NE(what.find("results.h5: No such file or directory"), std::string::npos) << what;
     EXPECT_EQ(what.find('\n'), std::string::npos) << what;
   }
+}
+
+// A small tmpfs mounted on `dir` for a test, unmounted with it; empty when
+// it cannot be mounted (not root).
+class SmallDisk {
+ public:
+  SmallDisk(const fs::path& dir, const char* size) : dir_(dir) {
+    fs::create_directories(dir_);
+    const std::string options = std::string("size=") + size;
+    mounted_ = ::geteuid() == 0 && ::mount("tmpfs", dir_.c_str(), "tmpfs", 0, options.c_str()) == 0;
+  }
+  ~SmallDisk() {
+    if (mounted_) ::umount2(dir_.c_str(), MNT_DETACH);
+  }
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  [[nodiscard]] bool mounted() const { return mounted_; }
+
+ private:
+  fs::path dir_;
+  bool mounted_ = false;
+};
+
+// A full disk: one OutputError naming the file and the system's reason, the
+// staging directory gone, a replaced file as it was (barimpact run's side:
+// tests/cli/full_disk_test.sh).
+TEST_F(OutputDirectory, AFullDiskIsOneRefusalAndLeavesNothingBehind) {
+  const SmallDisk disk(root_ / "disk", "64k");
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a small tmpfs (needs root)";
+  for (const char* format : {"csv", "hdf5"}) {
+    const auto c = testing::example("paper-example1.toml", {fmt::format("output.format=\"{}\"", format)});
+    try {
+      RunDirectory out(root_ / "disk" / "run");
+      out.commit(c, run(c));
+      ADD_FAILURE() << format << ": written";
+    } catch (const OutputError& e) {
+      EXPECT_EQ(e.reason(), "No space left on device") << e.what();
+      EXPECT_NE(std::string(e.what()).find((root_ / "disk" / "run").string()), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(directory_entries(root_ / "disk"), std::vector<std::string>{}) << format;
+  }
+  write_text(root_ / "disk" / "table.csv", "kept\n");
+  EXPECT_THROW(replace_text(root_ / "disk" / "table.csv", std::string(128 * 1024, 'x')), OutputError);
+  EXPECT_EQ(directory_entries(root_ / "disk"), std::vector<std::string>{"table.csv"});
+  std::ifstream table(root_ / "disk" / "table.csv");
+  std::string text;
+  table >> text;
+  EXPECT_EQ(text, "kept");
 }
 
 }  // namespace

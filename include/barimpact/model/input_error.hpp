@@ -1,6 +1,9 @@
-// Bad input, the one exception every layer throws for it.
+// Bad input, the one exception every layer throws for it; and what the
+// file system refused while results were written, which ends a command the
+// same way (one line, exit 2).
 #pragma once
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
@@ -14,6 +17,26 @@ class InputError : public std::runtime_error {
   /// Control characters in `what` (quoted input: a key, a value, toml++'s
   /// excerpt) are escaped, so that the message stays one line.
   explicit InputError(const std::string& what);
+};
+
+/// What the file system refused while barimpact wrote its results (a full
+/// disk, a quota, a read-only mount, a file it cannot create): the file and
+/// the system's reason ("No space left on device"). An InputError, so that
+/// every command ends on it with one line and exit 2; by then whatever was
+/// half-written has been removed.
+class OutputError : public InputError {
+ public:
+  /// "cannot write PATH: REASON".
+  OutputError(const std::filesystem::path& path, const std::string& reason);
+  /// The caller's own message `what` for the same file and reason.
+  OutputError(const std::string& what, const std::filesystem::path& path, const std::string& reason);
+
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  [[nodiscard]] const std::string& reason() const { return reason_; }
+
+ private:
+  std::filesystem::path path_;
+  std::string reason_;
 };
 
 }  // namespace barimpact

@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/model/input_error.hpp"
 #include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
@@ -29,7 +30,7 @@ class RunDirectory {
   /// targets: a sweep's runs/). Throws InputError naming `--out`.
   explicit RunDirectory(std::filesystem::path target, bool force = false, std::string command = "run",
                         bool remove_stale = true);
-  /// Removes the staging directory unless `commit` succeeded.
+  /// Removes the staging directory unless `commit` succeeded (never throws).
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
@@ -41,13 +42,19 @@ class RunDirectory {
   /// Lets `write` fill the staging directory with files, marks them as
   /// barimpact's, then moves them into place: `target` is created, or
   /// replaced if barimpact wrote it, or else receives the files beside its own.
+  /// What the file system refuses (a full disk) is an OutputError naming
+  /// `--out`, the file and the reason; nothing staged is left and the target
+  /// is as it was.
   void commit(const std::function<void(const std::filesystem::path& staging)>& write);
 
   /// The target as given.
   [[nodiscard]] const std::filesystem::path& target() const { return shown_; }
 
  private:
+  void move_into_place();
   void move_beside();
+  /// `e` naming `--out` and the file by its name in the results.
+  [[nodiscard]] OutputError refused(const OutputError& e) const;
 
   std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
   std::unique_ptr<MadeParents> parents_;            // --out's missing parents, made for the staging
@@ -56,10 +63,12 @@ class RunDirectory {
   bool committed_ = false;
 };
 
-/// Writes `text` to `path` (throws std::system_error).
+/// Writes `text` to `path`. Throws OutputError naming `path` and the
+/// system's reason; a file it could not write whole is removed.
 void write_text(const std::filesystem::path& path, const std::string& text);
 /// The same, through a hidden file beside it renamed over `path`: a reader
-/// (or an interruption) never sees half of it.
+/// (or an interruption) never sees half of it, and a refusal leaves `path`
+/// as it was.
 void replace_text(const std::filesystem::path& path, const std::string& text);
 
 /// The file of a run directory that holds its history: history.csv, or

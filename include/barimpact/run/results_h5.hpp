@@ -47,8 +47,10 @@ struct Hdf5Error : std::runtime_error {
 inline constexpr std::string_view results_h5_name = "results.h5";
 
 /// Writes `result`'s history and fields, and `c` as attributes, into a new
-/// file at `path` (replaced if it exists). Throws std::runtime_error naming
-/// the path and what failed.
+/// file at `path` (replaced if it exists): made in memory, then written as
+/// one image. Throws Hdf5Error (what HDF5 refused) or OutputError (what the
+/// file system refused: a full disk), naming the path; HDF5 holds no file
+/// open afterwards, and a file not written whole is removed.
 void write_results_h5(const std::filesystem::path& path, const Case& c, const RunResult& result);
 
 /// A history by column, as history.csv holds it.

@@ -102,6 +102,8 @@ void check_study(const Case& base, const StudyOptions& options);
 
 /// Runs the study. Throws InputError for bad options (check_study), before any run.
 /// Errors and orders are measured on complete runs only (NaN elsewhere).
+/// With `options.runs`, a run's results the file system refuses (a full
+/// disk) end the study: OutputError, once the runs under way are done.
 [[nodiscard]] Study converge(const Case& base, const StudyOptions& options);
 
 /// log(e_prev / e) / log(s / s_prev): the observed order between two levels

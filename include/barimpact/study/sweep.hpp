@@ -124,7 +124,10 @@ struct SweepOutcome {
 
 /// Runs (or resumes) the points `todo` (indices into plan.points()) into
 /// `dir`/runs/<id>/ and returns their rows. `dir` must exist, with no stale
-/// staging left in runs/ by a killed sweep (remove_stale_staging).
+/// staging left in runs/ by a killed sweep (remove_stale_staging). A case
+/// that fails is a row; a run's results the file system refuses (a full
+/// disk) end the sweep instead: no further case begins, and the
+/// OutputError is thrown once those under way are done.
 [[nodiscard]] std::vector<SweepRow> run_sweep(const SweepPlan& plan, const std::filesystem::path& dir,
                                               const std::vector<std::size_t>& todo, const SweepOptions& options);
 
