@@ -64,7 +64,6 @@ void time_steps(benchmark::State& state, const barimpact::Case& c) {
 barimpact::Case bars(long long M, std::initializer_list<std::pair<const char*, long long>> parts,
                      const std::string& velocity = "-1") {
   barimpact::Case c;
-  c.single_bar = false;
   for (auto [name, elements] : parts) {
     barimpact::BodyData b;
     b.name = name;
@@ -92,7 +91,7 @@ void BM_PaperBatch(benchmark::State& state) {
   std::vector<barimpact::Case> cases;
   for (std::size_t l = 0; l < barimpact::PaperBatch::width; ++l) {
     cases.push_back(bench_case(state.range(0)));
-    cases.back().obstacle.stiffness = 100.0 * static_cast<double>(l + 1);  // different cases
+    cases.back().near_end.stiffness = 100.0 * static_cast<double>(l + 1);  // different cases
   }
   std::vector<const barimpact::Case*> lanes;
   for (const auto& c : cases) lanes.push_back(&c);

@@ -415,7 +415,7 @@ void bind_case(py::module_& m) {
       .def("to_toml", &Case::to_toml, "The resolved case as TOML, every default filled in")
       .def_property_readonly("steps", &Case::step_count, "The number of steps N")
       .def("__repr__", [](const Case& c) {
-        return "<barimpact.Case " + c.time.scheme + ", " + std::to_string(c.bar.elements) + " elements, " +
+        return "<barimpact.Case " + c.time.scheme + ", " + std::to_string(c.bar_elements()) + " elements, " +
                std::to_string(c.step_count()) + " steps>";
       });
 }

@@ -390,7 +390,7 @@ MaterialData read_material(const Reader& r, const std::string& s, double e, std:
   return m;
 }
 
-void read_bar(const Reader& r, Case& c) {
+void read_bar(const Reader& r, OneBar& c) {
   BarData& bar = c.bar;
   bar.length = r.number("bar", "length", bar.length);
   bar.density = r.number("bar", "density", bar.density);
@@ -507,12 +507,12 @@ void read_units(const Reader& r, Case& c) {
     r.fail("units", "system", fmt::format("must be \"SI\" or \"none\" (got \"{}\")", c.units));
 }
 
-void check_bar_expressions(const Reader& r, const Case& c) {
+void check_bar_expressions(const Reader& r, const Case& line, const OneBar& c) {
   const BarData& bar = c.bar;
-  const double t_last = static_cast<double>(c.step_count()) * c.time.step;
+  const double t_last = static_cast<double>(line.step_count()) * line.time.step;
   check_expression(r, "initial", "displacement", c.initial.displacement, 0.0, bar.length, bar.elements, {0.0});
   check_expression(r, "initial", "velocity", c.initial.velocity, 0.0, bar.length, bar.elements, {0.0});
-  check_expression(r, "load", "body_force", c.load.body_force, 0.0, bar.length, bar.elements, {0.0, t_last});
+  check_expression(r, "load", "body_force", line.load.body_force, 0.0, bar.length, bar.elements, {0.0, t_last});
   if (bar.far_end == FarEnd::clamped) {
     for (const auto& [key, text] :
          {std::pair{"displacement", c.initial.displacement}, std::pair{"velocity", c.initial.velocity}}) {
@@ -819,62 +819,27 @@ void read_line(Reader& r, Case& c) {
 }
 
 // Today's [bar]/[initial]/[obstacle] as a line of one bar named "bar".
-void bar_as_line(Case& c) {
+void bar_as_line(const OneBar& v, Case& c) {
   BodyData b;
   b.name = "bar";
-  b.length = c.bar.length;
-  b.elements = c.bar.elements;
-  b.modulus = c.bar.stiffness;
-  b.density = c.bar.density;
-  b.viscosity = c.bar.viscosity;
-  b.displacement = c.initial.displacement;
-  b.velocity = c.initial.velocity;
-  b.material = c.bar.material;
+  b.length = v.bar.length;
+  b.elements = v.bar.elements;
+  b.modulus = v.bar.stiffness;
+  b.density = v.bar.density;
+  b.viscosity = v.bar.viscosity;
+  b.displacement = v.initial.displacement;
+  b.velocity = v.initial.velocity;
+  b.material = v.bar.material;
   c.bodies = {b};
-  const ObstacleKind k = c.obstacle.kind;
+  const ObstacleKind k = v.obstacle.kind;
   c.near_end.law = k == ObstacleKind::none      ? JointLaw::free
                    : k == ObstacleKind::elastic ? JointLaw::elastic
                    : k == ObstacleKind::rigid   ? JointLaw::rigid
                                                 : JointLaw::viscoelastic;
-  c.near_end.stiffness = c.obstacle.stiffness;
-  c.near_end.gap = c.obstacle.gap;
-  c.near_end.viscosity = c.obstacle.viscosity;
-  c.far_end.law = c.bar.far_end == FarEnd::clamped ? JointLaw::clamped : JointLaw::free;
-}
-
-// Whether the single-bar schemes run the line: then its paper view
-// (bar, initial, obstacle) is filled from the body and the near end.
-void decide_single_bar(Case& c) {
-  const BodyData& b = c.bodies.front();
-  const JointLaw near = c.near_end.law, far = c.far_end.law;
-  c.single_bar = c.bodies.size() == 1 && b.kind == BodyKind::bar && b.material.kind == MaterialKind::elastic &&
-                 c.joints.empty() && c.load.gravity == 0.0 && !b.shaft &&
-                 (near == JointLaw::free || near == JointLaw::elastic || near == JointLaw::viscoelastic ||
-                  near == JointLaw::rigid) &&
-                 (far == JointLaw::free || far == JointLaw::clamped);
-  double length = 0.0;
-  long long elements = 0;
-  for (const auto& body : c.bodies)
-    if (body.kind == BodyKind::bar) {
-      length += body.length;
-      elements += body.elements;
-    }
-  c.bar.length = length > 0 ? length : 1.0;
-  c.bar.elements = static_cast<int>(std::max(1LL, std::min(elements, max_elements)));
-  if (!c.single_bar) return;
-  c.bar.density = b.density * b.area;
-  c.bar.stiffness = b.modulus * b.area;
-  c.bar.viscosity = b.viscosity * b.area;
-  c.bar.far_end = far == JointLaw::clamped ? FarEnd::clamped : FarEnd::free;
-  c.initial.displacement = b.displacement;
-  c.initial.velocity = b.velocity;
-  c.obstacle.kind = near == JointLaw::free      ? ObstacleKind::none
-                    : near == JointLaw::elastic ? ObstacleKind::elastic
-                    : near == JointLaw::rigid   ? ObstacleKind::rigid
-                                                : ObstacleKind::viscoelastic;
-  c.obstacle.stiffness = c.near_end.stiffness;
-  c.obstacle.gap = c.near_end.gap;
-  c.obstacle.viscosity = c.near_end.viscosity;
+  c.near_end.stiffness = v.obstacle.stiffness;
+  c.near_end.gap = v.obstacle.gap;
+  c.near_end.viscosity = v.obstacle.viscosity;
+  c.far_end.law = v.bar.far_end == FarEnd::clamped ? JointLaw::clamped : JointLaw::free;
 }
 
 // The bodies' u0, v0 and the body force at their nodes (x along the line),
@@ -931,22 +896,24 @@ Case read_case(Reader& r) {
             fmt::format("{}: [{}] needs the bodies listed as [[body]] (with [bar], use [obstacle] and "
                         "bar.far_end)",
                         r.where(line_only, ""), line_only));
-    read_bar(r, c);
-    bar_as_line(c);
+    OneBar bar;
+    read_bar(r, bar);
+    bar_as_line(bar, c);
     read_gauges(r, c);
   }
   read_blow(r, c);
   c.load.body_force = r.expression("load", "body_force", c.load.body_force);
   c.load.gravity = r.number("load", "gravity", 0.0);
-  decide_single_bar(c);
   read_time(r, c);
-  // The single-bar schemes read a rigid obstacle's restitution from time.restitution.
-  if (c.single_bar && c.near_end.law == JointLaw::rigid && c.near_end.restitution_given)
+  const std::optional<OneBar> one = c.one_bar();
+  // A single bar's rigid obstacle takes its restitution as time.restitution
+  // (the spelling of [obstacle], which has no restitution of its own).
+  if (one && c.near_end.law == JointLaw::rigid && c.near_end.restitution_given)
     c.time.restitution = c.near_end.restitution;
   read_output(r, c);
   read_units(r, c);
-  if (c.single_bar && !line)
-    check_bar_expressions(r, c);
+  if (one && !line)
+    check_bar_expressions(r, c, *one);
   else
     check_line_expressions(r, c);
   return c;
@@ -1117,35 +1084,58 @@ void write_body(std::string& out, const BodyData& b) {
 
 }  // namespace
 
-Case Case::line_view() const {
-  if (!single_bar) return *this;
-  Case v = *this;
-  BodyData b = bodies.empty() ? BodyData{} : bodies.front();
-  if (b.name.empty()) b.name = "bar";
-  b.kind = BodyKind::bar;
-  b.length = bar.length;
-  b.elements = bar.elements;
-  // The body's own E, rho, eta while [bar]'s products still hold them (area
-  // != 1 would otherwise change them in their last bit on the way back).
-  auto per_area = [&](double own, double product) { return own * b.area == product ? own : product / b.area; };
-  b.modulus = per_area(b.modulus, bar.stiffness);
-  b.density = per_area(b.density, bar.density);
-  b.viscosity = per_area(b.viscosity, bar.viscosity);
-  b.displacement = initial.displacement;
-  b.velocity = initial.velocity;
-  v.bodies = {b};
-  v.joints.clear();
-  const ObstacleKind k = obstacle.kind;
-  v.near_end.law = k == ObstacleKind::none      ? JointLaw::free
-                   : k == ObstacleKind::elastic ? JointLaw::elastic
-                   : k == ObstacleKind::rigid   ? JointLaw::rigid
-                                                : JointLaw::viscoelastic;
-  v.near_end.stiffness = obstacle.stiffness;
-  v.near_end.gap = obstacle.gap;
-  v.near_end.viscosity = obstacle.viscosity;
-  v.far_end = LawData{};
-  v.far_end.law = bar.far_end == FarEnd::clamped ? JointLaw::clamped : JointLaw::free;
+namespace {
+
+// The line as [bar]/[initial]/[obstacle] would spell it, whatever its
+// material (the resolved case of an elastic-plastic [bar] is spelled so).
+std::optional<OneBar> bar_view(const Case& c) {
+  const auto& bodies = c.bodies;
+  const LawData &near_end = c.near_end, &far_end = c.far_end;
+  if (bodies.size() != 1 || !c.joints.empty() || c.load.gravity != 0.0) return std::nullopt;
+  const BodyData& b = bodies.front();
+  const JointLaw near = near_end.law, far = far_end.law;
+  if (b.kind != BodyKind::bar || b.shaft) return std::nullopt;
+  if (near != JointLaw::free && near != JointLaw::elastic && near != JointLaw::viscoelastic && near != JointLaw::rigid)
+    return std::nullopt;
+  if (far != JointLaw::free && far != JointLaw::clamped) return std::nullopt;
+  OneBar v;
+  v.bar.length = b.length;
+  v.bar.elements = b.elements;
+  v.bar.density = b.density * b.area;
+  v.bar.stiffness = b.modulus * b.area;
+  v.bar.viscosity = b.viscosity * b.area;
+  v.bar.far_end = far == JointLaw::clamped ? FarEnd::clamped : FarEnd::free;
+  v.bar.material = b.material;
+  v.initial = {b.displacement, b.velocity};
+  v.obstacle.kind = near == JointLaw::free      ? ObstacleKind::none
+                    : near == JointLaw::elastic ? ObstacleKind::elastic
+                    : near == JointLaw::rigid   ? ObstacleKind::rigid
+                                                : ObstacleKind::viscoelastic;
+  v.obstacle.stiffness = near_end.stiffness;
+  v.obstacle.gap = near_end.gap;
+  v.obstacle.viscosity = near_end.viscosity;
   return v;
+}
+
+}  // namespace
+
+std::optional<OneBar> Case::one_bar() const {
+  if (bodies.size() == 1 && bodies.front().material.kind != MaterialKind::elastic) return std::nullopt;
+  return bar_view(*this);
+}
+
+double Case::bar_length() const {
+  double length = 0.0;
+  for (const auto& b : bodies)
+    if (b.kind == BodyKind::bar) length += b.length;
+  return length;
+}
+
+long long Case::bar_elements() const {
+  long long elements = 0;
+  for (const auto& b : bodies)
+    if (b.kind == BodyKind::bar) elements += b.elements;
+  return elements;
 }
 
 namespace {
@@ -1153,7 +1143,7 @@ namespace {
 // Today's spelling, for the one [bar] case the line's cannot hold: an
 // obstacle already penetrated at t = 0 (a negative gap, refused at a joint or
 // end, so only [obstacle] gives one).
-std::string bar_toml(const Case& c) {
+std::string bar_toml(const OneBar& c, const std::vector<GaugeData>& gauges) {
   std::string out = "# barimpact resolved case: every key, defaults filled in\n\n";
   out += fmt::format("[bar]\nlength = {}\ndensity = {}\nstiffness = {}\nviscosity = {}\nelements = {}\nfar_end = {}\n",
                      toml_float(c.bar.length), toml_float(c.bar.density), toml_float(c.bar.stiffness),
@@ -1165,7 +1155,7 @@ std::string bar_toml(const Case& c) {
   out += fmt::format("[obstacle]\nkind = {}\nstiffness = {}\ngap = {}\nviscosity = {}\n\n",
                      toml_string(std::string(to_string(c.obstacle.kind))), toml_float(c.obstacle.stiffness),
                      toml_float(c.obstacle.gap), toml_float(c.obstacle.viscosity));
-  for (const auto& g : c.gauges)
+  for (const auto& g : gauges)
     out += fmt::format("[[gauge]]\nname = {}\nbody = {}\nat = {}\n\n", toml_string(g.name), toml_string(g.body),
                        toml_float(g.at));
   return out;
@@ -1174,9 +1164,11 @@ std::string bar_toml(const Case& c) {
 }  // namespace
 
 std::string Case::to_toml() const {
-  const Case v = line_view();
-  const bool bar_spelling = near_end.gap < 0;
-  std::string out = bar_spelling ? bar_toml(v) : "# barimpact resolved case: every key, defaults filled in\n\n";
+  const Case& v = *this;
+  const std::optional<OneBar> one = bar_view(*this);
+  const bool bar_spelling = near_end.gap < 0 && one;
+  std::string out =
+      bar_spelling ? bar_toml(*one, gauges) : "# barimpact resolved case: every key, defaults filled in\n\n";
   for (const auto& b : v.bodies)
     if (!bar_spelling) write_body(out, b);
   for (const auto& j : v.joints) {

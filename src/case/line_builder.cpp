@@ -166,7 +166,7 @@ double rigid_restitution(const Case& c, const LawData& law) {
 }
 
 Line build_line(const Case& c) {
-  return build(c.line_view());
+  return build(c);
 }
 
 namespace {

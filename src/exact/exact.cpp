@@ -266,9 +266,12 @@ std::unique_ptr<Solution> clamped_periodic(double length, double stiffness, doub
 
 namespace barimpact::exact {
 
-std::unique_ptr<Solution> for_case(const Case& c) {
+std::unique_ptr<Solution> for_case(const Case& line) {
+  const auto one = line.one_bar();
+  if (!one) return nullptr;
+  const OneBar& c = *one;
   if (c.bar.viscosity != 0.0) return nullptr;
-  const Expression u0(c.initial.displacement), v0(c.initial.velocity), f(c.load.body_force);
+  const Expression u0(c.initial.displacement), v0(c.initial.velocity), f(line.load.body_force);
   const double L = c.bar.length, a = c.bar.stiffness, rho = c.bar.density, g = c.obstacle.gap;
   const int M = c.bar.elements;
   auto at = [&](int j) { return L * j / M; };
@@ -306,9 +309,11 @@ namespace {
 
 class TabulatedSolution final : public Scheme {
  public:
-  TabulatedSolution(const Case& c, std::shared_ptr<const Solution> s)
+  TabulatedSolution(const Case& line, std::shared_ptr<const Solution> s)
+      : TabulatedSolution(line.time.step, *line.one_bar(), std::move(s)) {}
+  TabulatedSolution(double dt, const OneBar& c, std::shared_ptr<const Solution> s)
       : s_(std::move(s)),
-        dt_(c.time.step),
+        dt_(dt),
         L_(c.bar.length),
         a_(c.bar.stiffness),
         rho_(c.bar.density),

@@ -35,10 +35,10 @@ std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c) {
 
 std::vector<PenaltyTimeConstant> penalty_time_constants(const Case& c, const Line& line) {
   std::vector<PenaltyTimeConstant> out;
-  if (c.single_bar) {
-    const auto kind = c.obstacle.kind;
-    if ((kind == ObstacleKind::elastic || kind == ObstacleKind::viscoelastic) && c.obstacle.stiffness > 0.0)
-      out.push_back({"obstacle", std::sqrt(c.bar.density * c.bar.stiffness) / c.obstacle.stiffness, "Z/k"});
+  if (const auto one = c.one_bar()) {  // the paper's obstacle, by its name there
+    const auto kind = one->obstacle.kind;
+    if ((kind == ObstacleKind::elastic || kind == ObstacleKind::viscoelastic) && one->obstacle.stiffness > 0.0)
+      out.push_back({"obstacle", std::sqrt(one->bar.density * one->bar.stiffness) / one->obstacle.stiffness, "Z/k"});
     return out;
   }
   const std::vector<double> m = line.lumped_mass();

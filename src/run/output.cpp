@@ -403,7 +403,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"step_rule", c.time.step_auto
                         ? fmt::format("auto: {} of {}'s stable step for this line", auto_step_fraction, c.time.scheme)
                         : std::string("given")},
-      {"elements", c.bar.elements},
+      {"elements", c.bar_elements()},
       {"t_end", s.t_end},
       {"contacts", contacts},
       {"contact_count", s.contacts.size()},
@@ -433,11 +433,12 @@ std::string signed_number(double v) {
 }  // namespace
 
 std::string summary_text(const Case& c, const Summary& s) {
-  std::string out = fmt::format("{}: {} steps of dt = {:.6g} on {} elements, t = 0 .. {:.6g}{}\n", s.method,
-                                s.steps_done, c.time.step, c.bar.elements, s.t_end, s.complete ? "" : " (INCOMPLETE)");
+  std::string out =
+      fmt::format("{}: {} steps of dt = {:.6g} on {} elements, t = 0 .. {:.6g}{}\n", s.method, s.steps_done,
+                  c.time.step, c.bar_elements(), s.t_end, s.complete ? "" : " (INCOMPLETE)");
   // The near end's obstacle, when it has one (a line's ends may be free, held or loaded).
   const bool obstacle = std::find(s.link_names.begin(), s.link_names.end(), "near_end") != s.link_names.end() ||
-                        (c.single_bar && c.obstacle.kind != ObstacleKind::none);
+                        (c.one_bar() && c.one_bar()->obstacle.kind != ObstacleKind::none);
   if (s.contacts.empty() && (obstacle || s.link_names.empty())) out += "  no contact\n";
   constexpr std::size_t shown = 8;
   for (std::size_t i = 0; i < std::min(shown, s.contacts.size()); ++i) {

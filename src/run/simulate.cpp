@@ -70,7 +70,7 @@ RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOp
 // What the near-end contact monitor watches: the obstacle of a single bar,
 // or the near end's unilateral law on a line (none for free, held or loaded ends).
 ObstacleData near_obstacle(const Case& c) {
-  if (c.single_bar) return c.obstacle;
+  if (const auto one = c.one_bar()) return one->obstacle;
   ObstacleData o;
   const JointLaw law = c.near_end.law;
   o.kind = law == JointLaw::rigid                                                           ? ObstacleKind::rigid
@@ -136,7 +136,7 @@ RunResult run_exact_line(const Case& c, const RunOptions& options) {
 }  // namespace
 
 RunResult run_exact(const Case& c, const RunOptions& options) {
-  if (!c.single_bar) return run_exact_line(c, options);
+  if (!c.one_bar()) return run_exact_line(c, options);
   std::shared_ptr<const exact::Solution> solution = exact::for_case(c);
   if (!solution)
     throw InputError(

@@ -12,16 +12,28 @@ namespace barimpact {
 
 using detail::twisted_solve;
 
-PaperScheme::PaperScheme(const Case& c)
-    : mesh_(c.bar.length, c.bar.elements),
-      law_(c.obstacle),
+namespace {
+
+OneBar one_bar_of(const Case& c) {
+  auto v = c.one_bar();
+  if (!v) throw InputError("the paper's one-bar kernel runs a line of one elastic bar only");
+  return *v;
+}
+
+}  // namespace
+
+PaperScheme::PaperScheme(const Case& c) : PaperScheme(c, one_bar_of(c)) {}
+
+PaperScheme::PaperScheme(const Case& c, const OneBar& one)
+    : mesh_(one.bar.length, one.bar.elements),
+      law_(one.obstacle),
       dt_(c.time.step),
       alpha_(c.time.alpha),
       lambda_(c.time.lambda),
-      density_(c.bar.density),
-      a_(c.bar.stiffness),
-      b_(c.bar.viscosity),
-      clamped_(c.bar.far_end == FarEnd::clamped),
+      density_(one.bar.density),
+      a_(one.bar.stiffness),
+      b_(one.bar.viscosity),
+      clamped_(one.bar.far_end == FarEnd::clamped),
       mass_(mesh_.mass(density_)),
       stiffness_a_(mesh_.stiffness(a_)),
       stiffness_b_(mesh_.stiffness(b_)) {
@@ -88,8 +100,8 @@ PaperScheme::PaperScheme(const Case& c)
     for (auto& l : loads_) l.assign(n, 0.0);
   }
 
-  initial_displacement_ = std::make_unique<Expression>(c.initial.displacement);
-  initial_velocity_ = std::make_unique<Expression>(c.initial.velocity);
+  initial_displacement_ = std::make_unique<Expression>(one.initial.displacement);
+  initial_velocity_ = std::make_unique<Expression>(one.initial.velocity);
 }
 
 double PaperScheme::scale(long long m) const {

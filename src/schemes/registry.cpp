@@ -183,7 +183,6 @@ Line checked_line(const SchemeInfo& s, const Case& c) {
   Case coarse = c;
   for (auto& b : coarse.bodies)
     if (b.kind == BodyKind::bar) b.elements = std::min(b.elements, 2);
-  coarse.bar.elements = std::min(coarse.bar.elements, 2);  // the paper view of one bar
   return build_line(coarse);
 }
 
@@ -226,7 +225,7 @@ std::unique_ptr<Scheme> make_scheme(const Case& c) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
   Line line = checked_line(s, c);
   if (const auto m = scheme_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
-  if (s.one_bar && c.single_bar) return s.one_bar(c);
+  if (s.one_bar && c.one_bar()) return s.one_bar(c);
   if (!mesh_matters(s, c)) line = build_line(c);
   return s.make(c, std::move(line));
 }

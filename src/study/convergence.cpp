@@ -252,9 +252,9 @@ void check_study(const Case& base, const StudyOptions& o) {
     }
   }
   if (o.reference == Reference::rigid) {
-    if (!base.single_bar) throw InputError("--reference rigid: applies to a single bar's obstacle, not to a line");
+    if (!base.one_bar()) throw InputError("--reference rigid: applies to a single bar's obstacle, not to a line");
     Case rigid = base;
-    rigid.obstacle.kind = ObstacleKind::rigid;
+    rigid.near_end.law = JointLaw::rigid;
     if (!exact::for_case(rigid))
       throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
   }
@@ -273,7 +273,8 @@ Study converge(const Case& base, const StudyOptions& o) {
   }
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
-  const double c = std::sqrt(base.bar.stiffness / base.bar.density);
+  const auto one = base.one_bar();
+  const double c = one ? std::sqrt(one->bar.stiffness / one->bar.density) : nan;
   const bool varies_step = o.vary && o.vary->key == "time.step";
 
   std::vector<Task> tasks;
@@ -286,10 +287,10 @@ Study converge(const Case& base, const StudyOptions& o) {
       const long long f = static_cast<long long>(std::llround(std::pow(o.ratio, i)));
       const bool refine_h = o.refine == Refine::both || o.refine == Refine::h;
       const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
-      const long long elements = base.bar.elements * (refine_h ? f : 1);
+      const long long elements = base.bar_elements() * (refine_h ? f : 1);
       double step = base.time.step / static_cast<double>(refine_dt ? f : 1);
       std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""}, {"output.every=1"}, {"output.fields_at=[]"}};
-      if (base.single_bar)
+      if (one)
         sets.push_back({fmt::format("bar.elements={}", elements)});
       else  // every bar of the line refined alike
         for (const auto& b : base.bodies)
@@ -300,8 +301,8 @@ Study converge(const Case& base, const StudyOptions& o) {
         sets.push_back({o.vary->key + "=" + t.value});
       }
       // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
-      if (scheme_info(scheme).step == StepRule::transit && base.single_bar) {
-        step = base.bar.length / static_cast<double>(elements) / c;
+      if (scheme_info(scheme).step == StepRule::transit && one) {
+        step = one->bar.length / static_cast<double>(elements) / c;
         if (o.vary) step = varied_courant_step(base_toml, sets, step);
       }
       // A varied step wins (check_study refuses it where the study refines the step).
@@ -349,8 +350,8 @@ Study converge(const Case& base, const StudyOptions& o) {
     r.error_U_max = r.error_R_l1 = r.energy_error_end = r.first_contact = r.lift_off = nan;
     r.order_U = r.order_R = nan;
     if (t.c) {
-      r.elements = t.c->bar.elements;
-      r.h = t.c->bar.length / t.c->bar.elements;
+      r.elements = static_cast<int>(t.c->bar_elements());
+      r.h = t.c->bar_length() / static_cast<double>(t.c->bar_elements());
       r.step = t.c->time.step;
     }
     const auto& h = t.result.history;
@@ -365,11 +366,12 @@ Study converge(const Case& base, const StudyOptions& o) {
       r.energy_error_end = std::abs(total(h.back()) - total(h.front())) / std::abs(total(h.front()));
 
       std::unique_ptr<exact::Solution> solution;
-      if (o.reference == Reference::automatic && t.c->single_bar) solution = exact::for_case(*t.c);
-      if (o.reference == Reference::automatic && !t.c->single_bar) solution = exact::line_end(*t.c);
+      const bool one_bar = t.c->one_bar().has_value();
+      if (o.reference == Reference::automatic && one_bar) solution = exact::for_case(*t.c);
+      if (o.reference == Reference::automatic && !one_bar) solution = exact::line_end(*t.c);
       if (o.reference == Reference::rigid) {
         Case rigid = *t.c;
-        rigid.obstacle.kind = ObstacleKind::rigid;
+        rigid.near_end.law = JointLaw::rigid;
         solution = exact::for_case(rigid);
         if (!solution) throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
       }

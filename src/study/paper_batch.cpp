@@ -14,10 +14,11 @@ namespace barimpact {
 
 bool batchable(const Case& a, const Case& b) {
   auto fits = [](const Case& c) {
-    return c.single_bar && scheme_info(c.time.scheme).one_bar && c.obstacle.kind != ObstacleKind::viscoelastic &&
+    const auto one = c.one_bar();
+    return one && scheme_info(c.time.scheme).one_bar && one->obstacle.kind != ObstacleKind::viscoelastic &&
            !Expression(c.load.body_force).depends_on_t();
   };
-  return fits(a) && fits(b) && a.bar.elements == b.bar.elements && a.step_count() == b.step_count() &&
+  return fits(a) && fits(b) && a.bar_elements() == b.bar_elements() && a.step_count() == b.step_count() &&
          Expression(a.load.body_force).is_zero() == Expression(b.load.body_force).is_zero();
 }
 

@@ -254,7 +254,7 @@ std::vector<std::vector<std::size_t>> batch_groups(const std::vector<std::option
     if (!cases[i] || taken[i]) continue;
     std::vector<std::size_t> g{i};
     taken[i] = true;
-    if (batch && cases[i]->bar.elements <= PaperBatch::largest_mesh && batchable(*cases[i], *cases[i]))
+    if (batch && cases[i]->bar_elements() <= PaperBatch::largest_mesh && batchable(*cases[i], *cases[i]))
       for (std::size_t k = i + 1; k < cases.size() && g.size() < PaperBatch::width; ++k)
         if (cases[k] && !taken[k] && batchable(*cases[i], *cases[k])) {
           g.push_back(k);

@@ -6,12 +6,15 @@
 #include <fmt/ranges.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <initializer_list>
 #include <string>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/case/line_builder.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact::testing {
 
@@ -48,6 +51,17 @@ inline Case example(const std::string& name, const std::vector<std::string>& set
   std::vector<Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
   return Case::from_file(std::string(BARIMPACT_EXAMPLES_DIR) + "/" + name, overrides);
+}
+
+// The case through the line engine's scheme (the table's factory), never a
+// one-bar kernel of its own (the paper's fused sweep): what the scheme runs
+// on a line of several bodies, here on any line.
+inline RunResult run_line_engine(const Case& c) {
+  auto scheme = scheme_info(c.time.scheme).make(c, build_line(c));
+  RunRecorder recorder(c, *scheme);
+  const auto started = std::chrono::steady_clock::now();
+  const LoopResult loop = simulate(*scheme, c.step_count(), recorder.observers());
+  return recorder.finish(loop, c.step_count(), started);
 }
 
 inline double total_energy(const HistoryRow& r) {

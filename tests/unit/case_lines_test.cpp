@@ -54,19 +54,21 @@ void expect_same_body(const BodyData& a, const BodyData& b) {
   EXPECT_EQ(a.velocity, b.velocity) << a.name;
 }
 
-// The paper's view of a single bar: bar, initial, obstacle.
+// The paper's view of a single bar: bar, initial, obstacle (none for a line).
 void expect_same_paper_view(const Case& a, const Case& b) {
-  EXPECT_EQ(a.single_bar, b.single_bar);
-  for (auto [x, y] : {std::pair{a.bar.length, b.bar.length}, std::pair{a.bar.density, b.bar.density},
-                      std::pair{a.bar.stiffness, b.bar.stiffness}, std::pair{a.bar.viscosity, b.bar.viscosity},
-                      std::pair{a.obstacle.stiffness, b.obstacle.stiffness}, std::pair{a.obstacle.gap, b.obstacle.gap},
-                      std::pair{a.obstacle.viscosity, b.obstacle.viscosity}})
+  ASSERT_EQ(a.one_bar().has_value(), b.one_bar().has_value());
+  if (!a.one_bar()) return;
+  const OneBar u = *a.one_bar(), w = *b.one_bar();
+  for (auto [x, y] : {std::pair{u.bar.length, w.bar.length}, std::pair{u.bar.density, w.bar.density},
+                      std::pair{u.bar.stiffness, w.bar.stiffness}, std::pair{u.bar.viscosity, w.bar.viscosity},
+                      std::pair{u.obstacle.stiffness, w.obstacle.stiffness}, std::pair{u.obstacle.gap, w.obstacle.gap},
+                      std::pair{u.obstacle.viscosity, w.obstacle.viscosity}})
     EXPECT_TRUE(same(x, y)) << x << " vs " << y;
-  EXPECT_EQ(a.bar.elements, b.bar.elements);
-  EXPECT_EQ(a.bar.far_end, b.bar.far_end);
-  EXPECT_EQ(a.obstacle.kind, b.obstacle.kind);
-  EXPECT_EQ(a.initial.displacement, b.initial.displacement);
-  EXPECT_EQ(a.initial.velocity, b.initial.velocity);
+  EXPECT_EQ(u.bar.elements, w.bar.elements);
+  EXPECT_EQ(u.bar.far_end, w.bar.far_end);
+  EXPECT_EQ(u.obstacle.kind, w.obstacle.kind);
+  EXPECT_EQ(u.initial.displacement, w.initial.displacement);
+  EXPECT_EQ(u.initial.velocity, w.initial.velocity);
 }
 
 // Every field of two cases, doubles bit for bit.
@@ -186,7 +188,7 @@ TEST(CaseLines, ReadsEveryKeyOfTheContract) {
   EXPECT_EQ(c.gauges[0].name, "G1");
   EXPECT_EQ(c.gauges[0].body, "pile");
   EXPECT_EQ(c.gauges[0].at, 0.5);
-  EXPECT_FALSE(c.single_bar);
+  EXPECT_FALSE(c.one_bar().has_value());
 }
 
 // ---- Names.
@@ -353,7 +355,7 @@ TEST(CaseLines, AClampedEndStartsAtRest) {
 
 TEST(CaseLines, WithoutBodiesTheDefaultBar) {
   const Case c = case_from("");
-  EXPECT_TRUE(c.single_bar);
+  EXPECT_TRUE(c.one_bar().has_value());
   ASSERT_EQ(c.bodies.size(), 1u);
   EXPECT_EQ(c.bodies[0].name, "bar");
   EXPECT_EQ(c.bodies[0].kind, BodyKind::bar);
@@ -361,8 +363,8 @@ TEST(CaseLines, WithoutBodiesTheDefaultBar) {
   EXPECT_EQ(c.near_end.law, JointLaw::elastic);  // today's default obstacle
   EXPECT_EQ(c.near_end.stiffness, 100.0);
   EXPECT_EQ(c.far_end.law, JointLaw::free);
-  EXPECT_EQ(c.bar.stiffness, 1.0);
-  EXPECT_EQ(c.obstacle.kind, ObstacleKind::elastic);
+  EXPECT_EQ(c.one_bar()->bar.stiffness, 1.0);
+  EXPECT_EQ(c.one_bar()->obstacle.kind, ObstacleKind::elastic);
 }
 
 TEST(CaseLines, TodaysSingleBarIsALineOfOneBarNamedBar) {
@@ -385,19 +387,19 @@ viscosity = 0.75
 name = "mid"
 at = 1.25
 )toml");
-  EXPECT_TRUE(c.single_bar);
+  EXPECT_TRUE(c.one_bar().has_value());
   // Today's view, exactly as read.
-  EXPECT_EQ(c.bar.length, 2.5);
-  EXPECT_EQ(c.bar.density, 7.0);
-  EXPECT_EQ(c.bar.stiffness, 3.0);
-  EXPECT_EQ(c.bar.viscosity, 0.125);
-  EXPECT_EQ(c.bar.elements, 40);
-  EXPECT_EQ(c.bar.far_end, FarEnd::clamped);
-  EXPECT_EQ(c.initial.displacement, "0.01 * (2.5 - x)");
-  EXPECT_EQ(c.obstacle.kind, ObstacleKind::viscoelastic);
-  EXPECT_EQ(c.obstacle.stiffness, 250.0);
-  EXPECT_EQ(c.obstacle.gap, 0.003);
-  EXPECT_EQ(c.obstacle.viscosity, 0.75);
+  EXPECT_EQ(c.one_bar()->bar.length, 2.5);
+  EXPECT_EQ(c.one_bar()->bar.density, 7.0);
+  EXPECT_EQ(c.one_bar()->bar.stiffness, 3.0);
+  EXPECT_EQ(c.one_bar()->bar.viscosity, 0.125);
+  EXPECT_EQ(c.one_bar()->bar.elements, 40);
+  EXPECT_EQ(c.one_bar()->bar.far_end, FarEnd::clamped);
+  EXPECT_EQ(c.one_bar()->initial.displacement, "0.01 * (2.5 - x)");
+  EXPECT_EQ(c.one_bar()->obstacle.kind, ObstacleKind::viscoelastic);
+  EXPECT_EQ(c.one_bar()->obstacle.stiffness, 250.0);
+  EXPECT_EQ(c.one_bar()->obstacle.gap, 0.003);
+  EXPECT_EQ(c.one_bar()->obstacle.viscosity, 0.75);
   // The line's.
   ASSERT_EQ(c.bodies.size(), 1u);
   const BodyData& b = c.bodies[0];
@@ -436,31 +438,31 @@ TEST(CaseLines, ASingleBarIsOneBarWithTodaysEnds) {
       const bool clamped = std::string_view(far) == "clamped";
       const Case c = case_from(bar + fmt::format("[near_end]\nlaw = \"{}\"\n[far_end]\nlaw = \"{}\"\n", near, far) + cd,
                                {clamped ? "body.p.velocity=0" : "body.p.velocity=-1"});
-      EXPECT_TRUE(c.single_bar) << near << " " << far;
-      EXPECT_EQ(c.bar.stiffness, 4.0 * 0.5);
-      EXPECT_EQ(c.bar.density, 6.0 * 0.5);
-      EXPECT_EQ(c.bar.viscosity, 0.5 * 0.5);
-      EXPECT_EQ(c.bar.length, 3.0);
-      EXPECT_EQ(c.bar.elements, 30);
-      EXPECT_EQ(c.bar.far_end, std::string_view(far) == "clamped" ? FarEnd::clamped : FarEnd::free);
+      EXPECT_TRUE(c.one_bar().has_value()) << near << " " << far;
+      EXPECT_EQ(c.one_bar()->bar.stiffness, 4.0 * 0.5);
+      EXPECT_EQ(c.one_bar()->bar.density, 6.0 * 0.5);
+      EXPECT_EQ(c.one_bar()->bar.viscosity, 0.5 * 0.5);
+      EXPECT_EQ(c.one_bar()->bar.length, 3.0);
+      EXPECT_EQ(c.one_bar()->bar.elements, 30);
+      EXPECT_EQ(c.one_bar()->bar.far_end, std::string_view(far) == "clamped" ? FarEnd::clamped : FarEnd::free);
     }
   const Case e = case_from(bar + "[near_end]\nlaw = \"elastic\"\nstiffness = 7.0\ngap = 0.25\n" + cd);
-  EXPECT_EQ(e.obstacle.kind, ObstacleKind::elastic);
-  EXPECT_EQ(e.obstacle.stiffness, 7.0);
-  EXPECT_EQ(e.obstacle.gap, 0.25);
-  EXPECT_EQ(e.initial.velocity, "-1");
-  EXPECT_EQ(case_from(bar + cd).obstacle.kind, ObstacleKind::none);
+  EXPECT_EQ(e.one_bar()->obstacle.kind, ObstacleKind::elastic);
+  EXPECT_EQ(e.one_bar()->obstacle.stiffness, 7.0);
+  EXPECT_EQ(e.one_bar()->obstacle.gap, 0.25);
+  EXPECT_EQ(e.one_bar()->initial.velocity, "-1");
+  EXPECT_EQ(case_from(bar + cd).one_bar()->obstacle.kind, ObstacleKind::none);
   const Case v = case_from(bar + "[near_end]\nlaw = \"viscoelastic\"\nviscosity = 3.0\n" + cd);
-  EXPECT_EQ(v.obstacle.kind, ObstacleKind::viscoelastic);
-  EXPECT_EQ(v.obstacle.viscosity, 3.0);
+  EXPECT_EQ(v.one_bar()->obstacle.kind, ObstacleKind::viscoelastic);
+  EXPECT_EQ(v.one_bar()->obstacle.viscosity, 3.0);
 }
 
 TEST(CaseLines, ASingleBarsRigidNearEndRestitutionIsTheSchemesRestitution) {
   const Case c = case_from(
       "[[body]]\n[near_end]\nlaw = \"rigid\"\nrestitution = 0.5\n[time]\nscheme = "
       "\"moreau-jean\"\nrestitution = 0.25\n");
-  EXPECT_TRUE(c.single_bar);
-  EXPECT_EQ(c.obstacle.kind, ObstacleKind::rigid);
+  EXPECT_TRUE(c.one_bar().has_value());
+  EXPECT_EQ(c.one_bar()->obstacle.kind, ObstacleKind::rigid);
   EXPECT_EQ(c.time.restitution, 0.5);
   const Case own =
       case_from("[[body]]\n[near_end]\nlaw = \"rigid\"\n[time]\nscheme = \"moreau-jean\"\nrestitution = 0.25\n");
@@ -543,7 +545,7 @@ every = 3
 fields_at = [0.0, 1e-6, 3.3e-6]
 )toml";
   const Case c = case_from(toml);
-  EXPECT_FALSE(c.single_bar);
+  EXPECT_FALSE(c.one_bar().has_value());
   const std::string resolved = c.to_toml();
   const Case again = case_from(resolved);
   expect_same_case(c, again);
@@ -606,9 +608,9 @@ fields_at = [0.5, 1]
   const Case again = case_from(resolved);
   expect_same_case(c, again);
   EXPECT_EQ(again.to_toml(), resolved);
-  EXPECT_EQ(again.bar.stiffness, 0.1);
-  EXPECT_EQ(again.obstacle.kind, ObstacleKind::viscoelastic);
-  EXPECT_EQ(again.initial.displacement, "0.01 * (0.30000000000000004 - x)");
+  EXPECT_EQ(again.one_bar()->bar.stiffness, 0.1);
+  EXPECT_EQ(again.one_bar()->obstacle.kind, ObstacleKind::viscoelastic);
+  EXPECT_EQ(again.one_bar()->initial.displacement, "0.01 * (0.30000000000000004 - x)");
   EXPECT_EQ(again.time.scheme, "newmark");
 }
 
@@ -671,12 +673,12 @@ viscosity = 0.013
 [near_end]
 law = "elastic"
 )toml");
-  ASSERT_TRUE(c.single_bar);
+  ASSERT_TRUE(c.one_bar().has_value());
   const std::string text = c.to_toml();
   for (const char* line : {"modulus = 0.1\n", "density = 0.7\n", "viscosity = 0.013\n"})
     EXPECT_NE(text.find(line), std::string::npos) << line << "in\n" << text;
   const barimpact::Case back = barimpact::testing::case_from(text);
-  EXPECT_EQ(back.bar.stiffness, c.bar.stiffness);
-  EXPECT_EQ(back.bar.density, c.bar.density);
-  EXPECT_EQ(back.bar.viscosity, c.bar.viscosity);
+  EXPECT_EQ(back.one_bar()->bar.stiffness, c.one_bar()->bar.stiffness);
+  EXPECT_EQ(back.one_bar()->bar.density, c.one_bar()->bar.density);
+  EXPECT_EQ(back.one_bar()->bar.viscosity, c.one_bar()->bar.viscosity);
 }

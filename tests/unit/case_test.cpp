@@ -16,17 +16,17 @@ using testing::refusal;
 
 TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
   const Case c = case_from("");
-  EXPECT_EQ(c.bar.length, 1.0);
-  EXPECT_EQ(c.bar.density, 1.0);
-  EXPECT_EQ(c.bar.stiffness, 1.0);
-  EXPECT_EQ(c.bar.viscosity, 0.0);
-  EXPECT_EQ(c.bar.elements, 100);
+  EXPECT_EQ(c.one_bar()->bar.length, 1.0);
+  EXPECT_EQ(c.one_bar()->bar.density, 1.0);
+  EXPECT_EQ(c.one_bar()->bar.stiffness, 1.0);
+  EXPECT_EQ(c.one_bar()->bar.viscosity, 0.0);
+  EXPECT_EQ(c.one_bar()->bar.elements, 100);
   EXPECT_EQ(c.load.body_force, "0");
-  EXPECT_EQ(c.initial.displacement, "0");
-  EXPECT_EQ(c.initial.velocity, "0");
-  EXPECT_EQ(c.obstacle.kind, ObstacleKind::elastic);
-  EXPECT_EQ(c.obstacle.stiffness, 100.0);
-  EXPECT_EQ(c.obstacle.gap, 0.0);
+  EXPECT_EQ(c.one_bar()->initial.displacement, "0");
+  EXPECT_EQ(c.one_bar()->initial.velocity, "0");
+  EXPECT_EQ(c.one_bar()->obstacle.kind, ObstacleKind::elastic);
+  EXPECT_EQ(c.one_bar()->obstacle.stiffness, 100.0);
+  EXPECT_EQ(c.one_bar()->obstacle.gap, 0.0);
   EXPECT_EQ(c.time.end, 1.0);
   EXPECT_EQ(c.time.step, 0.01);
   EXPECT_EQ(c.time.scheme, "paper");
@@ -35,8 +35,8 @@ TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_EQ(c.output.every, 1);
   EXPECT_TRUE(c.output.fields_at.empty());
   EXPECT_EQ(c.step_count(), 100);
-  EXPECT_EQ(c.bar.far_end, FarEnd::free);
-  EXPECT_EQ(c.obstacle.viscosity, 0.0);
+  EXPECT_EQ(c.one_bar()->bar.far_end, FarEnd::free);
+  EXPECT_EQ(c.one_bar()->obstacle.viscosity, 0.0);
   EXPECT_EQ(c.time.beta, 0.25);
   EXPECT_EQ(c.time.gamma, 0.5);
   EXPECT_EQ(c.time.theta, 0.5);
@@ -97,7 +97,7 @@ TEST(Case, StepCountIsTheFirstStepTimeAtOrAfterTheEnd) {
 
 TEST(Case, IntegersAreAcceptedWhereNumbersAreExpected) {
   const Case c = case_from("[bar]\nlength = 2\n[load]\nbody_force = -1\n");
-  EXPECT_EQ(c.bar.length, 2.0);
+  EXPECT_EQ(c.one_bar()->bar.length, 2.0);
   EXPECT_EQ(c.load.body_force, "-1");
 }
 
@@ -125,17 +125,17 @@ fields_at = [0.5, 1]
                            {});
   const Case again = case_from(c.to_toml());
   EXPECT_EQ(again.to_toml(), c.to_toml());
-  EXPECT_EQ(again.bar.length, 0.30000000000000004);
-  EXPECT_EQ(again.initial.velocity, "-1 + x/2");
-  EXPECT_EQ(again.obstacle.kind, ObstacleKind::none);
+  EXPECT_EQ(again.one_bar()->bar.length, 0.30000000000000004);
+  EXPECT_EQ(again.one_bar()->initial.velocity, "-1 + x/2");
+  EXPECT_EQ(again.one_bar()->obstacle.kind, ObstacleKind::none);
   EXPECT_EQ(again.output.fields_at, (std::vector<double>{0.5, 1.0}));
 }
 
 TEST(Case, OverridesReadTomlValuesAndBareWords) {
   const Case c = case_from("", {"bar.elements=7", "obstacle.kind=none", "load.body_force=-x*t",
                                 "output.fields_at=[0.25, 0.5]", "time.scheme=\"paper\""});
-  EXPECT_EQ(c.bar.elements, 7);
-  EXPECT_EQ(c.obstacle.kind, ObstacleKind::none);
+  EXPECT_EQ(c.one_bar()->bar.elements, 7);
+  EXPECT_EQ(c.one_bar()->obstacle.kind, ObstacleKind::none);
   EXPECT_EQ(c.load.body_force, "-x*t");
   EXPECT_EQ(c.output.fields_at, (std::vector<double>{0.25, 0.5}));
 }
@@ -231,7 +231,7 @@ TEST(Case, ReadsNonAsciiTextInCommentsAndStringValues) {
   const Case c = case_from(
       "# \xCF\x81 = 7800 kg/m\xC2\xB3\n[bar] # \xC3\xA9\nlength = 2.0 # \xC2\xA7\n[output]\nfields_at = [ # \xC3\xBC\n "
       " 0.5,\n]\n");
-  EXPECT_EQ(c.bar.length, 2.0);
+  EXPECT_EQ(c.one_bar()->bar.length, 2.0);
   // A word with a non-ASCII letter is read, then refused as a word.
   EXPECT_REFUSED("[time]\nscheme = \"p\xC3\xA4per\"", "time.scheme", "must be one of");
 }
@@ -277,7 +277,7 @@ TEST(Case, ChecksAConstantExpressionOnceNotAtEveryNode) {
   // 10^8 nodes: a pass over them per expression would take seconds.
   const Case c =
       case_from("[bar]\nelements = 100000000\n[obstacle]\nkind = \"none\"\n[time]\nend = 1e-9\nstep = 1e-9\n");
-  EXPECT_EQ(c.bar.elements, 100'000'000);
+  EXPECT_EQ(c.one_bar()->bar.elements, 100'000'000);
   EXPECT_REFUSED("[bar]\nelements = 100000000\n[initial]\nvelocity = \"0/0\"", "initial.velocity", "finite");
 }
 

@@ -448,7 +448,6 @@ BodyData bar_body(const char* name, double length, double velocity = 0.0) {
 
 Case two_rods() {
   Case c;
-  c.single_bar = false;
   c.bodies = {bar_body("lower", 1.0, 1.0), bar_body("upper", 2.0, -0.5)};
   JointData j;
   j.name = "lower-upper";

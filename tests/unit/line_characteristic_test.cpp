@@ -31,7 +31,6 @@ Case line_case(std::vector<BodyData> bodies, std::vector<JointData> joints, doub
   Case c;
   c.bodies = std::move(bodies);
   c.joints = std::move(joints);
-  c.single_bar = false;
   c.time.scheme = "characteristic";
   c.time.end = end;
   c.time.step = line_characteristic_step(build_line(c)).value();
@@ -83,8 +82,7 @@ std::pair<Case, Case> single_and_line(const std::string& example, const std::vec
   all.push_back("time.scheme=characteristic");
   all.push_back("output.fields_at=[]");
   const Case single = testing::example(example, all);
-  Case line = single.line_view();
-  line.single_bar = false;
+  Case line = single;
   return {single, line};
 }
 

@@ -31,7 +31,6 @@ Case line_case(std::vector<BodyData> bodies, std::vector<JointData> joints, cons
   Case c;
   c.bodies = std::move(bodies);
   c.joints = std::move(joints);
-  c.single_bar = false;
   c.time.scheme = scheme;
   c.time.step = dt;
   c.time.end = end;
@@ -53,7 +52,7 @@ struct Errors {
   double impulse = 0.0;  // max_t |int_0^t (p - p_exact)| of the watched link
 };
 
-// Steps `c` (single_bar off) and compares node `node`'s displacement and link
+// Steps `c` and compares node `node`'s displacement and link
 // `link`'s force with the exact u(t) and p(t), both summed by rectangles on
 // the step's grid as tests/verification/schemes_test.cpp does.
 Errors errors_against(const Case& c, std::size_t node, std::size_t link, const std::function<double(double)>& u,

@@ -23,13 +23,13 @@ using testing::joint;
 using testing::law_joint;
 using testing::mass;
 
-// A case run through the line engine: single_bar off.
+// A case run through the line engine.
 Case line_case(std::vector<BodyData> bodies, std::vector<JointData> joints, double dt, double end,
                const std::string& scheme = "central-difference") {
   Case c;
   c.bodies = std::move(bodies);
   c.joints = std::move(joints);
-  c.single_bar = false;
+
   c.time.scheme = scheme;
   c.time.step = dt;
   c.time.end = end;
@@ -314,17 +314,16 @@ TEST(LinePaper, MatchesTheSingleBarSchemeOnOneBar) {
              std::string("initial.velocity=") + (clamped ? "\"-(1 - x)\"" : "\"-1\""),
              std::string("time.lambda=") + lambda, "load.body_force=\"-1 + x * t\""});
         Case line = single;
-        line.single_bar = false;
-        line.bodies = {bar("bar", 1.0, 100, single.initial.velocity)};
+        line.bodies = {bar("bar", 1.0, 100, single.one_bar()->initial.velocity)};
         line.bodies[0].viscosity = 0.01;
         line.near_end.law = std::string(kind) == "elastic"        ? JointLaw::elastic
                             : std::string(kind) == "viscoelastic" ? JointLaw::viscoelastic
                                                                   : JointLaw::free;
-        line.near_end.stiffness = single.obstacle.stiffness;
-        line.near_end.viscosity = single.obstacle.viscosity;
-        line.near_end.gap = single.obstacle.gap;
+        line.near_end.stiffness = single.one_bar()->obstacle.stiffness;
+        line.near_end.viscosity = single.one_bar()->obstacle.viscosity;
+        line.near_end.gap = single.one_bar()->obstacle.gap;
         line.far_end.law = clamped ? JointLaw::clamped : JointLaw::free;
-        const RunResult a = run(single), b = run(line);
+        const RunResult a = run(single), b = testing::run_line_engine(line);
         ASSERT_EQ(a.history.size(), b.history.size());
         for (std::size_t k = 0; k < a.history.size(); ++k) {
           const HistoryRow &x = a.history[k], &y = b.history[k];
@@ -485,7 +484,7 @@ step = 0.01
 [output]
 fields_at = [1.0, 2.0]
 )toml");
-  EXPECT_TRUE(line_spelling.single_bar);
+  EXPECT_TRUE(line_spelling.one_bar().has_value());
   const RunResult a = run(bar_spelling), b = run(line_spelling);
   ASSERT_EQ(a.history.size(), b.history.size());
   for (std::size_t k = 0; k < a.history.size(); ++k) {
@@ -538,7 +537,7 @@ restitution = 0.5
 [time]
 scheme = "moreau-jean"
 )toml");
-  ASSERT_TRUE(c.single_bar);
+  ASSERT_TRUE(c.one_bar().has_value());
   EXPECT_EQ(c.time.restitution, 0.5);
   EXPECT_EQ(Case::from_string(c.to_toml(), {}, "resolved").time.restitution, 0.5);
 }

@@ -61,7 +61,7 @@ Counted count_loop(const Case& c, const std::function<void(const Scheme&)>& each
   const Probes probes(c, line);
   HistoryRecorder history(c.output.every, &probes);
   FieldRecorder fields(c, line, c.output.fields_at);
-  ContactMonitor contact(c.obstacle);
+  ContactMonitor contact(c.one_bar() ? c.one_bar()->obstacle : ObstacleData{});
   LinkMonitor links(line);
   PlasticMonitor plastic(line, c.output.every);
   const std::array<Observer*, 5> observers{&history, &fields, &contact, &links, &plastic};
@@ -116,7 +116,6 @@ fields_at = [1.0, 2.5]
 TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
   for (const char* scheme : {"moreau-jean", "paoli-schatzman", "mass-redistribution"}) {
     Case c;
-    c.single_bar = false;
     const bool redistribution = std::string(scheme) == "mass-redistribution";
     c.bodies = {bar("a", 1.0, 30, "-1"), bar("b", 1.0, 30, "-2"), mass("m", 0.5, -1.0)};
     c.joints = {joint("a", "b", JointLaw::rigid, 0.01),
@@ -146,7 +145,6 @@ TEST(TimeLoop, RigidContactLineSchemesNeverAllocate) {
 TEST(TimeLoop, ImplicitPenaltyLineSchemesNeverAllocate) {
   for (const char* scheme : {"paper", "newmark"}) {
     Case c;
-    c.single_bar = false;
     c.bodies = {bar("a", 1.0, 30, "-1"), bar("b", 1.0, 30, "-2"), mass("m", 0.5, -3.0), mass("n", 0.5, -3.0)};
     JointData ab = law_joint("a", "b", JointLaw::viscoelastic, 300.0, 3.0);
     ab.law.gap = 0.01;

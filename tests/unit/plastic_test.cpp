@@ -713,8 +713,8 @@ end = 3
   const Case bar = testing::example("paper-example1.toml", {"time.scheme=central-difference", "time.step=0.005"});
   const Case yielding = testing::example("paper-example1.toml", {"time.scheme=central-difference", "time.step=0.005",
                                                                  "bar.material=plastic", "bar.yield_stress=1e6"});
-  ASSERT_TRUE(bar.single_bar);
-  ASSERT_FALSE(yielding.single_bar);
+  ASSERT_TRUE(bar.one_bar().has_value());
+  ASSERT_FALSE(yielding.one_bar().has_value());
   const RunResult a = run(bar), b = run(yielding);
   ASSERT_EQ(a.history.size(), b.history.size());
   for (std::size_t n = 0; n < a.history.size(); ++n) {
@@ -793,7 +793,7 @@ step = 0.01
 end = 1
 )toml"}) {
     const Case c = case_from(text);
-    EXPECT_FALSE(c.single_bar);
+    EXPECT_FALSE(c.one_bar().has_value());
     const Case back = case_from(c.to_toml());
     EXPECT_EQ(back.to_toml(), c.to_toml());
     const RunResult a = run(c), b = run(back);

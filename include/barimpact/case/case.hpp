@@ -140,6 +140,16 @@ struct OutputData {
   int compression = 1;  ///< gzip level 0-9 of results.h5's fields (0: none); CSV files are not compressed
 };
 
+/// A line of one uniform elastic bar in the paper's terms (Section 2:
+/// a = E A, rho A, b = eta A; the obstacle at x = 0): what the paper's
+/// one-bar kernel and the single bar's exact solutions read. It is a view,
+/// computed from the line, which is the case's only spelling in memory.
+struct OneBar {
+  BarData bar;
+  InitialData initial;
+  ObstacleData obstacle;
+};
+
 /// A validated case. Construct with `Case::from_file` or `Case::from_string`;
 /// every rule of the case-file contract holds for the result.
 struct Case {
@@ -157,15 +167,13 @@ struct Case {
   /// [units] system: "SI" (figures label N, m, s, Pa, J) or "none" (unit-free numbers).
   std::string units = "none";
 
-  /// True when the line is one uniform bar whose near end meets today's
-  /// obstacle kinds (none, elastic, viscoelastic, rigid) and whose far end is
-  /// free or clamped, without gravity: `bar`, `initial` and `obstacle` then
-  /// hold it in the paper's terms (a = E A, rho A, b = eta A) and the
-  /// single-bar schemes run it, bit for bit as before lines existed.
-  bool single_bar = true;
-  BarData bar;
-  InitialData initial;
-  ObstacleData obstacle;
+  /// The line as the paper's single bar, when it is one: one uniform
+  /// elastic bar, no joints, gravity or shaft, its near end free or an
+  /// elastic, viscoelastic or rigid obstacle, its far end free or clamped.
+  [[nodiscard]] std::optional<OneBar> one_bar() const;
+  /// The bars' total length and number of elements (every bar of the line).
+  [[nodiscard]] double bar_length() const;
+  [[nodiscard]] long long bar_elements() const;
 
   /// One `section.key=value` override; the value is read as a TOML value,
   /// a bare word as a string.
@@ -183,11 +191,6 @@ struct Case {
   /// The number of steps N: t_N = N dt is the first step time >= end
   /// (up to a relative 1e-9, so that end = 4, step = 0.01 gives 400).
   [[nodiscard]] long long step_count() const;
-
-  /// The case with its line spelled out: for a single bar, bodies, near_end
-  /// and far_end taken from bar, initial and obstacle (which studies change
-  /// in place); otherwise the case itself.
-  [[nodiscard]] Case line_view() const;
 
   /// The resolved case as TOML in the line's spelling ([[body]], [near_end],
   /// ...), with only the keys each law uses, every default filled in:

@@ -46,7 +46,7 @@ class PaperBatch;
 
 class PaperScheme final : public Scheme {
  public:
-  /// Preconditions: `c` validated, obstacle kind none or elastic.
+  /// Preconditions: `c` validated, a line of one elastic bar (Case::one_bar).
   explicit PaperScheme(const Case& c);
 
   void start() override;
@@ -71,6 +71,7 @@ class PaperScheme final : public Scheme {
   [[nodiscard]] std::size_t stride() const { return stride_; }
 
  private:
+  PaperScheme(const Case& c, const OneBar& one);
   friend class PaperBatch;
   enum class LoadMode { zero, steady, unsteady };
 

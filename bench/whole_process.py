@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""Whole processes, as users run them: a run's start-up (reading, building,
+factoring, writing), its peak memory, and what a line or an elastic-plastic
+bar costs beside one elastic bar, all measured on `barimpact run` itself.
+
+Prints a Markdown section for docs/benchmarks.md (bench/report.py includes
+it); `bare_ns` is the paper scheme's bare loop in ns per node-step at each M
+(from the step benchmarks), or None to leave that column out.
+
+    python3 bench/whole_process.py build/release/barimpact
+"""
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+EXAMPLE = os.path.join(HERE, "..", "examples", "paper-example1.toml")
+REPEATS = 5  # the pairs interleaved, medians taken: these machines are noisy
+
+
+def measure(binary, case, sets, work):
+    """Wall seconds and peak resident kB of one `barimpact run` (the child's
+    own rusage, by wait4)."""
+    out = os.path.join(work, "run")
+    args = [binary, "run", case, "--out", out, "--force"]
+    for s in sets + ["output.fields_at=[]"]:
+        args += ["--set", s]
+    start = time.perf_counter()
+    p = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    _, status, usage = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - start
+    p.returncode = status  # reaped here, for its rusage
+    if status != 0:
+        raise RuntimeError(f"{' '.join(args)}: exit status {status}")
+    return wall, usage.ru_maxrss
+
+
+def medians(binary, runs, work):
+    """Each (case, sets) of `runs` REPEATS times, interleaved: median wall and peak."""
+    walls = [[] for _ in runs]
+    peaks = [[] for _ in runs]
+    for _ in range(REPEATS):
+        for i, (case, sets) in enumerate(runs):
+            w, k = measure(binary, case, sets, work)
+            walls[i].append(w)
+            peaks[i].append(k)
+    return [statistics.median(w) for w in walls], [statistics.median(k) for k in peaks]
+
+
+def bar(m, steps):
+    return [f"bar.elements={m}", f"time.step={1.0 / m!r}", f"time.end={steps / m!r}"]
+
+
+def startup_table(binary, sizes, bare_ns, work):
+    rows = []
+    for m in sizes:
+        (one, many), (peak_one, _) = medians(binary, [(EXAMPLE, bar(m, 1)), (EXAMPLE, bar(m, 401))], work)
+        step = (many - one) / 400
+        fixed = one - step
+        bytes_per_node = peak_one * 1024 / (m + 1)
+        bare = f" {400 * bare_ns[m] * 1e-9 * (m + 1):.3f} | {(many - fixed) / (400 * bare_ns[m] * 1e-9 * (m + 1)):.2f} |" \
+            if bare_ns and m in bare_ns else ""
+        rows.append(f"| {m:>9,} | {one:.3f} | {many:.3f} | {step * 1e3:.3f} | {fixed:.3f} | "
+                    f"{fixed / step if step > 0 else float('inf'):.0f} | {peak_one / 1024:.0f} | {bytes_per_node:.0f} |{bare}")
+    return rows
+
+
+def line_case(work):
+    """Example 1's bar as two welded bodies of half its length each."""
+    path = os.path.join(work, "welded.toml")
+    bodies = "".join(f'[[body]]\nname = "{name}"\nlength = 0.5\nelements = 50\nvelocity = "-1"\n'
+                     for name in ("lower", "upper"))
+    with open(path, "w") as f:
+        f.write(bodies + '[near_end]\nlaw = "elastic"\nstiffness = 100.0\n[time]\nend = 4.0\nstep = 0.01\n')
+    return path
+
+
+def comparisons(binary, m, work):
+    """At M elements and 400 steps: a welded two-body line and an unyielded
+    elastic-plastic bar against the one elastic bar, whole processes."""
+    welded = line_case(work)
+    half = m // 2
+    steps = [f"time.step={1.0 / m!r}", f"time.end={400 / m!r}"]
+    runs = [
+        (EXAMPLE, bar(m, 400)),
+        (welded, [f"body.lower.elements={half}", f"body.upper.elements={m - half}"] + steps),
+        (EXAMPLE, bar(m, 400) + ["bar.material=\"plastic\"", "bar.yield_stress=1e9"]),
+    ]
+    (one, line, plastic), _ = medians(binary, runs, work)
+    return one, line, plastic
+
+
+def section(binary, bare_ns=None, sizes=(1_000, 10_000, 100_000, 1_000_000)):
+    with tempfile.TemporaryDirectory() as work:
+        rows = startup_table(binary, sizes, bare_ns, work)
+        one, line, plastic = comparisons(binary, 100_000, work)
+    bare_head = " 400 bare steps (s) | 400 steps over bare |" if bare_ns else ""
+    bare_rule = "---:|---:|" if bare_ns else ""
+    return f"""## Whole processes: start-up, memory, lines and plasticity
+
+`barimpact run` as a user runs it (Example 1, the paper's scheme, dt = 1/M,
+no field snapshots), {REPEATS} runs of each interleaved, medians: the wall
+time of 1 step and of 401 steps, one step's cost from their difference,
+the fixed cost (reading, building, factoring, writing) in seconds and in
+steps, and the peak resident memory. Targets: the fixed cost below 20
+steps at M = 10^5 and 10^6, and below 200 bytes per node at M = 10^6.
+
+    python3 bench/whole_process.py build/release/barimpact
+
+| M | 1 step (s) | 401 steps (s) | a step (ms) | fixed cost (s) | fixed cost (steps) | peak (MB) | bytes/node |{bare_head}
+|---:|---:|---:|---:|---:|---:|---:|---:|{bare_rule}
+{chr(10).join(rows)}
+
+At M = 100,000 and 400 steps, whole processes: a welded two-body line of
+the same bar takes {line / one:.2f} times the one bar ({line:.3f} s against
+{one:.3f} s; target 1.25), and the elastic-plastic bar that never yields
+{plastic / one:.2f} times the elastic one ({plastic:.3f} s; target 1.3).
+
+"""
+
+
+if __name__ == "__main__":
+    print(section(sys.argv[1]))
