@@ -162,6 +162,39 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
 
 }  // namespace
 
+namespace {
+
+// The state can stay finite while what is read off it overflows (a
+// blowing-up run squares (u^{n+1} - u^n)/dt in its energies first): the
+// first row that is not finite ends a complete run there, as a non-finite
+// state would.
+void cut_at_non_finite_row(RunResult& r, LoopResult& loop, double dt) {
+  const auto bad = std::find_if(r.history.begin(), r.history.end(), [](const HistoryRow& h) {
+    return !(std::isfinite(h.t) && std::isfinite(h.U) && std::isfinite(h.V) && std::isfinite(h.R) &&
+             std::isfinite(h.E_kin) && std::isfinite(h.E_strain) && std::isfinite(h.E_obstacle) &&
+             std::isfinite(h.W_ext) && std::isfinite(h.D_visc) && std::isfinite(h.D_contact) &&
+             std::isfinite(h.D_plastic));
+  });
+  if (bad == r.history.end()) return;
+  r.extra.resize(static_cast<std::size_t>(bad - r.history.begin()) * r.columns.size());
+  const long long step = std::llround(bad->t / dt);
+  loop.status = RunStatus::non_finite;
+  loop.message = fmt::format("the history became non-finite at step {} (t = {})", step, bad->t);
+  loop.steps_done = std::max(0LL, step - 1);
+  r.history.erase(bad, r.history.end());
+}
+
+// E_total at the first and last rows and its largest departure.
+void book_energy(const std::vector<HistoryRow>& history, Summary& s) {
+  if (history.empty()) return;
+  s.energy_initial = history.front().total();
+  s.energy_final = history.back().total();
+  for (const auto& h : history)
+    s.energy_error_max = std::max(s.energy_error_max, std::abs(h.total() - s.energy_initial));
+}
+
+}  // namespace
+
 RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::steady_clock::time_point started,
                               bool finite_rows) {
   const Case& c = case_;
@@ -169,25 +202,7 @@ RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::ste
   r.history = history_.rows();
   r.columns = probes_.names();
   r.extra = history_.extra();
-  if (finite_rows && loop.status == RunStatus::complete) {
-    // The state can stay finite while what is read off it overflows (a
-    // blowing-up run squares (u^{n+1} - u^n)/dt in its energies first): the
-    // first row that is not finite ends the run there, as a non-finite state would.
-    const auto bad = std::find_if(r.history.begin(), r.history.end(), [](const HistoryRow& h) {
-      return !(std::isfinite(h.t) && std::isfinite(h.U) && std::isfinite(h.V) && std::isfinite(h.R) &&
-               std::isfinite(h.E_kin) && std::isfinite(h.E_strain) && std::isfinite(h.E_obstacle) &&
-               std::isfinite(h.W_ext) && std::isfinite(h.D_visc) && std::isfinite(h.D_contact) &&
-               std::isfinite(h.D_plastic));
-    });
-    if (bad != r.history.end()) {
-      r.extra.resize(static_cast<std::size_t>(bad - r.history.begin()) * r.columns.size());
-      const long long step = std::llround(bad->t / c.time.step);
-      loop.status = RunStatus::non_finite;
-      loop.message = fmt::format("the history became non-finite at step {} (t = {})", step, bad->t);
-      loop.steps_done = std::max(0LL, step - 1);
-      r.history.erase(bad, r.history.end());
-    }
-  }
+  if (finite_rows && loop.status == RunStatus::complete) cut_at_non_finite_row(r, loop, c.time.step);
   Summary& s = r.summary;
   s.method = c.time.scheme;
   s.status = loop.status;
@@ -201,23 +216,8 @@ RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::ste
   s.link_episodes = links_.episodes();
   s.max_penetration = contact_.max_penetration();
   s.max_reaction = contact_.max_reaction();
-  if (plastic_.any()) {
-    PlasticSummary& p = s.plastic.emplace();
-    p.largest_strain = plastic_.largest();
-    const std::size_t j = plastic_.bond();
-    p.body = line_.bodies[line_.bonds[j].body].name;
-    p.x = 0.5 * (line_.x[j] + line_.x[j + 1]);
-    p.t = plastic_.time();
-    for (std::size_t b = 0; b < line_.bodies.size(); ++b)
-      if (line_.plasticity[b]) p.work.emplace_back(line_.bodies[b].name, plastic_.work()[b]);
-  }
-  if (!r.history.empty()) {
-    auto total = [](const HistoryRow& h) { return h.total(); };
-    s.energy_initial = total(r.history.front());
-    s.energy_final = total(r.history.back());
-    for (const auto& h : r.history)
-      s.energy_error_max = std::max(s.energy_error_max, std::abs(total(h) - s.energy_initial));
-  }
+  if (plastic_.any()) s.plastic = plastic_summary();
+  book_energy(r.history, s);
   r.fields = fields_.take();
   s.warnings = check_health(c, line_, s, r.history);
   if (blow_) {
@@ -230,6 +230,18 @@ RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::ste
   }
   s.run_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
+}
+
+PlasticSummary RunRecorder::plastic_summary() const {
+  PlasticSummary p;
+  p.largest_strain = plastic_.largest();
+  const std::size_t j = plastic_.bond();
+  p.body = line_.bodies[line_.bonds[j].body].name;
+  p.x = 0.5 * (line_.x[j] + line_.x[j + 1]);
+  p.t = plastic_.time();
+  for (std::size_t b = 0; b < line_.bodies.size(); ++b)
+    if (line_.plasticity[b]) p.work.emplace_back(line_.bodies[b].name, plastic_.work()[b]);
+  return p;
 }
 
 std::string_view to_string(RunStatus status) {

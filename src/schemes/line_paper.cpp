@@ -21,7 +21,16 @@ double entry(const Link& l, std::size_t j) {
 
 LinePaper::LinePaper(const Case& c, Line line)
     : LineScheme(c, std::move(line)), alpha_(c.time.alpha), lambda_(c.time.lambda) {
-  const std::size_t n = line_.nodes(), links = line_.links.size();
+  assemble();
+  plan_rows();
+  respond_links();
+  allocate();
+}
+
+// S = lambda^2 M + K + lambda C + sum_i (k_i/2) h_i h_i^T, D = 2 lambda M + C,
+// A = M/dt^2 + alpha S + D/(2 dt) (held rows the identity) factored once,
+// B1 and B0; the plastic and soil iterations' responses through A.
+void LinePaper::assemble() {
   mass_ = line_.mass(true);
   stiff_ = line_.stiffness();
   visc_ = line_.viscosity();
@@ -50,7 +59,12 @@ LinePaper::LinePaper(const Case& c, Line line)
   const double shift = lambda_ == 0.0 ? 1.0 : std::exp(lambda_ * dt_);
   soil_ = SoilIteration(line_, A, held_nodes(held_), shift, half_inv_dt);
   soil_.use_levels({alpha_ / shift, 1.0 - 2.0 * alpha_, alpha_ * shift});
+}
 
+// Which rows take a uniform stretch's constant stencil and which the
+// general row, and the blocks of row pairs the two-ended sweeps take.
+void LinePaper::plan_rows() {
+  const std::size_t n = line_.nodes();
   // Link faces and force ends take forces besides the bonds': general rows.
   std::vector<unsigned char> special(n, 0);
   for (const auto& l : line_.links)
@@ -80,8 +94,12 @@ LinePaper::LinePaper(const Case& c, Line line)
       blocks_.push_back({1, top, bottom});
   }
   extra_.assign(n, 0.0);
+}
 
-  // The responses of the links whose status changes A, and W among them.
+// The responses w = A^{-1} h of the links whose status changes A, and W
+// among them (Woodbury's correction).
+void LinePaper::respond_links() {
+  const std::size_t n = line_.nodes(), links = line_.links.size();
   for (std::size_t i = 0; i < links; ++i) {
     const ContactLaw& law = line_.links[i].law;
     if (law.kind != LawKind::viscoelastic && !(law.kind == LawKind::cushion && law.restitution < 1.0)) continue;
@@ -102,7 +120,12 @@ LinePaper::LinePaper(const Case& c, Line line)
   sigma_.assign(links, 0.0);
   status_.assign(links, Status::base);
   link_c_.assign(links, 0.0);
+}
 
+// The levels, the loads and the iterations' state, allocated once: the
+// time loop allocates nothing.
+void LinePaper::allocate() {
+  const std::size_t n = line_.nodes();
   for (const auto& b : line_.bonds) {
     viscosity_.push_back(b.viscosity);
     viscous_ = viscous_ || b.viscosity != 0.0;
@@ -144,7 +167,17 @@ std::array<double, 3> LinePaper::load_weights(long long m) const {
 }
 
 void LinePaper::start() {
-  const std::size_t n = line_.nodes();
+  start_loads();
+  std::vector<HeldRow> rows;
+  double viscous = 0.0;
+  const std::vector<double> a0 = initial_acceleration(rows, viscous);
+  taylor_start(a0, rows);
+  if (plastic_iteration_.active()) start_plastic_level();
+  book_start(viscous);
+}
+
+// Level 0's pointers and loads: F(0), F(dt) when it moves, the force ends' values.
+void LinePaper::start_loads() {
   prev_ = levels_[2].data();
   cur_ = levels_[0].data();
   next_ = levels_[1].data();
@@ -159,17 +192,21 @@ void LinePaper::start() {
   if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[0].data());
   near_f_ = {near_value(0.0), near_value(dt_), 0.0};
   far_f_ = {far_value(0.0), far_value(dt_), 0.0};
+}
 
-  // The links at t = 0, and a0 = M^{-1} (F(0) - K u0 - C v0 + links + end
-  // forces), held rows at their ends' accelerations: 0, or a driven node's
-  // 2 (v(dt/2) - v(0)) / dt, which makes the Taylor step its dt v(dt/2).
+// The links at t = 0, and a0 = M^{-1} (F(0) - K u0 - C v0 + links + end
+// forces), held rows at their ends' accelerations: 0, or a driven node's
+// 2 (v(dt/2) - v(0)) / dt, which makes the Taylor step its dt v(dt/2).
+// `rows` the held rows; `viscous` the links' dissipation rate at t = 0.
+std::vector<double> LinePaper::initial_acceleration(std::vector<HeldRow>& rows, double& viscous) {
+  const std::size_t n = line_.nodes();
   std::vector<double> r(n, 0.0), cv(n, 0.0);
   stiff_.multiply(u0_, r);
   visc_.multiply(v0_, cv);
   for (std::size_t j = 0; j < n; ++j) r[j] = (load_zero_ ? 0.0 : loads_[0][j]) - r[j] - cv[j];
   if (line_.near.kind == EndKind::force) r[line_.near.node] += near_f_[0];
   if (line_.far.kind == EndKind::force) r[line_.far.node] += far_f_[0];
-  double viscous = 0.0;
+  viscous = 0.0;
   for (std::size_t i = 0; i < line_.links.size(); ++i) {
     const ContactLaw& law = line_.links[i].law;
     const double c = -line_.opening(i, u0_.data()), rate = -along(line_, i, v0_.data());
@@ -185,7 +222,7 @@ void LinePaper::start() {
     soil_.add_start_forces(r.data());
   }
   Tridiagonal m = mass_;
-  std::vector<HeldRow> rows = hold_rows(line_, m);
+  rows = hold_rows(line_, m);
   for (auto& h : rows) {
     const double v_half = h.near ? near_value(0.5 * dt_) : far_value(0.5 * dt_);
     h.value = h.driven ? 2.0 * (v_half - v0_[h.node]) / dt_ : 0.0;
@@ -194,11 +231,14 @@ void LinePaper::start() {
     if (h.neighbour != HeldRow::none) r[h.neighbour] -= h.coupling * h.value;
   }
   FactoredTridiagonal(m, false).solve(r);
-  const std::vector<double>& a0 = r;
-  for (std::size_t k = 0; k < rows.size(); ++k) held_[k].support = rows[k].residual(a0.data());
+  for (std::size_t k = 0; k < rows.size(); ++k) held_[k].support = rows[k].residual(r.data());
+  return r;
+}
 
-  // z^0 = u0 and, by Taylor, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with
-  // z' = v0 - lambda u0, z'' = a0 - 2 lambda v0 + lambda^2 u0.
+// z^0 = u0 and, by Taylor, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with
+// z' = v0 - lambda u0, z'' = a0 - 2 lambda v0 + lambda^2 u0.
+void LinePaper::taylor_start(const std::vector<double>& a0, const std::vector<HeldRow>& rows) {
+  const std::size_t n = line_.nodes();
   const double half_dt2 = 0.5 * dt_ * dt_, l = lambda_;
   for (std::size_t j = 0; j < n; ++j) {
     cur_[j] = prev_[j] = u0_[j];
@@ -211,23 +251,29 @@ void LinePaper::start() {
     for (std::size_t j = 0; j < n; ++j) soil_u_[j] = scale(1) * next_[j];
     soil_.start_levels(soil_u_.data(), v0_.data(), dt_);
   }
-  if (plastic_iteration_.active()) {
-    // p^1 from the return map at u^1, its load in F(t_1); the start's share
-    // of the plastic work and load work at level "-1" = u^1 - dt v0.
-    const bool yielded = plastic_iteration_.take(next_, scale(1));
-    plastic_loads();
-    if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[1].data());  // F(t_1) + G p^1
-    plastic_.start(u0_.data());
-    std::vector<double> u1(n), before(n);
-    for (std::size_t j = 0; j < n; ++j) {
-      u1[j] = scale(1) * next_[j];
-      before[j] = u1[j] - dt_ * v0_[j];
-    }
-    plastic_.record(plastic_iteration_.strain(), plastic_iteration_.accumulated(), yielded, before.data(), u0_.data(),
-                    u1.data(), {0.0, 1.0, 0.0}, true);
-  }
+}
 
-  // The first half step's share of the budget: dt/2 times the rates at t = 0.
+// p^1 from the return map at u^1, its load in F(t_1); the start's share of
+// the plastic work and load work at level "-1" = u^1 - dt v0.
+void LinePaper::start_plastic_level() {
+  const std::size_t n = line_.nodes();
+  const bool yielded = plastic_iteration_.take(next_, scale(1));
+  plastic_loads();
+  if (plastic_iteration_.loading()) plastic_iteration_.add_load(loads_[1].data());  // F(t_1) + G p^1
+  plastic_.start(u0_.data());
+  std::vector<double> u1(n), before(n);
+  for (std::size_t j = 0; j < n; ++j) {
+    u1[j] = scale(1) * next_[j];
+    before[j] = u1[j] - dt_ * v0_[j];
+  }
+  plastic_.record(plastic_iteration_.strain(), plastic_iteration_.accumulated(), yielded, before.data(), u0_.data(),
+                  u1.data(), {0.0, 1.0, 0.0}, true);
+}
+
+// The first half step's share of the budget: dt/2 times the rates at t = 0
+// (`viscous` the links' share), and the ends' forces reported at t = 0.
+void LinePaper::book_start(double viscous) {
+  const std::size_t n = line_.nodes();
   double power = 0.0;
   for (std::size_t j = 0; j < n; ++j) power += (load_zero_ ? 0.0 : loads_[0][j]) * v0_[j];
   if (line_.near.kind == EndKind::force) power += near_f_[0] * v0_[line_.near.node];

@@ -112,6 +112,9 @@ class RunRecorder {
                                  bool finite_rows = true);
 
  private:
+  /// Where and when the plastic strain peaked, and each body's plastic work.
+  [[nodiscard]] PlasticSummary plastic_summary() const;
+
   const Case& case_;
   std::optional<Line> own_;  // built only for a scheme that holds no line (the fused one-bar paper scheme)
   const Line& line_;

@@ -108,6 +108,20 @@ class LinePaper final : public LineScheme {
   /// viscoelastic dashpot beside it, the law clipped, a cushion unloading.
   enum class Status : unsigned char { base, pushing, clipped, unloading };
 
+  /// The constructor's phases: the matrices and A's factors; the rows'
+  /// stencils and sweep blocks; the links' responses through A; the state.
+  void assemble();
+  void plan_rows();
+  void respond_links();
+  void allocate();
+  /// start()'s phases: level 0's loads; a0 and the held rows (the links'
+  /// dissipation rate at t = 0 into `viscous`); z^0 and z^1 by Taylor; the
+  /// plastic strains of level 1; the first half step's budget.
+  void start_loads();
+  [[nodiscard]] std::vector<double> initial_acceleration(std::vector<HeldRow>& rows, double& viscous);
+  void taylor_start(const std::vector<double>& a0, const std::vector<HeldRow>& rows);
+  void start_plastic_level();
+  void book_start(double viscous);
   [[nodiscard]] double scale(long long m) const;
   /// F^{m,alpha}'s weights (z-units) on F(t_{m+1}), F(t_m), F(t_{m-1}).
   [[nodiscard]] std::array<double, 3> load_weights(long long m) const;
