@@ -56,6 +56,7 @@
 #ifdef BARIMPACT_HAVE_MPI
 #include <mpi.h>
 #endif
+#include "barimpact/exact/tabulate.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "barimpact/study/paper_batch.hpp"

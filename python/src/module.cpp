@@ -17,6 +17,7 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/exact/exact.hpp"
+#include "barimpact/exact/tabulate.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/run/check.hpp"
 #include "barimpact/run/figure_names.hpp"

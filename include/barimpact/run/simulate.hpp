@@ -128,11 +128,11 @@ class RunRecorder {
   std::vector<Observer*> observers_;
 };
 
-/// Tabulates the exact solution the case admits (exact.hpp) on its time
-/// grid, through the same observers: same history columns as `run`, rows up
-/// to the end or to where the solution is known. Throws InputError when the
-/// case admits none.
-[[nodiscard]] RunResult run_exact(const Case& c, const RunOptions& options = {});
+/// Runs `scheme` (made for `c`) for `steps` steps with the standard
+/// observers: what `run` does once it has made the scheme (exact/tabulate
+/// hands it a tabulated solution); `finite_rows` as RunRecorder::finish.
+[[nodiscard]] RunResult run_scheme(const Case& c, Scheme& scheme, long long steps, const RunOptions& options,
+                                   bool finite_rows = true);
 
 [[nodiscard]] std::string_view to_string(RunStatus status);
 
