@@ -239,6 +239,10 @@ void PlasticMonitor::begin(const Scheme& /*scheme*/, long long steps) {
 bool PlasticMonitor::observe(const Scheme& s) {
   const long long n = s.step();
   if (bonds_.empty() || (n % every_ != 0 && n != last_)) return true;
+  for (std::size_t b = 0; b < work_.size(); ++b) work_[b] = s.plastic_work(b);
+  // Before anything flows, no plastic work is done and every eps_p is 0:
+  // nothing to scan (the largest stays 0, as the scan would leave it).
+  if (std::all_of(work_.begin(), work_.end(), [](double w) { return w == 0.0; })) return true;
   for (std::size_t j : bonds_) {
     const double p = s.plastic_strain(j);
     if (std::abs(p) > std::abs(largest_)) {
@@ -247,7 +251,6 @@ bool PlasticMonitor::observe(const Scheme& s) {
       time_ = s.time();
     }
   }
-  for (std::size_t b = 0; b < work_.size(); ++b) work_[b] = s.plastic_work(b);
   return true;
 }
 

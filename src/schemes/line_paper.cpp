@@ -94,6 +94,14 @@ void LinePaper::plan_rows() {
       blocks_.push_back({1, top, bottom});
   }
   extra_.assign(n, 0.0);
+  // Runs of bonds with the same kind, mass and stiffness (a bar body's elements).
+  for (std::size_t j = 0; j + 1 < n; ++j) {
+    const Bond &b = line_.bonds[j], *a = j > 0 ? &line_.bonds[j - 1] : nullptr;
+    if (a && a->kind == b.kind && a->mass == b.mass && a->stiffness == b.stiffness)
+      bond_runs_.back().last = j + 1;
+    else
+      bond_runs_.push_back({j, j + 1});
+  }
 }
 
 // The responses w = A^{-1} h of the links whose status changes A, and W
@@ -659,17 +667,23 @@ void LinePaper::half_step(const double* za, double sa, const double* zb, double 
   double kinetic = 0.0, strain = 0.0, springs = 0.0;
   auto w = [&](std::size_t j) { return (sb * zb[j] - sa * za[j]) * inv_dt; };
   auto mid = [&](std::size_t j) { return 0.5 * (sb * zb[j] + sa * za[j]); };
-  for (std::size_t j = 0; j < n; ++j) {
-    const double wj = w(j);
-    kinetic += line_.point_mass[j] * wj * wj;
-    if (j + 1 == n) break;
-    const Bond& b = line_.bonds[j];
-    const double wr = w(j + 1);
-    kinetic += b.mass / 3.0 * (wj * wj + wj * wr + wr * wr);
-    if (b.kind == BondKind::open) continue;
-    const double dm = mid(j + 1) - mid(j), dw = wr - wj;
-    (b.kind == BondKind::element ? strain : springs) += b.stiffness * (dm * dm + extra * dw * dw);
+  // Node by node as one sum; a run of equal bonds takes its constants once
+  // (the same operations in the same order: the same bits).
+  for (const BondRun& run : bond_runs_) {
+    const Bond& b = line_.bonds[run.first];
+    const double third = b.mass / 3.0;
+    double& sum = b.kind == BondKind::element ? strain : springs;
+    for (std::size_t j = run.first; j < run.last; ++j) {
+      const double wj = w(j), wr = w(j + 1);
+      kinetic += line_.point_mass[j] * wj * wj;
+      kinetic += third * (wj * wj + wj * wr + wr * wr);
+      if (b.kind == BondKind::open) continue;
+      const double dm = mid(j + 1) - mid(j), dw = wr - wj;
+      sum += b.stiffness * (dm * dm + extra * dw * dw);
+    }
   }
+  const double wl = w(n - 1);
+  kinetic += line_.point_mass[n - 1] * wl * wl;
   e[0] = 0.5 * kinetic;
   e[1] = 0.5 * strain;
   e[2] = 0.5 * springs;

@@ -181,6 +181,7 @@ double PlasticBonds::strain_energy(const double* u0) const {
 }
 
 double PlasticBonds::strain_energy(const double* um, const double* u, const double* up) const {
+  if (pristine_) return 0.0;  // every level's p is 0: the correction is +0 (and costs a pass over the bonds)
   return 0.5 * (energy_correction(um, previous(), u, current()) + energy_correction(u, current(), up, next())) +
          hardening_energy();
 }

@@ -180,6 +180,11 @@ class LinePaper final : public LineScheme {
     std::uint32_t count, top, bottom;
   };
   std::vector<Block> blocks_;
+  // Bonds first..last - 1 alike in kind, mass and stiffness (half_step's runs).
+  struct BondRun {
+    std::size_t first, last;
+  };
+  std::vector<BondRun> bond_runs_;
   std::vector<double> viscosity_;  // c_j per bond
   bool viscous_ = false;
   std::vector<double> extra_;  // the links' s_i h_i and the force ends' values, z-units
