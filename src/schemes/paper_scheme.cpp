@@ -39,26 +39,36 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one)
       stiffness_b_(mesh_.stiffness(b_)) {
   const std::size_t n = mesh_.nodes();
   const double k = law_.stiffness();
+  // On the uniform mesh every matrix has three distinct rows, the first, an
+  // inner and the last, and one off-diagonal: A, B1 and B0 are formed on
+  // those three rows alone, entry by entry as on the whole (the same bits),
+  // rather than as n-row temporaries.
+  const std::size_t inner = std::min<std::size_t>(1, n - 1);
+  auto rows = [&](const Tridiagonal& m) {
+    return Tridiagonal{{m.diag[0], m.diag[inner], m.diag[n - 1]}, {m.off[0], m.off[0]}};
+  };
+  const Tridiagonal M3 = rows(mass_), Ka3 = rows(stiffness_a_), Kb3 = rows(stiffness_b_);
 
   // S = lambda^2 M + K_a + lambda K_b + (k/2) e0 e0^T and D = 2 lambda M + K_b, (6.1)(i).
-  Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiffness_a_);
-  S = Tridiagonal::combine(1.0, S, lambda_, stiffness_b_);
+  Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, M3, 1.0, Ka3);
+  S = Tridiagonal::combine(1.0, S, lambda_, Kb3);
   S.diag[0] += 0.5 * k;
-  const Tridiagonal D = Tridiagonal::combine(2.0 * lambda_, mass_, 1.0, stiffness_b_);
+  const Tridiagonal D = Tridiagonal::combine(2.0 * lambda_, M3, 1.0, Kb3);
 
   const double inv_dt2 = 1.0 / (dt_ * dt_);
   const double half_inv_dt = 0.5 / dt_;
-  const Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(inv_dt2, mass_, alpha_, S), half_inv_dt, D);
-  const Tridiagonal B1 = Tridiagonal::combine(2.0 * inv_dt2, mass_, -(1.0 - 2.0 * alpha_), S);
-  const Tridiagonal B0 = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, mass_, -alpha_, S), half_inv_dt, D);
+  const Tridiagonal A = Tridiagonal::combine(1.0, Tridiagonal::combine(inv_dt2, M3, alpha_, S), half_inv_dt, D);
+  const Tridiagonal B1 = Tridiagonal::combine(2.0 * inv_dt2, M3, -(1.0 - 2.0 * alpha_), S);
+  const Tridiagonal B0 = Tridiagonal::combine(1.0, Tridiagonal::combine(-inv_dt2, M3, -alpha_, S), half_inv_dt, D);
 
   // Every element contributes the same off-diagonal entry on a uniform mesh.
   a_off_ = A.off[0];
   b1_off_ = B1.off[0];
   b0_off_ = B0.off[0];
-  const std::size_t inner = std::min<std::size_t>(1, n - 1);
-  b1_diag_ = {B1.diag[0], B1.diag[inner], B1.diag[n - 1]};
-  b0_diag_ = {B0.diag[0], B0.diag[inner], B0.diag[n - 1]};
+  b1_diag_ = {B1.diag[0], B1.diag[1], B1.diag[2]};
+  b0_diag_ = {B0.diag[0], B0.diag[1], B0.diag[2]};
+  // A's row j: the first, an inner or the last (n = 1: the first is the last).
+  const auto a_diag = [&](std::size_t j) { return A.diag[j == 0 ? (n == 1 ? 2 : 0) : j == n - 1 ? 2 : 1]; };
 
   // The two-ended factorisation of the symmetric positive definite A, once
   // (see twisted_solve): pivots p_j from row 0 down to row k - 1 and from row
@@ -67,16 +77,16 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one)
   inv_.assign(n, 0.0);
   upper_.assign(n, 0.0);
   for (std::size_t j = 0; j < twist; ++j) {
-    inv_[j] = 1.0 / (A.diag[j] - (j > 0 ? a_off_ * upper_[j - 1] : 0.0));
+    inv_[j] = 1.0 / (a_diag(j) - (j > 0 ? a_off_ * upper_[j - 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
   // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
   // exactly that, and its zero up removes the column's coupling.
   for (std::size_t j = last; j > twist; --j) {
-    inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (A.diag[j] - (j < last ? a_off_ * upper_[j + 1] : 0.0));
+    inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (a_diag(j) - (j < last ? a_off_ * upper_[j + 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
-  inv_[twist] = 1.0 / (A.diag[twist] - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
+  inv_[twist] = 1.0 / (a_diag(twist) - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
 
   if (law_.viscosity() > 0.0) {
     dashpot_sigma_ = law_.viscosity() * (alpha_ * lambda_ + 0.5 / dt_);
