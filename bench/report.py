@@ -3,7 +3,8 @@
 against the bare loop and four cases batched in SIMD registers (one Google
 Benchmark run, repetitions interleaved at random so that the machine's noise
 falls on all alike, medians), a sweep's throughput (bench/sweep_throughput.sh),
-the bearing graph's wall time and the SciPy baseline (bench/scipy_baseline.py).
+the bearing graph's wall time, whole processes' start-up and memory
+(bench/whole_process.py) and the SciPy baseline (bench/scipy_baseline.py).
 Every table and number in it comes from this run; rerunning replaces it.
 
     python3 bench/report.py build/release/bench/barimpact_bench docs/benchmarks.md
@@ -15,6 +16,9 @@ import statistics
 import subprocess
 import sys
 from collections import defaultdict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import whole_process  # noqa: E402
 
 # Each scheme's bare loop: its step's arithmetic written flat (bench/step_benchmark.cpp).
 BARE_LOOPS = {
@@ -366,6 +370,8 @@ def main():
                            capture_output=True, text=True, check=True).stdout.strip()
     bearing = bearing_time(os.path.join(build, "barimpact")) if any(n == "BM_Pile/smith-soil" for n, _ in samples) else ""
     large = large_run_section(os.path.join(build, "barimpact"), os.path.join(build, "python"))
+    bare_ns = {m: statistics.median(samples[("BM_BareLoop", m)]) for (n, m) in samples if n == "BM_BareLoop"}
+    whole = whole_process.section(os.path.join(build, "barimpact"), bare_ns)
     env = dict(os.environ, PYTHONPATH=os.path.join(build, "python"))
     scipy = subprocess.run(["/usr/bin/python3", os.path.join(here, "scipy_baseline.py"), "100", "1000", "10000"],
                            capture_output=True, text=True, check=True, env=env).stdout.strip()
@@ -443,7 +449,7 @@ solves from both ends at once (two independent chains). Interior rows use
 the uniform mesh's constant stencils, so a step streams only its state and
 two factor arrays.
 
-{line_section(samples)}{plastic_section(samples)}{pile_section(samples, bearing)}{large}## Sweeps: SIMD batches, threads, MPI
+{line_section(samples)}{plastic_section(samples)}{pile_section(samples, bearing)}{large}{whole}## Sweeps: SIMD batches, threads, MPI
 
 {sweep}
 
