@@ -61,6 +61,10 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
   out_.envelope.tension.assign(out_.envelope.x.size(), 0.0);
   out_.max_compression.body = out_.max_tension.body = out_.pile;
   out_.max_compression.x = out_.max_tension.x = line.x[first_];
+  for (std::size_t j = first_; j < last_; ++j) {  // h / c per element, c = sqrt(E A h / (rho A h))
+    const Bond& b = line.bonds[j];
+    if (b.kind == BondKind::element) transit_ += b.h / std::sqrt(b.axial * b.h / b.mass);
+  }
   start_ = out_;
   mass_ = line.lumped_mass();
   if (line.bodies[ram].is_mass)  // its own mass, not the half elements of a bar welded to it
@@ -70,7 +74,8 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
 void BlowMonitor::begin(const Scheme& /*scheme*/, long long /*steps*/) {
   out_ = start_;
   power_ = energy_ = 0.0;
-  impacted_ = at_rest_ = false;
+  impacted_ = false;
+  at_rest_ = false;
   slip_ = 0.0;
 }
 
@@ -131,8 +136,9 @@ void BlowMonitor::watch_stresses(const Scheme& s) {
   }
 }
 
-// At rest: every node of the pile below 1% of the impact velocity, at a step
-// after the soil's last slip.
+// At rest: every node of the pile below 1% of the impact velocity, at a
+// step after the soil's last slip and after the wave has reached the toe and
+// moved it (before, the pile is still, not at rest).
 void BlowMonitor::watch_rest(const Scheme& s) {
   const double slip = s.soil_slip_work();
   if (slip > slip_) {
@@ -140,6 +146,7 @@ void BlowMonitor::watch_rest(const Scheme& s) {
     at_rest_ = false;
   }
   if (!impacted_ || at_rest_) return;
+  if (s.time() < out_.impact_time + transit_ || !(out_.toe_penetration > 0.0)) return;
   const double limit = 0.01 * std::abs(out_.impact_velocity);
   for (std::size_t j = first_; j <= last_; ++j)
     if (!(std::abs(s.velocity_at(j)) < limit)) return;
@@ -149,6 +156,7 @@ void BlowMonitor::watch_rest(const Scheme& s) {
 
 BlowSummary BlowMonitor::summary() const {
   BlowSummary b = out_;
+  b.impact = impacted_;
   b.finished = at_rest_;
   if (!at_rest_) b.rest_time = std::numeric_limits<double>::quiet_NaN();
   b.set = std::max(0.0, b.toe_penetration - toe_quake_);

@@ -387,6 +387,7 @@ std::string summary_json(const Case& c, const Summary& s) {
             {"toe_penetration", b->toe_penetration},
             {"finished", b->finished},
             {"rest_time", number_or_null(b->rest_time)},
+            {"impact", b->impact},
             {"impedance", number_or_null(b->impedance)},
             {"envelope",
              {{"x", b->envelope.x}, {"compression", b->envelope.compression}, {"tension", b->envelope.tension}}}};
@@ -432,6 +433,35 @@ std::string signed_number(double v) {
 
 }  // namespace
 
+namespace {
+
+// The blow's console lines: "no impact" when the ram never struck; a set of
+// 0 is a refusal only when the pile came to rest; no inf or nan printed.
+std::string blow_text(const BlowSummary& b) {
+  if (!b.impact)
+    return fmt::format(
+        "  blow: no impact: the ram \"{}\" never struck the pile (check its velocity's sign, towards "
+        "the pile, and [blow] ram)\n",
+        b.ram);
+  const std::string counts = b.set > 0    ? fmt::format("{:.3g} blows per 250 mm", b.blows_per_250mm())
+                             : b.finished ? std::string("refusal")
+                                          : std::string("no set yet: the blow is not finished");
+  std::string out = fmt::format("  blow: set {:.4g} mm ({}), max compression {:.4g} MPa, max tension {:.4g} MPa\n",
+                                1e3 * b.set, counts, 1e-6 * b.max_compression.value, 1e-6 * b.max_tension.value);
+  const std::string ratio = std::isnan(b.transfer_ratio())
+                                ? std::string(" (no transfer ratio: the ram brought no energy)")
+                                : fmt::format(" (transfer ratio {:.3g})", b.transfer_ratio());
+  out += fmt::format("  hammer energy {:.4g} J at t = {:.4g}; ENTHRU {}{}; {}\n", b.hammer_energy, b.impact_time,
+                     std::isnan(b.enthru) ? std::string("not measured (no gauge on the pile)")
+                                          : fmt::format("{:.4g} J at {}", b.enthru, b.gauge),
+                     std::isnan(b.enthru) ? "" : ratio,
+                     b.finished ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
+                                : std::string("the pile had not come to rest"));
+  return out;
+}
+
+}  // namespace
+
 std::string summary_text(const Case& c, const Summary& s) {
   std::string out =
       fmt::format("{}: {} steps of dt = {:.6g} on {} elements, t = 0 .. {:.6g}{}\n", s.method, s.steps_done,
@@ -468,21 +498,7 @@ std::string summary_text(const Case& c, const Summary& s) {
     for (const auto& [body, w] : s.plastic->work) out += fmt::format(" {} {:.4g}", body, w);
     out += "\n";
   }
-  if (const auto& b = s.blow) {
-    out +=
-        fmt::format("  blow: set {:.4g} mm ({} blows per 250 mm), max compression {:.4g} MPa, max tension {:.4g} MPa\n",
-                    1e3 * b->set,
-                    b->set > 0 ? fmt::format("{:.3g}", b->blows_per_250mm())
-                               : std::string("refusal:"
-                                             " inf"),
-                    1e-6 * b->max_compression.value, 1e-6 * b->max_tension.value);
-    out += fmt::format("  hammer energy {:.4g} J at t = {:.4g}; ENTHRU {}{}; {}\n", b->hammer_energy, b->impact_time,
-                       std::isnan(b->enthru) ? std::string("not measured (no gauge on the pile)")
-                                             : fmt::format("{:.4g} J at {}", b->enthru, b->gauge),
-                       std::isnan(b->enthru) ? "" : fmt::format(" (transfer ratio {:.3g})", b->transfer_ratio()),
-                       b->finished ? fmt::format("pile at rest from t = {:.4g}", b->rest_time)
-                                   : std::string("the pile had not come to rest"));
-  }
+  if (const auto& b = s.blow) out += blow_text(*b);
   if (std::isfinite(s.energy_initial))
     out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g}{}\n", s.energy_initial,
                        s.energy_final, s.energy_error_max,

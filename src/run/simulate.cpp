@@ -171,7 +171,12 @@ RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::ste
   s.warnings = check_health(c, line_, s, r.history);
   if (blow_) {
     s.blow = blow_->summary();
-    if (!s.blow->finished && s.complete)
+    if (!s.blow->impact && s.complete)
+      s.warnings.push_back(fmt::format(
+          "blow-no-impact: the ram \"{}\" never struck the pile by t = {:.6g}: no set, no blow counts (check the "
+          "ram's velocity, towards the pile, and [blow] ram)",
+          s.blow->ram, s.t_end));
+    else if (!s.blow->finished && s.complete)
       s.warnings.push_back(fmt::format(
           "blow-unfinished: the pile had not come to rest by t = {:.6g} (every node below 1% of the impact velocity "
           "{:.4g} after the soil's last slip): the set and blow counts may still change; raise time.end",

@@ -11,6 +11,7 @@
 
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/run/output.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/registry.hpp"
@@ -424,6 +425,44 @@ TEST(SmithBlow, RefusalAndAnUnfinishedBlow) {
   bool warned = false;
   for (const auto& w : cut.summary.warnings) warned = warned || w.rfind("blow-unfinished:", 0) == 0;
   EXPECT_TRUE(warned);
+}
+
+// A blow cut short before the wave has reached the toe: the pile has not
+// moved yet, so it is not "at rest" (it was, from the first step, before):
+// not finished, warned, and its set of 0 is no refusal on the console.
+TEST(SmithBlow, ABlowCutShortIsUnfinishedNotARefusal) {
+  const Case c = testing::example("pile/steel-pipe-sand.toml", {"time.end=0.0015", "output.fields_at=[]"});
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.blow);
+  const BlowSummary& b = *r.summary.blow;
+  EXPECT_TRUE(b.impact);
+  EXPECT_FALSE(b.finished);
+  EXPECT_TRUE(std::isnan(b.rest_time));
+  bool warned = false;
+  for (const auto& w : r.summary.warnings) warned = warned || w.rfind("blow-unfinished:", 0) == 0;
+  EXPECT_TRUE(warned);
+  const std::string text = summary_text(c, r.summary);
+  EXPECT_EQ(text.find("refusal"), std::string::npos) << text;
+  EXPECT_NE(text.find("not finished"), std::string::npos) << text;
+}
+
+// A ram moving away from the pile never strikes it: no impact, said so; no
+// refusal, no inf or nan on the console, no blow counts or transfer ratio.
+TEST(SmithBlow, ARamMovingAwayIsNoImpact) {
+  const Case c =
+      testing::example("pile/steel-pipe-sand.toml", {"body.ram.velocity=4.43", "time.end=0.01", "output.fields_at=[]"});
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.blow);
+  const BlowSummary& b = *r.summary.blow;
+  EXPECT_FALSE(b.impact);
+  EXPECT_FALSE(b.finished);
+  EXPECT_TRUE(std::isnan(b.blows_per_m()));
+  EXPECT_TRUE(std::isnan(b.transfer_ratio()));
+  const std::string text = summary_text(c, r.summary);
+  EXPECT_NE(text.find("no impact"), std::string::npos) << text;
+  for (const char* word : {"refusal", "inf", "nan"}) EXPECT_EQ(text.find(word), std::string::npos) << word << text;
+  ASSERT_EQ(r.summary.warnings.size(), 1u);
+  EXPECT_EQ(r.summary.warnings[0].rfind("blow-no-impact:", 0), 0u) << r.summary.warnings[0];
 }
 
 // A rigid ram of mass M at v0 welded onto a long elastic pile (impedance Z,

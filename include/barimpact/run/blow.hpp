@@ -36,7 +36,11 @@ struct BlowSummary {
   double enthru = std::numeric_limits<double>::quiet_NaN();  ///< max over t of int N v dt at the gauge
   double impact_time = 0.0, impact_velocity = 0.0;
   double hammer_energy = 0.0;  ///< the ram's kinetic energy at impact
-  bool finished = false;       ///< the pile came to rest after the last soil slip
+  bool impact = false;         ///< the ram struck the pile (false: no set, no blow counts, no transfer)
+  /// The pile came to rest: every node below 1% of the impact velocity at a
+  /// step after the soil's last slip, once the wave has reached the toe and
+  /// moved it (a blow cut short before then is not finished).
+  bool finished = false;
   double rest_time = std::numeric_limits<double>::quiet_NaN();
   double impedance = std::numeric_limits<double>::quiet_NaN();  ///< Z = A sqrt(E rho) at the gauge
   /// The stress envelopes along the pile: per element its middle x and its
@@ -45,9 +49,17 @@ struct BlowSummary {
     std::vector<double> x, compression, tension;
   } envelope;
 
-  [[nodiscard]] double blows_per_m() const { return set > 0.0 ? 1.0 / set : std::numeric_limits<double>::infinity(); }
+  /// Blows per metre: infinite at refusal (set 0 after a finished blow), NaN
+  /// when the ram never struck.
+  [[nodiscard]] double blows_per_m() const {
+    if (!impact) return std::numeric_limits<double>::quiet_NaN();
+    return set > 0.0 ? 1.0 / set : std::numeric_limits<double>::infinity();
+  }
   [[nodiscard]] double blows_per_250mm() const { return 0.25 * blows_per_m(); }
-  [[nodiscard]] double transfer_ratio() const { return enthru / hammer_energy; }
+  /// ENTHRU over the hammer's energy; NaN when the ram brought none.
+  [[nodiscard]] double transfer_ratio() const {
+    return hammer_energy > 0.0 ? enthru / hammer_energy : std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 /// Whether a case's run reports a blow: Smith's soil on its line, or [blow].
@@ -79,6 +91,7 @@ class BlowMonitor final : public Observer {
   double ram_energy_ = 0.0, ram_velocity_ = 0.0;  // at the last step observed
   bool impacted_ = false;
   double slip_ = 0.0;     // the soil's slip work at the last step
+  double transit_ = 0.0;  // the wave's time from the pile's head to its toe
   bool at_rest_ = false;  // resting since the last slip
 };
 
