@@ -569,6 +569,25 @@ def _map_figure(data, field, name, title, symbol, quantity, cmap, out, formats, 
     _save(fig, out, name, formats, written)
 
 
+def run_step(data):
+    """The time step the run took: summary.json's (case.toml's time.step may
+    be "auto"), else the spacing of its history's rows over output.every."""
+    step = data.summary.get("step") if data.summary else None
+    if isinstance(step, (int, float)) and not isinstance(step, bool) and step > 0:
+        return float(step)
+    spacing = np.diff(np.asarray(data.history.get("t", ())))
+    spacing = spacing[spacing > 0]
+    every = data.case.get("output", {}).get("every", 1)
+    return float(np.median(spacing)) / every if spacing.size else 0.0
+
+
+def _run_settings(data):
+    """The run's case as {dotted key: value} (flat_case), time.step the step it took."""
+    settings = flat_case(data.case)
+    settings["time.step"] = run_step(data)
+    return settings
+
+
 def _exact_snapshot(data, exact, field):
     """{run snapshot: exact snapshot} of the same times, where the exact
     `field` is known (an exact solution may hold fewer snapshots)."""
@@ -577,8 +596,7 @@ def _exact_snapshot(data, exact, field):
         return {}
     distance = np.abs(np.subtract.outer(data.field_t, exact.field_t))  # a few hundred snapshots at most
     j = distance.argmin(axis=1)
-    step = data.case.get("time", {}).get("step", 0.0)
-    close = distance[np.arange(j.size), j] <= 0.5 * step + 1e-12 * np.abs(data.field_t)
+    close = distance[np.arange(j.size), j] <= 0.5 * run_step(data) + 1e-12 * np.abs(data.field_t)
     return {i: int(j[i]) for i in np.flatnonzero(close) if np.any(np.isfinite(values[j[i]]))}
 
 
@@ -832,7 +850,7 @@ def compare(sources, out, formats=("png", "svg"), labels=None, name="compare"):
     runs = [_data_of(s) for s in sources]
     units = runs[0].units
     if labels is None:
-        labels = legend_labels([flat_case(r.case) for r in runs], units)
+        labels = legend_labels([_run_settings(r) for r in runs], units)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     written = []
