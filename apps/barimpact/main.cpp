@@ -123,7 +123,7 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
   const auto c = barimpact::Case::from_file(case_path, overrides);
-  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run");
+  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, {{c.source}, {}});
   barimpact::RunOptions options;
   options.interrupt = &interrupted;
   bool reported = false;

@@ -236,9 +236,9 @@ Result.__repr__ = _result_repr
 
 
 def _case(case, set):
-    if isinstance(case, Case):
-        return case if set is None else Case(case.to_toml(), set=set)
-    return Case(case, set=set)
+    if isinstance(case, Case) and set is None:
+        return case
+    return Case(case, set=set)  # a Case with overrides keeps the file it was read from
 
 
 def _jobs(jobs):

@@ -9,7 +9,7 @@ from . import Table
 
 _PathArg = Union[str, os.PathLike[str]]
 # A case: a path, TOML text, or a dict {section: {key: value}} ([[body]] as a list of dicts).
-_CaseSource = Union[_PathArg, Mapping[str, Any], None]
+_CaseSource = Union[_PathArg, Mapping[str, Any], "Case", None]
 # Overrides: {"bar.elements": 200} or ["bar.elements=200"].
 _Overrides = Union[Mapping[str, Any], Sequence[str], None]
 _Array = npt.NDArray[np.float64]
@@ -18,7 +18,7 @@ class InputError(ValueError):
     """Bad input, with the command line's one-line message."""
 
 class Case:
-    """A validated case from a TOML file path, TOML text or a dict; `set` overrides keys."""
+    """A validated case from a TOML file path, TOML text, a dict or a Case; `set` overrides keys."""
 
     def __init__(self, source: _CaseSource = None, set: _Overrides = None) -> None: ...
     def to_toml(self) -> str:
@@ -111,6 +111,7 @@ def _bearing(case: _PathArg, out: str, capacity: str, toe_share: float | None, j
 def _hopkinson(setup: _PathArg | Mapping[str, Any], out: str | None = None, force: bool = False,
                draw: Callable[[str], object] | None = None) -> tuple[dict[str, _Array], str, list[str]]: ...
 def _prepare_output_directory(target: _PathArg, command: str, entries: Sequence[str], force: bool) -> None: ...
+def _run_case_file(dir: _PathArg) -> str: ...
 def _written_by_barimpact(dir: _PathArg) -> bool: ...
 def _mark_entries(dir: _PathArg, entries: Sequence[str]) -> None: ...
 _figure_names: tuple[str, ...]

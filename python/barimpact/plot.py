@@ -41,6 +41,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import _core  # noqa: E402
+
 COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic")
 FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
 DPI = 120
@@ -240,7 +242,8 @@ def load(run_dir, with_fields=True):
     d = Path(run_dir)
     if not is_run_directory(d):
         raise ValueError(f"{run_dir}: no history.csv or results.h5 (not a directory written by barimpact run)")
-    case = tomllib.loads((d / "case.toml").read_text())
+    case_file = Path(_core._run_case_file(d))  # case.toml, or case.resolved.toml beside the user's case.toml
+    case = tomllib.loads(case_file.read_text())
     if case.get("output", {}).get("format") == "hdf5":  # the file the case says (a user's may lie beside it)
         history, (x, field_t, fields, body) = _read_results_h5(d / "results.h5", with_fields)
     else:
@@ -258,7 +261,7 @@ def load(run_dir, with_fields=True):
     if fields:
         u, sigma, eps_p = fields["u"], fields["sigma"], fields.get("eps_p")
     summary = json.loads((d / "summary.json").read_text())
-    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p, case_source=d / "case.toml")
+    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p, case_source=case_file)
 
 
 def _from_result(result):

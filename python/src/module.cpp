@@ -121,6 +121,12 @@ std::vector<Case::Override> overrides_from(const py::object& set) {
 Case make_case(const py::object& source, const py::object& set) {
   const auto overrides = overrides_from(set);
   if (source.is_none()) return Case::from_string("", overrides, "defaults");
+  if (py::isinstance<Case>(source)) {  // a case with overrides: still the file it was read from
+    const auto& base = source.cast<const Case&>();
+    Case c = Case::from_string(base.to_toml(), overrides, "string");
+    c.source = base.source;
+    return c;
+  }
   if (py::isinstance<py::dict>(source)) {
     std::ostringstream text;
     text << toml::toml_formatter(table_from_dict(source.cast<py::dict>()));
@@ -410,7 +416,7 @@ using ResultClass = py::class_<PyResult>;
 void bind_case(py::module_& m) {
   py::class_<Case>(m, "Case")
       .def(py::init(&make_case), py::arg("source") = py::none(), py::arg("set") = py::none(),
-           "A validated case from a TOML file path, TOML text or a dict {section: {key: value}};\n"
+           "A validated case from a TOML file path, TOML text, a dict {section: {key: value}} or a Case;\n"
            "`set` overrides keys: {'bar.elements': 200} or ['bar.elements=200'].")
       .def("to_toml", &Case::to_toml, "The resolved case as TOML, every default filled in")
       .def_property_readonly("steps", &Case::step_count, "The number of steps N")
@@ -541,7 +547,7 @@ void bind_run_record(ResultClass& result) {
       .def(
           "write",
           [](const PyResult& p, const std::string& dir, bool force) {
-            RunDirectory out(dir, force, p.command);
+            RunDirectory out(dir, force, p.command, true, {{p.c.source}, {}});
             out.commit(p.c, p.r);
           },
           py::arg("dir"), py::kw_only(), py::arg("force") = false,
@@ -618,6 +624,10 @@ void bind_output_rule(py::module_& m) {
       },
       py::arg("target"), py::arg("command"), py::arg("entries"), py::arg("force"),
       "The output rule for a directory filled bit by bit (output_directory.hpp): checks, creates, marks");
+
+  m.def(
+      "_run_case_file", [](const py::object& dir) { return run_case_file(fspath(dir)).string(); }, py::arg("dir"),
+      "The resolved case of a run directory: case.toml, or case.resolved.toml (output.hpp)");
 
   m.def(
       "_written_by_barimpact", [](const py::object& dir) { return written_by_barimpact(fspath(dir)); }, py::arg("dir"),

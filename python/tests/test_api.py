@@ -342,6 +342,31 @@ def test_plot_of_a_run_directory_follows_the_command(tmp_path):
     assert barimpact.plot(r, tmp_path / "of-result", formats=("png",))
 
 
+def test_force_never_writes_over_the_case_being_run(tmp_path):
+    """force=True into the case file's own directory: the user's case.toml
+    stays as written (comments and all), the resolved case goes to
+    case.resolved.toml, which is what reading the run back takes."""
+    proj = tmp_path / "proj"
+    proj.mkdir()
+    text = "# my comments\n" + (EXAMPLES / "paper-example1.toml").read_text()
+    (proj / "case.toml").write_text(text)
+    short = {"time.end": 0.5, "output.fields_at": []}
+    barimpact.run(proj / "case.toml", out=proj, force=True, set=short)
+    assert (proj / "case.toml").read_text() == text
+    assert "\nend = 0.5\n" in (proj / "case.resolved.toml").read_text()
+    assert barimpact.load(proj).t[-1] == 0.5
+    barimpact.exact(barimpact.Case(proj / "case.toml"), out=proj, force=True, set={**short, "time.end": 0.25})
+    assert (proj / "case.toml").read_text() == text and barimpact.load(proj).t[-1] == 0.25
+    barimpact.run(barimpact.Case(proj / "case.toml", set=short)).write(str(proj), force=True)
+    assert (proj / "case.toml").read_text() == text and barimpact.load(proj).t[-1] == 0.5
+    # A run directory of barimpact's holding the case being run is not replaced.
+    barimpact.run(EXAMPLES / "paper-example1.toml", out=tmp_path / "run", set=short)
+    before = (tmp_path / "run" / "history.csv").read_bytes()
+    with pytest.raises(barimpact.InputError, match="case.toml, which this command reads"):
+        barimpact.run(tmp_path / "run" / "case.toml", out=tmp_path / "run", force=True)
+    assert (tmp_path / "run" / "history.csv").read_bytes() == before
+
+
 def test_run_and_exact_write_with_the_commands_options(tmp_path, cli_runs):
     r = barimpact.run(EXAMPLES / "paper-example1.toml", out=tmp_path / "run")
     for f in ("history.csv", "fields.csv", "case.toml"):

@@ -193,7 +193,7 @@ struct RunGauge {
 // Sets the channel's file: the run's history.csv, or its results.h5.
 RunGauge read_run_gauge(const SetupReader& r, ChannelSetup& ch, const std::string& specimen_body) {
   const std::string s = ch.section;
-  const auto case_file = ch.run / "case.toml";
+  const auto case_file = run_case_file(ch.run);
   if (!std::filesystem::is_regular_file(case_file) ||
       (!std::filesystem::is_regular_file(ch.run / history_file(OutputFormat::csv)) &&
        !std::filesystem::is_regular_file(ch.run / history_file(OutputFormat::hdf5))))

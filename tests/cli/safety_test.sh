@@ -156,6 +156,30 @@ echo mine > "$work/.results.old-1999"  # a user's file that looks like staging s
 check "run beside stale staging" "$bin" run "$ex1" --out "$work/kept" "${fast[@]}" > /dev/null
 ls -a "$work" | grep -q partial && bad "stale staging left" || ok
 check "a user's look-alike file kept" grep -q mine "$work/.results.old-1999"
+# What a command reads is never written over, --force or not. The case run
+# into its own directory with --force: the user's case.toml stays as it is
+# (comments and all), the resolved case goes to case.resolved.toml, which
+# what reads the run back takes.
+mkdir "$work/proj" && { echo "# my comments"; cat "$ex1"; } > "$work/proj/case.toml"
+cp "$work/proj/case.toml" "$work/case-before.toml"
+check "run into the case's directory" "$bin" run "$work/proj/case.toml" --out "$work/proj" --force "${fast[@]}" > /dev/null
+check "the user's case.toml kept" cmp -s "$work/proj/case.toml" "$work/case-before.toml"
+check "the resolved case beside it" grep -q '^end = 0.5' "$work/proj/case.resolved.toml"
+check "exact into the case's directory" "$bin" exact "$work/proj/case.toml" --out "$work/proj" --force \
+  --set time.end=0.25 --set output.fields_at=[] > /dev/null
+check "the user's case.toml kept by exact" cmp -s "$work/proj/case.toml" "$work/case-before.toml"
+check "exact's resolved case" grep -q '^end = 0.25' "$work/proj/case.resolved.toml"
+(cd "$work/proj" && "$bin" run case.toml --out . --force "${fast[@]}" > /dev/null) && ok || bad "run case.toml --out ."
+check "the user's case.toml kept from its directory" cmp -s "$work/proj/case.toml" "$work/case-before.toml"
+# A case read from a directory barimpact would replace: refused, --force or not.
+"$bin" run "$ex1" --out "$work/rerun" "${fast[@]}" > /dev/null || bad "run for a rerun"
+before=$(listing "$work/rerun")
+for force in "" --force; do
+  expect_refusal "--out $work/rerun: holds $work/rerun/case.toml, which this command reads" "$before" "$work/rerun" \
+    run "$work/rerun/case.toml" --out "$work/rerun" $force
+done
+expect_refusal "is the file this command reads" "$before" "$work/rerun" \
+  run "$work/rerun/case.toml" --out "$work/rerun/case.toml" --force
 
 # 2. Warnings and --strict.
 "$bin" run "$ex1" --out "$work/stiff" --set obstacle.stiffness=1e4 --set time.step=0.001 --set output.fields_at=[] \

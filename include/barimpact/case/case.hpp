@@ -156,6 +156,9 @@ struct Case {
   OutputData output;
   /// [units] system: "SI" (figures label N, m, s, Pa, J) or "none" (unit-free numbers).
   std::string units = "none";
+  /// The case file it was read from (from_file), empty for text: an input
+  /// its results never overwrite.
+  std::filesystem::path source;
 
   /// True when the line is one uniform bar whose near end meets today's
   /// obstacle kinds (none, elastic, viscoelastic, rigid) and whose far end is
