@@ -335,7 +335,7 @@ py::tuple hopkinson_binding(const py::object& setup, const std::optional<std::st
     r = analyse_hopkinson(s);
   }
   if (out) {
-    RunDirectory dir(*out, force, "hopkinson");
+    RunDirectory dir(*out, force, "hopkinson", true, hopkinson_inputs(s));
     dir.commit([&](const std::filesystem::path& staging) {
       write_text(staging / "hopkinson.csv", hopkinson_csv(r));
       write_text(staging / "summary.json", hopkinson_summary_json(r));

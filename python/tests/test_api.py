@@ -323,6 +323,22 @@ def test_hopkinson_writes_the_commands_directory(tmp_path):
     assert not (tmp_path / "from-dict" / "stress_strain.png").exists()
 
 
+def test_a_study_or_analysis_never_writes_over_the_run_it_reads(tmp_path):
+    """hopkinson analysing a run into that run's directory replaced it; a
+    study of a run's case.toml into that run's directory resumed in it."""
+    run = tmp_path / "shpb"
+    barimpact.run(EXAMPLES / "hopkinson" / "shpb.toml", out=run)
+    before = (run / "history.csv").read_bytes()
+    setup = {"specimen": {"body": "specimen"}, "incident": {"run": str(run), "gauge": "incident"},
+             "transmitted": {"run": str(run), "gauge": "transmitted"}}
+    for out in (run, tmp_path):
+        with pytest.raises(barimpact.InputError, match="a directory this command reads|is the directory this command"):
+            barimpact.hopkinson(setup, out, force=True, no_plot=True)
+    with pytest.raises(barimpact.InputError, match="which this command reads"):
+        barimpact.converge(run / "case.toml", run, levels=2, force=True, no_plot=True)
+    assert (run / "history.csv").read_bytes() == before and not (run / "runs").exists()
+
+
 def test_plot_of_a_run_directory_follows_the_command(tmp_path):
     r = barimpact.run(barimpact.Case(EXAMPLES / "paper-example1.toml", set={"time.end": 0.5,
                                                                             "output.fields_at": [0.25]}),

@@ -436,7 +436,19 @@ HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::f
 
 HopkinsonSetup HopkinsonSetup::from_file(const std::filesystem::path& path) {
   const std::string text = read_input_file(path, "setup file");
-  return from_string(text, path.parent_path(), path.string());
+  HopkinsonSetup s = from_string(text, path.parent_path(), path.string());
+  s.file = path;
+  return s;
+}
+
+CommandInputs hopkinson_inputs(const HopkinsonSetup& setup) {
+  CommandInputs in;
+  if (!setup.file.empty()) in.files.push_back(setup.file);
+  for (const ChannelSetup* ch : {&setup.incident, &setup.transmitted}) {
+    in.files.insert(in.files.end(), ch->files.begin(), ch->files.end());
+    if (!ch->run.empty()) in.directories.push_back(ch->run);
+  }
+  return in;
 }
 
 }  // namespace barimpact

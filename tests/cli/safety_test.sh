@@ -177,9 +177,55 @@ before=$(listing "$work/rerun")
 for force in "" --force; do
   expect_refusal "--out $work/rerun: holds $work/rerun/case.toml, which this command reads" "$before" "$work/rerun" \
     run "$work/rerun/case.toml" --out "$work/rerun" $force
+  expect_refusal "which this command reads" "$before" "$work/rerun" converge "$work/rerun/case.toml" \
+    --out "$work/rerun" --levels 2 $force
 done
 expect_refusal "is the file this command reads" "$before" "$work/rerun" \
   run "$work/rerun/case.toml" --out "$work/rerun/case.toml" --force
+# A sweep's file and its case beside a sweep run into their directory stay.
+mkdir "$work/sweep-here" && cp "$ex1" "$work/sweep-here/case.toml"
+printf '%b' 'case = "case.toml"\n[set]\ntime.end = 0.5\noutput.fields_at = []\n[[axis]]\nkey = "bar.elements"\nvalues = [50, 100]\n' \
+  > "$work/sweep-here/sweep.toml"
+cp -r "$work/sweep-here" "$work/sweep-before"
+check "sweep into its own directory" "$bin" sweep "$work/sweep-here/sweep.toml" --out "$work/sweep-here" --force > /dev/null
+check "the sweep's inputs kept" diff -q "$work/sweep-here/sweep.toml" "$work/sweep-before/sweep.toml"
+check "the sweep's case kept" diff -q "$work/sweep-here/case.toml" "$work/sweep-before/case.toml"
+# A sweep whose case lies in a directory barimpact would resume in: refused.
+printf 'case = "%s"\n[[axis]]\nkey = "bar.elements"\nvalues = [50, 100]\n' "$work/rerun/case.toml" > "$work/sweep-rerun.toml"
+expect_refusal "which this command reads" "$before" "$work/rerun" sweep "$work/sweep-rerun.toml" --out "$work/rerun" --force
+# hopkinson: a signal file of the name of one of its results is refused, not replaced.
+"$bin" run "$examples/hopkinson/shpb.toml" --out "$work/shpb" > /dev/null 2>&1 || bad "shpb run"
+mkdir "$work/signals"
+for g in incident transmitted; do
+  awk -F, -v g="gauge.$g.strain" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == g) c = i; print "t,strain"; next }
+    { print $1 "," $c }' "$work/shpb/history.csv" > "$work/signals/$g.csv"
+done
+mv "$work/signals/incident.csv" "$work/signals/hopkinson.csv"
+printf '[bar]\nmodulus = 200e9\ndensity = 7850.0\ndiameter = 0.020\n[specimen]\nlength = 0.006\ndiameter = 0.010\n%b\n%b\n' \
+  '[incident]\nsignal = "hopkinson.csv"\ngauge_to_specimen = 0.75' \
+  '[transmitted]\nsignal = "transmitted.csv"\ngauge_to_specimen = 0.75' > "$work/signals/setup.toml"
+before=$(listing "$work/signals")
+expect_refusal "would write hopkinson.csv over" "$before" "$work/signals" hopkinson "$work/signals/setup.toml" \
+  --out "$work/signals" --force --no-plot
+# The directory a command reads, or a parent of it: refused even with --force
+# (hopkinson analysing a run into that run's directory replaced it).
+sed "s|run = .*|run = \"$work/shpb\"|" "$examples/hopkinson/analyse-run.toml" > "$work/analyse-shpb.toml"
+before=$(listing "$work/shpb")
+for force in "" --force; do
+  expect_refusal "--out $work/shpb: is the directory this command reads" "$before" "$work/shpb" \
+    hopkinson "$work/analyse-shpb.toml" --out "$work/shpb" --no-plot $force
+  expect_refusal "--out $work/shpb: is the directory this command reads" "$before" "$work/shpb" \
+    plot "$work/shpb" --out "$work/shpb" $force
+done
+mkdir -p "$work/outer/inner"
+"$bin" run "$examples/hopkinson/shpb.toml" --out "$work/outer/inner/run" > /dev/null 2>&1 || bad "run for a parent"
+sed "s|run = .*|run = \"$work/outer/inner/run\"|" "$examples/hopkinson/analyse-run.toml" > "$work/analyse-inner.toml"
+before=$(listing "$work/outer")
+expect_refusal "is a parent of $work/outer/inner/run, a directory this command reads" "$before" "$work/outer" \
+  plot "$work/outer/inner/run" --out "$work/outer" --force
+expect_refusal "a directory this command reads" "$before" "$work/outer" \
+  hopkinson "$work/analyse-inner.toml" --out "$work/outer/inner" --force
+check "the analysed run kept" test -s "$work/shpb/history.csv"
 
 # 2. Warnings and --strict.
 "$bin" run "$ex1" --out "$work/stiff" --set obstacle.stiffness=1e4 --set time.step=0.001 --set output.fields_at=[] \
