@@ -603,6 +603,7 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
     args.emplace_back("--out");
     args.push_back(figures);
   }
+  if (force) args.emplace_back("--force");  // the package applies the same rule again
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

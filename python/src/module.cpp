@@ -615,15 +615,39 @@ void bind_studies(py::module_& m) {
         py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");
 }
 
+// What a Python writer reads: directories it never writes over.
+CommandInputs directories_read(const std::vector<std::string>& reads) {
+  return {{}, std::vector<std::filesystem::path>(reads.begin(), reads.end())};
+}
+
 // The output rule for what Python writes itself (figures, plot's directory).
 void bind_output_rule(py::module_& m) {
   m.def(
       "_prepare_output_directory",
-      [](const py::object& target, const std::string& command, const std::vector<std::string>& entries, bool force) {
-        prepare_output_directory(fspath(target), command, entries, force);
+      [](const py::object& target, const std::string& command, const std::vector<std::string>& entries, bool force,
+         const std::vector<std::string>& reads) {
+        prepare_output_directory(fspath(target), command, entries, force, "--out", directories_read(reads));
       },
-      py::arg("target"), py::arg("command"), py::arg("entries"), py::arg("force"),
-      "The output rule for a directory filled bit by bit (output_directory.hpp): checks, creates, marks");
+      py::arg("target"), py::arg("command"), py::arg("entries"), py::arg("force"), py::arg("reads") = py::list(),
+      "The output rule for a directory filled bit by bit (output_directory.hpp): checks (never over the "
+      "directories `reads`, which the caller reads), creates, marks");
+
+  m.def(
+      "_check_output_directory",
+      [](const py::object& target, bool force, const std::vector<std::string>& reads) {
+        (void)check_output_directory(fspath(target), force, "--out", directories_read(reads));
+      },
+      py::arg("target"), py::arg("force"), py::arg("reads") = py::list(),
+      "The output rule's check alone (output_directory.hpp): InputError when `target` may not be written");
+
+  m.def(
+      "_output_command", [](const py::object& dir) { return output_command(fspath(dir)); }, py::arg("dir"),
+      "The command that wrote `dir` by its marker (\"run\", \"converge\", ...), or \"\"");
+
+  m.def(
+      "_is_staging",
+      [](const py::object& dir) { return std::filesystem::exists(std::filesystem::path(fspath(dir)) / staging_flag); },
+      py::arg("dir"), "Whether `dir` is a staging directory barimpact fills (output.hpp's RunDirectory)");
 
   m.def(
       "_run_case_file", [](const py::object& dir) { return run_case_file(fspath(dir)).string(); }, py::arg("dir"),

@@ -79,6 +79,11 @@ echo "not,numbers" >> "$work/bad-plot/history.csv"
 "$bin" plot "$work/bad-plot" > /dev/null 2>&1 && bad "plot of a broken history.csv succeeded"
 check "figures/ made" test -d "$work/bad-plot/figures"
 check "the marker lists figures after a failed plot" grep -q '"figures"' "$work/bad-plot/.barimpact"
+# --force reaches the figures: drawn beside the user's files, which stay.
+make_user_dir "$work/plot-theirs"
+check "plot --force beside a user's files" "$bin" plot "$work/for-plot" --out "$work/plot-theirs" --force > /dev/null
+check "the figures beside them" test -s "$work/plot-theirs/energy.svg"
+check "the user's files kept by plot --force" user_dir_intact "$work/plot-theirs"
 fi
 check "a run directory with figures/ is replaced" "$bin" run "$ex1" --out "$work/bad-plot" "${fast[@]}" > /dev/null
 # --force writes beside the user's files and deletes none of them.
