@@ -125,7 +125,7 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
   const auto c = barimpact::Case::from_file(case_path, overrides);
-  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run");
+  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, {{c.source}, {}});
   barimpact::RunOptions options;
   options.interrupt = &interrupted;
   bool reported = false;
@@ -431,7 +431,7 @@ std::optional<int> mpi_sweep_command(const std::string& sweep_path, const std::f
     if (o.batch) (void)barimpact::simd_path();
     plan = barimpact::SweepPlan::from_file(sweep_path);
     if (rank == 0) {  // the other ranks only run the points rank 0 hands out
-      barimpact::prepare_sweep(dir, o, flags.force);
+      barimpact::prepare_sweep(dir, o, flags.force, plan->inputs());
       start = barimpact::resume_sweep(*plan, dir);
     }
   } catch (...) {
@@ -532,8 +532,9 @@ int bearing_command(const BearingArgs& a) {
 // hopkinson: the analysis first (a signal it refuses writes nothing), then
 // hopkinson.csv, summary.json and the figures, moved into place together.
 int hopkinson_command(const std::string& setup_path, const std::string& out, bool no_plot, const WriteFlags& flags) {
-  const auto result = barimpact::analyse_hopkinson(std::filesystem::path(setup_path));
-  barimpact::RunDirectory dir(out, flags.force, "hopkinson");
+  const auto setup = barimpact::HopkinsonSetup::from_file(setup_path);
+  const auto result = barimpact::analyse_hopkinson(setup);
+  barimpact::RunDirectory dir(out, flags.force, "hopkinson", true, barimpact::hopkinson_inputs(setup));
   bool plotted = false;
   dir.commit([&](const std::filesystem::path& staging) {
     barimpact::write_text(staging / "hopkinson.csv", barimpact::hopkinson_csv(result));
@@ -601,12 +602,13 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   // before figures/ is there (a folder the marker does not list makes the
   // directory someone else's).
   const bool ours = figures.empty() && barimpact::written_by_barimpact(run_dir);
-  (void)barimpact::check_output_directory(target, force);  // the output rule first, then what plotting needs
+  const barimpact::CommandInputs reads{{}, {run_dir}};
+  (void)barimpact::check_output_directory(target, force, "--out", reads);  // the rule first, then what plotting needs
   if (python_package_dir().empty())
     throw barimpact::InputError(
         "plot: the Python package barimpact is not installed beside this command (python/ in a build tree, " +
         std::string(BARIMPACT_PYTHON_FROM_BIN) + " from its bin/)");
-  barimpact::prepare_output_directory(target, "plot", names, force);
+  barimpact::prepare_output_directory(target, "plot", names, force, "--out", reads);
   if (ours) barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
   setenv("PYTHONPATH", python_path().c_str(), 1);
   std::vector<std::string> args{python_interpreter(), "-m", "barimpact", "plot", run_dir};
@@ -614,6 +616,7 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
     args.emplace_back("--out");
     args.push_back(figures);
   }
+  if (force) args.emplace_back("--force");  // the package applies the same rule again
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);

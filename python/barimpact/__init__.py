@@ -237,9 +237,9 @@ Result.__repr__ = _result_repr
 
 
 def _case(case, set):
-    if isinstance(case, Case):
-        return case if set is None else Case(case.to_toml(), set=set)
-    return Case(case, set=set)
+    if isinstance(case, Case) and set is None:
+        return case
+    return Case(case, set=set)  # a Case with overrides keeps the file it was read from
 
 
 def _jobs(jobs):
@@ -497,36 +497,25 @@ def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
     return result
 
 
-# What plot.py may draw: the names the figures' directory is marked with
-# before it fills, the command's list (run/figure_names.hpp).
-_FIGURES = _core._figure_names
-
-
 def plot(dir, out=None, *, force=False, formats=("png", "svg")):
     """The figures of a run, PNG and SVG (`barimpact plot DIR [--out
     FIGURES]`). `dir` a run directory (written by `barimpact run` or
-    `Result.write`): the figures go to DIR/figures, or `out`, by the
-    command's output rule (a new or empty directory, or one barimpact wrote;
-    `force` as --force), and DIR/figures is listed as the run's. Or `dir`
-    a `Result` (or `RunData`): the figures go to `out` (default ./figures) as
-    they are. Returns the paths written."""
+    `Result.write`): the figures go to DIR/figures (listed as the run's), or
+    `out`. Or `dir` a `Result` (or `RunData`): the figures go to `out`
+    (default ./figures). Either way by the command's output rule: a new or
+    empty directory, or one barimpact wrote; someone else's only with force
+    (beside their files, as --force); never $HOME, / or a parent of the
+    working directory, nor the directory plotted (InputError). Returns the
+    paths written."""
     if not isinstance(dir, (str, os.PathLike)):
-        return _figures.plot(dir, out, formats)
+        return _figures.plot(dir, out, formats, force=force)
     run_dir = _Path(os.fspath(dir))
-    run = _figures.is_run_directory(run_dir)
-    sweep = not run and (run_dir / "sweep.csv").is_file()
-    if not run and not sweep:
-        raise InputError(f"plot: {os.fspath(dir)} holds no history.csv, results.h5 or sweep.csv "
-                         "(give a directory written by barimpact run or sweep)")
-    target = run_dir / "figures" if out is None else _Path(os.fspath(out))
-    ours = out is None and _core._written_by_barimpact(run_dir)  # asked before figures/ is there
-    _core._prepare_output_directory(target, "plot", [f"{f}.{e}" for f in _FIGURES for e in formats], bool(force))
-    if ours:
-        _core._mark_entries(run_dir, ["figures"])  # DIR/figures belongs to its run directory
-    if sweep:  # each sweep.csv output against the swept keys, as `barimpact plot SWEEP_DIR`
-        from .convergence import plot_sweep
-        return plot_sweep(run_dir, target)
-    return _figures.plot(load(run_dir), target, formats)
+    if _figures.is_run_directory(run_dir):
+        return _figures.plot(run_dir, out, formats, force=force)
+    if (run_dir / "sweep.csv").is_file():  # each sweep.csv output against the swept keys, as `barimpact plot SWEEP_DIR`
+        return _convergence_figures.plot_sweep(run_dir, out, formats, force=force)
+    raise InputError(f"plot: {os.fspath(dir)} holds no history.csv, results.h5 or sweep.csv "
+                     "(give a directory written by barimpact run or sweep)")
 
 
 def exact_example1(x, t, length=1.0, stiffness=1.0, density=1.0, v0=-1.0):

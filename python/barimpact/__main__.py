@@ -1,34 +1,30 @@
-"""python3 -m barimpact plot DIR [DIR ...] [--out FIGURES] (what `barimpact plot` runs).
+"""python3 -m barimpact plot DIR [DIR ...] [--out FIGURES] [--force] (what `barimpact plot` runs).
 
 DIR is a run directory (history.csv or results.h5: the run's figures) or a sweep
 directory (sweep.csv: each output against the swept keys, and the runs'
-U(t) and R(t) overlaid); several run directories draw one comparison."""
+U(t) and R(t) overlaid); several run directories draw one comparison. The
+figures go by the output rule of `barimpact run --out` (--force as its)."""
 import argparse
 import sys
 from pathlib import Path
 
-from .plot import compare, is_run_directory, load, mark_figures, plot
+from .plot import compare, is_run_directory, plot
 
 
-def _plot(dirs, out):
+def _plot(dirs, out, force):
     """The figures of one run or sweep directory, or the comparison of several runs."""
     if len(dirs) > 1:
         if out is None:
             raise ValueError("several directories: give --out for their comparison")
-        return compare([load(d) for d in dirs], out)
+        return compare(dirs, out, force=force)
     d = Path(dirs[0])
-    target = Path(out) if out else d / "figures"
     if is_run_directory(d):
-        written = plot(load(d), target)
-    elif (d / "sweep.csv").is_file():
+        return plot(d, out, force=force)
+    if (d / "sweep.csv").is_file():
         from .convergence import plot_sweep
-        written = plot_sweep(d, target)
-    else:
-        raise ValueError(f"{d}: no history.csv, results.h5 or sweep.csv (not a directory written by barimpact run or "
-                         "sweep)")
-    if not out:
-        mark_figures(d)
-    return written
+        return plot_sweep(d, out, force=force)
+    raise ValueError(f"{d}: no history.csv, results.h5 or sweep.csv (not a directory written by barimpact run or "
+                     "sweep)")
 
 
 def _run(args):
@@ -43,7 +39,7 @@ def _run(args):
     if args.command == "converge-plot":
         from .convergence import plot_study
         return plot_study(args.dir)
-    return _plot(args.dir, args.out)
+    return _plot(args.dir, args.out, args.force)
 
 
 def _message(e):
@@ -59,6 +55,7 @@ def main(argv=None):
     p = sub.add_parser("plot", help="draw the figures of a run or sweep directory, or compare runs")
     p.add_argument("dir", nargs="+")
     p.add_argument("--out", default=None, help="where the figures go (default: DIR/figures)")
+    p.add_argument("--force", action="store_true", help="write the figures beside other files (as run's --force)")
     c = sub.add_parser("converge-plot", help="draw the plots of a barimpact converge directory")
     c.add_argument("dir")
     b = sub.add_parser("bearing-plot", help="draw bearing.png of a barimpact bearing directory")

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .plot import DPI, _save  # noqa: E402
+from .plot import DPI, _save, study_directory  # noqa: E402
 
 
 def _float(text):
@@ -32,8 +32,9 @@ def read_bearing(directory):
 
 
 def plot_bearing(directory, formats=("png", "svg")):
-    """Draws bearing.png (and .svg) into the directory; returns the paths."""
-    d = Path(directory)
+    """Draws bearing.png (and .svg) into the directory barimpact bearing
+    wrote (nowhere else); returns the paths."""
+    d = study_directory(directory, "bearing")
     rows = read_bearing(d)
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=DPI, sharey=True, layout="constrained")
     moved = [r for r in rows if math.isfinite(r["blows_per_250mm"])]

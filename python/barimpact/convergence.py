@@ -21,8 +21,8 @@ from pathlib import Path
 import numpy as np
 from matplotlib.ticker import NullLocator
 
-from .plot import (Units, _figure, _save, compare, is_run_directory, key_quantity, legend_labels, load, mark_written,
-                   units_of)
+from .plot import (Units, _figure, _save, compared, figures_directory, is_run_directory, key_quantity, legend_labels,
+                   load, study_directory, units_of)
 
 
 def _float(text):
@@ -128,7 +128,7 @@ def plot_study(directory, formats=("png", "svg")):
     """Draws convergence and work_precision (PNG, SVG) into a converge
     directory; returns the paths. Each scheme's legend entry names the
     scheme (what differs between the lines) and its measured order."""
-    d = Path(directory)
+    d = study_directory(directory, "converge")
     with open(d / "convergence.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     schemes = list(dict.fromkeys(r["scheme"] for r in rows))
@@ -303,17 +303,17 @@ def _run_overlays(d, out, keys, complete, units, formats):
     except ImportError as e:  # runs in results.h5 without h5py: the sweep's own figures still drawn
         print(f"barimpact plot: the runs' overlays are left out: {e}", file=sys.stderr)
         return []
-    return compare(data, out, formats, labels, "runs")
+    return compared(data, out, formats, labels, "runs")
 
 
-def plot_sweep(directory, out=None, formats=("png", "svg")):
-    """The figures of a sweep directory into `out` (default DIR/figures):
-    one per numeric output column of sweep.csv, named after it, and the
-    runs' overlays. Returns the paths written."""
+def plot_sweep(directory, out=None, formats=("png", "svg"), force=False):
+    """The figures of a sweep directory into `out` (default DIR/figures, by
+    the output rule: barimpact.plot's; `force` as --force): one per numeric
+    output column of sweep.csv, named after it, and the runs' overlays.
+    Returns the paths written."""
     d = Path(directory)
-    out = Path(out) if out is not None else d / "figures"
-    out.mkdir(parents=True, exist_ok=True)
     keys, outputs, rows = read_sweep(d)
+    out = figures_directory(d, out, [*outputs, "runs_U", "runs_R"], formats, force)
     complete = [r for r in rows if r["status"] == "complete"]
     units = _units_of_runs(d)
     dims = sweep_dimensions(keys, rows) or [["id"]]  # no swept key: the cases in their order
@@ -322,5 +322,4 @@ def plot_sweep(directory, out=None, formats=("png", "svg")):
         fig = _sweep_figure(output, dims, complete, units, _dropped(rows, complete))
         _save(fig, out, output, formats, written)
     written += _run_overlays(d, out, keys, complete, units, formats)
-    mark_written(out, [Path(p).name for p in written])
     return written

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .plot import _figure, _save
+from .plot import _figure, _save, study_directory
 
 
 def read_hopkinson(directory):
@@ -22,10 +22,11 @@ def read_hopkinson(directory):
 
 
 def plot_hopkinson(directory, formats=("png", "svg")):
-    """Draws the four figures into the directory; returns their paths."""
-    h, s = read_hopkinson(directory)
+    """Draws the four figures into the directory barimpact hopkinson fills
+    or wrote (nowhere else); returns their paths."""
+    out = study_directory(directory, "hopkinson")
+    h, s = read_hopkinson(out)
     t = h["t"]
-    out = Path(directory)
     written = []
 
     fig, ax = _figure("The three waves, moved to the specimen's faces")

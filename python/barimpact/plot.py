@@ -42,6 +42,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import _core  # noqa: E402
+
 COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic")
 FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
 DPI = 120
@@ -241,7 +243,8 @@ def load(run_dir, with_fields=True):
     d = Path(run_dir)
     if not is_run_directory(d):
         raise ValueError(f"{run_dir}: no history.csv or results.h5 (not a directory written by barimpact run)")
-    case = tomllib.loads((d / "case.toml").read_text())
+    case_file = Path(_core._run_case_file(d))  # case.toml, or case.resolved.toml beside the user's case.toml
+    case = tomllib.loads(case_file.read_text())
     if case.get("output", {}).get("format") == "hdf5":  # the file the case says (a user's may lie beside it)
         history, (x, field_t, fields, body) = _read_results_h5(d / "results.h5", with_fields)
     else:
@@ -259,7 +262,7 @@ def load(run_dir, with_fields=True):
     if fields:
         u, sigma, eps_p = fields["u"], fields["sigma"], fields.get("eps_p")
     summary = json.loads((d / "summary.json").read_text())
-    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p, case_source=d / "case.toml")
+    return RunData(history, x, field_t, u, sigma, case, summary, body, eps_p, case_source=case_file)
 
 
 def _from_result(result):
@@ -457,13 +460,13 @@ def _figure(title, grid=True):
     return fig, ax
 
 
-def _replace_whole(path, write, staged=None):
-    """Calls write(staged) for a hidden file beside `path` (by default
-    .NAME.partial-PID, which barimpact's output rule knows as its own), then
-    renames it over `path`: no reader sees half of it. What the file system
-    refuses (a full disk) is an OSError naming `path`; no part of it is left."""
+def _replace_whole(path, write):
+    """Calls write(staged) for a hidden file beside `path` (.NAME.partial-PID,
+    which barimpact's output rule knows as its own), then renames it over
+    `path`: no reader sees half of it. What the file system refuses (a full
+    disk) is an OSError naming `path`; no part of it is left."""
     path = Path(path)
-    staged = path.with_name(staged or f".{path.name}.partial-{os.getpid()}")
+    staged = path.with_name(f".{path.name}.partial-{os.getpid()}")
     try:
         write(staged)
         os.replace(staged, path)
@@ -591,6 +594,25 @@ def _map_figure(data, field, name, title, symbol, quantity, cmap, out, formats, 
     _save(fig, out, name, formats, written)
 
 
+def run_step(data):
+    """The time step the run took: summary.json's (case.toml's time.step may
+    be "auto"), else the spacing of its history's rows over output.every."""
+    step = data.summary.get("step") if data.summary else None
+    if isinstance(step, (int, float)) and not isinstance(step, bool) and step > 0:
+        return float(step)
+    spacing = np.diff(np.asarray(data.history.get("t", ())))
+    spacing = spacing[spacing > 0]
+    every = data.case.get("output", {}).get("every", 1)
+    return float(np.median(spacing)) / every if spacing.size else 0.0
+
+
+def _run_settings(data):
+    """The run's case as {dotted key: value} (flat_case), time.step the step it took."""
+    settings = flat_case(data.case)
+    settings["time.step"] = run_step(data)
+    return settings
+
+
 def _exact_snapshot(data, exact, field):
     """{run snapshot: exact snapshot} of the same times, where the exact
     `field` is known (an exact solution may hold fewer snapshots)."""
@@ -599,8 +621,7 @@ def _exact_snapshot(data, exact, field):
         return {}
     distance = np.abs(np.subtract.outer(data.field_t, exact.field_t))  # a few hundred snapshots at most
     j = distance.argmin(axis=1)
-    step = data.case.get("time", {}).get("step", 0.0)
-    close = distance[np.arange(j.size), j] <= 0.5 * step + 1e-12 * np.abs(data.field_t)
+    close = distance[np.arange(j.size), j] <= 0.5 * run_step(data) + 1e-12 * np.abs(data.field_t)
     return {i: int(j[i]) for i in np.flatnonzero(close) if np.any(np.isfinite(values[j[i]]))}
 
 
@@ -750,49 +771,49 @@ def _toe_figure(data, blow, out, formats, written):
     _save(fig, out, "blow_toe", formats, written)
 
 
-# --- the directory's marker ------------------------------------------------------------
+# --- where figures go: the library's output rule ------------------------------------------
 
-def mark_figures(run_dir):
-    """List figures/ in the run directory's marker (.barimpact), so that the
-    figures count as barimpact's when the directory is replaced by a rerun."""
-    marker = Path(run_dir) / ".barimpact"
-    try:
-        data = json.loads(marker.read_text())
-    except (OSError, ValueError):
-        return  # not a directory barimpact wrote: nothing to mark
-    if data.get("written_by") != "barimpact" or "figures" in data.get("entries", []):
-        return
-    data["entries"] = sorted(data.get("entries", []) + ["figures"])
-    _write_marker(marker, data)
+def _is_directory(source):
+    return isinstance(source, (str, os.PathLike))
 
 
-def mark_written(directory, names):
-    """List `names` in `directory`'s marker (.barimpact), as the command does,
-    when the directory is barimpact's: already marked, or holding nothing
-    but these files. A directory of someone else's is left unmarked."""
-    directory = Path(directory)
-    marker = directory / ".barimpact"
-    try:
-        data = json.loads(marker.read_text())
-        if data.get("written_by") != "barimpact":
-            return
-    except OSError:
-        present = {p.name for p in directory.iterdir()}
-        if not present <= set(names):
-            return  # someone else's files are here: not ours to claim
-        data = {"written_by": "barimpact", "command": "plot",
-                "note": "barimpact replaces or resumes this directory; it never touches what is not listed in entries",
-                "entries": []}
-    except ValueError:
-        return
-    data["entries"] = sorted(set(data.get("entries", [])) | set(names))
-    _write_marker(marker, data)
+def prepare_figures(out, names, formats, force=False, reads=()):
+    """`out` made ready for the figures `names` (in each of `formats`) by the
+    library's output rule, as `barimpact run --out` (output_directory.hpp): a
+    new or empty directory, or one barimpact wrote; someone else's only with
+    force (beside their files); never $HOME, / or a parent of the working
+    directory, nor one of the directories `reads` (or a parent of one). It
+    is created and marked as listing the figures before they are drawn.
+    barimpact.InputError (one line) when refused. Returns `out` as a Path."""
+    entries = [f"{name}.{fmt}" for name in names for fmt in formats]
+    reads = [os.fspath(r) for r in reads]
+    if entries:
+        _core._prepare_output_directory(out, "plot", entries, bool(force), reads)
+    else:  # nothing will be saved: checked, not made
+        _core._check_output_directory(out, bool(force), reads)
+    return Path(out)
 
 
-def _write_marker(marker, data):
-    """The marker replaced whole (staged as the command stages it), or left as it was."""
-    _replace_whole(marker, lambda staged: staged.write_text(json.dumps(data, indent=2) + "\n"),
-                   f".barimpact.{os.getpid()}")
+def figures_directory(directory, out, names, formats, force=False):
+    """prepare_figures for the figures of a run or sweep `directory` (which
+    is read, so never written over): into `out`, else DIR/figures, which is
+    then listed in DIR's marker as the run's (a rerun replaces it with them)."""
+    ours = out is None and _core._written_by_barimpact(directory)  # asked before figures/ is there
+    target = prepare_figures(Path(directory) / "figures" if out is None else out, names, formats, force, [directory])
+    if ours:
+        _core._mark_entries(directory, ["figures"])
+    return target
+
+
+def study_directory(directory, command):
+    """`directory` as a Path when barimpact's `command` (converge, bearing,
+    hopkinson) wrote it, which lists that command's figures, or when it is
+    the staging directory barimpact fills for it; barimpact.InputError
+    otherwise (drawn anywhere else, they could replace someone's files)."""
+    if _core._output_command(directory) != command and not _core._is_staging(directory):
+        raise _core.InputError(f"{os.fspath(directory)}: not a directory barimpact {command} wrote (its figures go "
+                               "only there)")
+    return Path(directory)
 
 
 # --- entry points ---------------------------------------------------------------------
@@ -800,26 +821,19 @@ def _write_marker(marker, data):
 def _data_of(source):
     if isinstance(source, RunData):
         return source
-    return load(source) if isinstance(source, (str, Path)) else _from_result(source)
+    return load(source) if _is_directory(source) else _from_result(source)
 
 
-def _out_of(source, out):
-    """Where the figures go: `out`, else DIR/figures for a directory (marked
-    as the run's), else ./figures."""
-    if out is None and isinstance(source, (str, Path)):
-        mark_figures(source)
-        out = Path(source) / "figures"
-    out = Path(out) if out is not None else Path("figures")
-    out.mkdir(parents=True, exist_ok=True)
-    return out
-
-
-def plot(source, out=None, formats=("png", "svg")):
+def plot(source, out=None, formats=("png", "svg"), force=False):
     """Write the figures of `source` (a Result, a RunData or a run directory)
-    into `out` (default: DIR/figures for a directory, else ./figures).
-    Returns the paths written."""
+    into `out` (default: DIR/figures for a directory, else ./figures) by the
+    output rule (prepare_figures; `force` as --force). Returns the paths written."""
+    names = _core._figure_names
+    if _is_directory(source):
+        out = figures_directory(source, out, names, formats, force)
+    else:
+        out = prepare_figures("figures" if out is None else out, names, formats, force)
     data = _data_of(source)
-    out = _out_of(source, out)
     written = []
     refs, exact = references(data)
     _displacement_figure(data, refs, out, formats, written)
@@ -840,7 +854,6 @@ def plot(source, out=None, formats=("png", "svg")):
     _impacts_figure(data, refs, out, formats, written)
     _line_figures(data, exact, out, formats, written)
     _blow_figures(data, out, formats, written)
-    mark_written(out, [Path(p).name for p in written])
     return written
 
 
@@ -848,17 +861,23 @@ COMPARED = (("U", "End displacement U(t) = u(0, t)", "U", "length"),
             ("R", "Reaction of the obstacle R(t)", "R", "force"))
 
 
-def compare(sources, out, formats=("png", "svg"), labels=None, name="compare"):
+def compare(sources, out, formats=("png", "svg"), labels=None, name="compare", force=False):
     """Several runs (Results, RunData or run directories) in one figure per
-    quantity, `name`_U and `name`_R in `out`: each curve is named by the case
-    keys that differ between the runs (or by `labels`), the keys they share
-    go unnamed. Returns the paths written."""
-    runs = [_data_of(s) for s in sources]
+    quantity, `name`_U and `name`_R in `out` (by the output rule:
+    prepare_figures, never over a run directory compared): each curve is
+    named by the case keys that differ between the runs (or by `labels`),
+    the keys they share go unnamed. Returns the paths written."""
+    reads = [s for s in sources if _is_directory(s)]
+    out = prepare_figures(out, [f"{name}_{column}" for column, *_ in COMPARED], formats, force, reads)
+    return compared([_data_of(s) for s in sources], out, formats, labels, name)
+
+
+def compared(runs, out, formats=("png", "svg"), labels=None, name="compare"):
+    """compare's figures of the RunData `runs`, drawn into `out`, which the
+    caller has made ready (prepare_figures)."""
     units = runs[0].units
     if labels is None:
-        labels = legend_labels([flat_case(r.case) for r in runs], units)
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+        labels = legend_labels([_run_settings(r) for r in runs], units)
     written = []
     every_t = np.concatenate([r.history["t"] for r in runs])
     for column, title, symbol, quantity in COMPARED:
@@ -876,5 +895,4 @@ def compare(sources, out, formats=("png", "svg"), labels=None, name="compare"):
         else:
             ax.legend(fontsize=8)
         _save(fig, out, f"{name}_{column}", formats, written)
-    mark_written(out, [Path(p).name for p in written])
     return written

@@ -122,6 +122,12 @@ std::vector<Case::Override> overrides_from(const py::object& set) {
 Case make_case(const py::object& source, const py::object& set) {
   const auto overrides = overrides_from(set);
   if (source.is_none()) return Case::from_string("", overrides, "defaults");
+  if (py::isinstance<Case>(source)) {  // a case with overrides: still the file it was read from
+    const auto& base = source.cast<const Case&>();
+    Case c = Case::from_string(base.to_toml(), overrides, "string");
+    c.source = base.source;
+    return c;
+  }
   if (py::isinstance<py::dict>(source)) {
     std::ostringstream text;
     text << toml::toml_formatter(table_from_dict(source.cast<py::dict>()));
@@ -330,7 +336,7 @@ py::tuple hopkinson_binding(const py::object& setup, const std::optional<std::st
     r = analyse_hopkinson(s);
   }
   if (out) {
-    RunDirectory dir(*out, force, "hopkinson");
+    RunDirectory dir(*out, force, "hopkinson", true, hopkinson_inputs(s));
     dir.commit([&](const std::filesystem::path& staging) {
       write_text(staging / "hopkinson.csv", hopkinson_csv(r));
       write_text(staging / "summary.json", hopkinson_summary_json(r));
@@ -411,7 +417,7 @@ using ResultClass = py::class_<PyResult>;
 void bind_case(py::module_& m) {
   py::class_<Case>(m, "Case")
       .def(py::init(&make_case), py::arg("source") = py::none(), py::arg("set") = py::none(),
-           "A validated case from a TOML file path, TOML text or a dict {section: {key: value}};\n"
+           "A validated case from a TOML file path, TOML text, a dict {section: {key: value}} or a Case;\n"
            "`set` overrides keys: {'bar.elements': 200} or ['bar.elements=200'].")
       .def("to_toml", &Case::to_toml, "The resolved case as TOML, every default filled in")
       .def_property_readonly("steps", &Case::step_count, "The number of steps N")
@@ -542,7 +548,7 @@ void bind_run_record(ResultClass& result) {
       .def(
           "write",
           [](const PyResult& p, const std::string& dir, bool force) {
-            RunDirectory out(dir, force, p.command);
+            RunDirectory out(dir, force, p.command, true, {{p.c.source}, {}});
             out.commit(p.c, p.r);
           },
           py::arg("dir"), py::kw_only(), py::arg("force") = false,
@@ -610,15 +616,43 @@ void bind_studies(py::module_& m) {
         py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");
 }
 
+// What a Python writer reads: directories it never writes over.
+CommandInputs directories_read(const std::vector<std::string>& reads) {
+  return {{}, std::vector<std::filesystem::path>(reads.begin(), reads.end())};
+}
+
 // The output rule for what Python writes itself (figures, plot's directory).
 void bind_output_rule(py::module_& m) {
   m.def(
       "_prepare_output_directory",
-      [](const py::object& target, const std::string& command, const std::vector<std::string>& entries, bool force) {
-        prepare_output_directory(fspath(target), command, entries, force);
+      [](const py::object& target, const std::string& command, const std::vector<std::string>& entries, bool force,
+         const std::vector<std::string>& reads) {
+        prepare_output_directory(fspath(target), command, entries, force, "--out", directories_read(reads));
       },
-      py::arg("target"), py::arg("command"), py::arg("entries"), py::arg("force"),
-      "The output rule for a directory filled bit by bit (output_directory.hpp): checks, creates, marks");
+      py::arg("target"), py::arg("command"), py::arg("entries"), py::arg("force"), py::arg("reads") = py::list(),
+      "The output rule for a directory filled bit by bit (output_directory.hpp): checks (never over the "
+      "directories `reads`, which the caller reads), creates, marks");
+
+  m.def(
+      "_check_output_directory",
+      [](const py::object& target, bool force, const std::vector<std::string>& reads) {
+        (void)check_output_directory(fspath(target), force, "--out", directories_read(reads));
+      },
+      py::arg("target"), py::arg("force"), py::arg("reads") = py::list(),
+      "The output rule's check alone (output_directory.hpp): InputError when `target` may not be written");
+
+  m.def(
+      "_output_command", [](const py::object& dir) { return output_command(fspath(dir)); }, py::arg("dir"),
+      "The command that wrote `dir` by its marker (\"run\", \"converge\", ...), or \"\"");
+
+  m.def(
+      "_is_staging",
+      [](const py::object& dir) { return std::filesystem::exists(std::filesystem::path(fspath(dir)) / staging_flag); },
+      py::arg("dir"), "Whether `dir` is a staging directory barimpact fills (output.hpp's RunDirectory)");
+
+  m.def(
+      "_run_case_file", [](const py::object& dir) { return run_case_file(fspath(dir)).string(); }, py::arg("dir"),
+      "The resolved case of a run directory: case.toml, or case.resolved.toml (output.hpp)");
 
   m.def(
       "_written_by_barimpact", [](const py::object& dir) { return written_by_barimpact(fspath(dir)); }, py::arg("dir"),

@@ -323,6 +323,22 @@ def test_hopkinson_writes_the_commands_directory(tmp_path):
     assert not (tmp_path / "from-dict" / "stress_strain.png").exists()
 
 
+def test_a_study_or_analysis_never_writes_over_the_run_it_reads(tmp_path):
+    """hopkinson analysing a run into that run's directory replaced it; a
+    study of a run's case.toml into that run's directory resumed in it."""
+    run = tmp_path / "shpb"
+    barimpact.run(EXAMPLES / "hopkinson" / "shpb.toml", out=run)
+    before = (run / "history.csv").read_bytes()
+    setup = {"specimen": {"body": "specimen"}, "incident": {"run": str(run), "gauge": "incident"},
+             "transmitted": {"run": str(run), "gauge": "transmitted"}}
+    for out in (run, tmp_path):
+        with pytest.raises(barimpact.InputError, match="a directory this command reads|is the directory this command"):
+            barimpact.hopkinson(setup, out, force=True, no_plot=True)
+    with pytest.raises(barimpact.InputError, match="which this command reads"):
+        barimpact.converge(run / "case.toml", run, levels=2, force=True, no_plot=True)
+    assert (run / "history.csv").read_bytes() == before and not (run / "runs").exists()
+
+
 def test_plot_of_a_run_directory_follows_the_command(tmp_path):
     r = barimpact.run(barimpact.Case(EXAMPLES / "paper-example1.toml", set={"time.end": 0.5,
                                                                             "output.fields_at": [0.25]}),
@@ -340,6 +356,31 @@ def test_plot_of_a_run_directory_follows_the_command(tmp_path):
     with pytest.raises(barimpact.InputError, match="no history.csv"):
         barimpact.plot(tmp_path / "mine")
     assert barimpact.plot(r, tmp_path / "of-result", formats=("png",))
+
+
+def test_force_never_writes_over_the_case_being_run(tmp_path):
+    """force=True into the case file's own directory: the user's case.toml
+    stays as written (comments and all), the resolved case goes to
+    case.resolved.toml, which is what reading the run back takes."""
+    proj = tmp_path / "proj"
+    proj.mkdir()
+    text = "# my comments\n" + (EXAMPLES / "paper-example1.toml").read_text()
+    (proj / "case.toml").write_text(text)
+    short = {"time.end": 0.5, "output.fields_at": []}
+    barimpact.run(proj / "case.toml", out=proj, force=True, set=short)
+    assert (proj / "case.toml").read_text() == text
+    assert "\nend = 0.5\n" in (proj / "case.resolved.toml").read_text()
+    assert barimpact.load(proj).t[-1] == 0.5
+    barimpact.exact(barimpact.Case(proj / "case.toml"), out=proj, force=True, set={**short, "time.end": 0.25})
+    assert (proj / "case.toml").read_text() == text and barimpact.load(proj).t[-1] == 0.25
+    barimpact.run(barimpact.Case(proj / "case.toml", set=short)).write(str(proj), force=True)
+    assert (proj / "case.toml").read_text() == text and barimpact.load(proj).t[-1] == 0.5
+    # A run directory of barimpact's holding the case being run is not replaced.
+    barimpact.run(EXAMPLES / "paper-example1.toml", out=tmp_path / "run", set=short)
+    before = (tmp_path / "run" / "history.csv").read_bytes()
+    with pytest.raises(barimpact.InputError, match="case.toml, which this command reads"):
+        barimpact.run(tmp_path / "run" / "case.toml", out=tmp_path / "run", force=True)
+    assert (tmp_path / "run" / "history.csv").read_bytes() == before
 
 
 def test_run_and_exact_write_with_the_commands_options(tmp_path, cli_runs):

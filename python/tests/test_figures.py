@@ -184,6 +184,19 @@ def test_the_exact_solution_is_drawn_for_a_case_that_has_one(tmp_path, drawn):
     assert any(line[0] == "exact" for ax in impacts for line in ax["lines"])
 
 
+def test_a_run_at_the_auto_step_is_drawn_at_the_step_it_took(tmp_path, drawn):
+    """case.toml says time.step = "auto": the figures take the step from summary.json."""
+    auto = run_dir(tmp_path, EXAMPLES / "paper-example1-rigid.toml", "time.scheme=central-difference",
+                   "time.step=auto", name="auto")
+    assert 'step = "auto"' in (auto / "case.toml").read_text()
+    barimpact.plot(auto, tmp_path / "figs")
+    assert "exact (dashed, same colour)" in drawn["snapshots"][0]["legend"]
+    given = run_dir(tmp_path, EXAMPLES / "paper-example1-rigid.toml", "time.scheme=central-difference",
+                    "time.step=0.005", name="given")
+    compare([auto, given], tmp_path / "both")
+    assert drawn["compare_U"][0]["legend"] == ["time.step = 0.009", "time.step = 0.005"]
+
+
 def test_no_exact_curve_without_an_exact_solution(tmp_path, drawn):
     with pytest.raises(barimpact.InputError):
         barimpact.exact(barimpact.Case(str(EXAMPLES / "paper-example2.toml")))

@@ -943,7 +943,9 @@ Case Case::from_file(const std::filesystem::path& path, const std::vector<Overri
   if (!std::filesystem::exists(path, ec)) throw InputError(fmt::format("{}: no such case file", path.string()));
   if (std::filesystem::is_directory(path, ec))
     throw InputError(fmt::format("{}: is a directory, not a case file", path.string()));
-  return from_string(read_input_file(path, "case file"), overrides, path.string());
+  Case c = from_string(read_input_file(path, "case file"), overrides, path.string());
+  c.source = path;
+  return c;
 }
 
 std::string read_input_file(const std::filesystem::path& path, std::string_view what) {

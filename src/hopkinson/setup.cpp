@@ -193,7 +193,7 @@ struct RunGauge {
 // Sets the channel's file: the run's history.csv, or its results.h5.
 RunGauge read_run_gauge(const SetupReader& r, ChannelSetup& ch, const std::string& specimen_body) {
   const std::string s = ch.section;
-  const auto case_file = ch.run / "case.toml";
+  const auto case_file = run_case_file(ch.run);
   if (!std::filesystem::is_regular_file(case_file) ||
       (!std::filesystem::is_regular_file(ch.run / history_file(OutputFormat::csv)) &&
        !std::filesystem::is_regular_file(ch.run / history_file(OutputFormat::hdf5))))
@@ -436,7 +436,19 @@ HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::f
 
 HopkinsonSetup HopkinsonSetup::from_file(const std::filesystem::path& path) {
   const std::string text = read_input_file(path, "setup file");
-  return from_string(text, path.parent_path(), path.string());
+  HopkinsonSetup s = from_string(text, path.parent_path(), path.string());
+  s.file = path;
+  return s;
+}
+
+CommandInputs hopkinson_inputs(const HopkinsonSetup& setup) {
+  CommandInputs in;
+  if (!setup.file.empty()) in.files.push_back(setup.file);
+  for (const ChannelSetup* ch : {&setup.incident, &setup.transmitted}) {
+    in.files.insert(in.files.end(), ch->files.begin(), ch->files.end());
+    if (!ch->run.empty()) in.directories.push_back(ch->run);
+  }
+  return in;
 }
 
 }  // namespace barimpact

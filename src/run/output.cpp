@@ -21,10 +21,10 @@ namespace barimpact {
 namespace fs = std::filesystem;
 using detail::OutputFile;
 
-RunDirectory::RunDirectory(fs::path target, bool force, std::string command, bool remove_stale)
-    : target_(std::move(target)), command_(std::move(command)) {
+RunDirectory::RunDirectory(fs::path target, bool force, std::string command, bool remove_stale, CommandInputs inputs)
+    : target_(std::move(target)), inputs_(std::move(inputs)), command_(std::move(command)) {
   shown_ = target_;
-  beside_ = check_output_directory(target_, force) == OutputMode::beside;
+  beside_ = check_output_directory(target_, force, "--out", inputs_) == OutputMode::beside;
   // Work on the resolved path: a link given as --out is written through, not replaced.
   std::error_code ec;
   target_ = fs::weakly_canonical(fs::absolute(target_), ec);
@@ -131,7 +131,7 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
       write_history(dir / "history.csv", result);
       write_fields(dir / "fields.csv", result);
     }
-    write_text(dir / "case.toml", c.to_toml());
+    write_text(dir / case_file_name, c.to_toml());
     write_text(dir / "summary.json", summary_json(c, result.summary));
   });
 }
@@ -144,6 +144,7 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
   };
   try {
     write(staging_);
+    spare_inputs();
     fs::remove(staging_ / staging_flag);
     write_output_marker(staging_, command_, directory_entries(staging_));
   } catch (const OutputError& e) {
@@ -189,6 +190,15 @@ void RunDirectory::move_into_place() {
   if (!old.empty()) fs::remove_all(old, ec);  // barimpact's own files only (written_by_barimpact)
 }
 
+// Where a staged file would replace an input of the command (--force beside
+// the user's files): the resolved case goes to case.resolved.toml; any
+// other name is refused, before anything is moved.
+void RunDirectory::spare_inputs() {
+  if (fs::exists(staging_ / case_file_name) && inputs_.reads_file(target_ / case_file_name))
+    fs::rename(staging_ / case_file_name, staging_ / resolved_case_name);
+  refuse_names_over_inputs(shown_, directory_entries(staging_), inputs_);
+}
+
 // --force on a directory that holds someone else's files: each of
 // barimpact's files replaces only the file of its own name. The marker is
 // written first: when the disk refuses it, nothing has moved yet.
@@ -202,12 +212,14 @@ void RunDirectory::move_beside() {
   }
   // A run's results in the other format, left here by an earlier run, would
   // pass for this one's: removed when barimpact's marker lists them (as a
-  // replaced directory would lose them).
+  // replaced directory would lose them). So would a resolved case of an
+  // earlier run beside a case.toml written now.
   const auto writes = [&](std::string_view n) { return std::find(names.begin(), names.end(), n) != names.end(); };
   std::vector<std::string> stale;
   if (writes("history.csv") || writes(results_h5_name))
     for (const std::string_view n : {std::string_view("history.csv"), std::string_view("fields.csv"), results_h5_name})
       if (!writes(n)) stale.emplace_back(n);
+  if (writes(case_file_name)) stale.emplace_back(resolved_case_name);
   try {
     write_output_marker(target_, command_, names);
   } catch (const OutputError& e) {
@@ -293,8 +305,16 @@ RunStatus status_from(const std::string& text) {
 
 }  // namespace
 
+fs::path run_case_file(const fs::path& dir) {
+  const auto listed = marked_entries(dir);
+  const bool resolved = std::find(listed.begin(), listed.end(), resolved_case_name) != listed.end() &&
+                        fs::is_regular_file(dir / resolved_case_name);
+  return dir / (resolved ? resolved_case_name : case_file_name);
+}
+
 std::optional<RunResult> read_run_directory(const fs::path& dir, const std::string& case_toml) {
-  if (!case_toml.empty() && read_text(dir / "case.toml") != case_toml) return std::nullopt;
+  const fs::path case_file = run_case_file(dir);
+  if (!case_toml.empty() && read_text(case_file) != case_toml) return std::nullopt;
   try {
     std::ifstream in(dir / "summary.json");
     const auto j = nlohmann::json::parse(in);
@@ -325,7 +345,7 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
     s.run_seconds = number_or_nan(j, "run_seconds");
     s.warnings = j.value("warnings", std::vector<std::string>{});
     // The file the case says the run wrote (a user's file of the other name may lie beside it under --force).
-    if (Case::from_file(dir / "case.toml").output.format == OutputFormat::hdf5)
+    if (Case::from_file(case_file).output.format == OutputFormat::hdf5)
       read_results_history(dir / results_h5_name, r);
     else
       read_history(dir / "history.csv", r);

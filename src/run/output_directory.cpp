@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -133,12 +134,64 @@ bool written_by_barimpact(const fs::path& dir) {
   return !marker_entries(dir).empty() && foreign_entries(dir).empty();
 }
 
+std::vector<std::string> marked_entries(const fs::path& dir) {
+  return marker_entries(dir);
+}
+
+bool CommandInputs::reads_file(const fs::path& path) const {
+  const fs::path p = resolved(path);
+  return std::any_of(files.begin(), files.end(), [&](const fs::path& f) { return !f.empty() && resolved(f) == p; });
+}
+
+fs::path CommandInputs::file_under(const fs::path& dir, const std::string& entry) const {
+  const fs::path at = resolved(dir) / entry;  // a link named `entry` is replaced, not written through
+  for (const auto& f : files)
+    if (!f.empty() && (resolved(f) == at || is_parent_of(at, resolved(f)))) return f;
+  return {};
+}
+
+void refuse_names_over_inputs(const fs::path& dir, const std::vector<std::string>& names, const CommandInputs& inputs,
+                              std::string_view option) {
+  for (const auto& name : names)
+    if (const auto f = inputs.file_under(dir, name); !f.empty())
+      throw InputError(
+          fmt::format("{} {}: barimpact would write {} over {}, which this command reads; it never "
+                      "writes over its input, --force or not (choose another directory)",
+                      option, dir.string(), name, f.string()));
+}
+
+namespace {
+
+constexpr std::string_view never_over_input =
+    "barimpact never writes its results over what it reads, --force or not (choose another directory)";
+
+// --out may not be an input file, nor a directory the command reads or a parent of one.
+void refuse_inputs(const fs::path& full, const CommandInputs& inputs, const std::function<void(std::string)>& refuse) {
+  for (const auto& d : inputs.directories) {
+    if (d.empty()) continue;
+    if (resolved(d) == full) refuse(fmt::format("is the directory this command reads; {}", never_over_input));
+    if (is_parent_of(full, resolved(d)))
+      refuse(fmt::format("is a parent of {}, a directory this command reads; {}", d.string(), never_over_input));
+  }
+  if (inputs.reads_file(full)) refuse(fmt::format("is the file this command reads; {}", never_over_input));
+}
+
+// The first input file inside `full` (resolved), or empty.
+fs::path input_inside(const fs::path& full, const CommandInputs& inputs) {
+  for (const auto& f : inputs.files)
+    if (!f.empty() && is_parent_of(full, resolved(f))) return f;
+  return {};
+}
+
+}  // namespace
+
 std::string output_command(const fs::path& dir) {
   const auto j = read_marker(dir);
   return j.is_null() ? std::string() : j.value("command", "");
 }
 
-OutputMode check_output_directory(const fs::path& target, bool force, std::string_view option) {
+OutputMode check_output_directory(const fs::path& target, bool force, std::string_view option,
+                                  const CommandInputs& inputs) {
   if (target.empty()) throw InputError(fmt::format("{}: the output directory is empty", option));
   auto refuse = [&](std::string_view why) { throw InputError(fmt::format("{} {}: {}", option, target.string(), why)); };
   const fs::path full = resolved(target);
@@ -148,6 +201,7 @@ OutputMode check_output_directory(const fs::path& target, bool force, std::strin
   if (full == home_directory())
     refuse("is your home directory; barimpact never writes its results there (choose a new directory inside it)");
   if (is_parent_of(full, cwd)) refuse("is a parent of the working directory; barimpact never writes its results there");
+  refuse_inputs(full, inputs, refuse);
   if (!fs::exists(full, ec)) {
     // Missing parents are made when the results are written (MadeParents);
     // the nearest existing one must be a directory barimpact may write in.
@@ -170,7 +224,14 @@ OutputMode check_output_directory(const fs::path& target, bool force, std::strin
   }
   if (directory_entries(full).empty()) return OutputMode::create;
   const auto foreign = foreign_entries(full);
-  if (foreign.empty()) return OutputMode::replace;
+  if (foreign.empty()) {
+    if (const auto f = input_inside(full, inputs); !f.empty())
+      refuse(
+          fmt::format("holds {}, which this command reads; barimpact never replaces or resumes in a directory "
+                      "it reads from, --force or not (choose another directory)",
+                      f.string()));
+    return OutputMode::replace;
+  }
   if (!force)
     refuse(fmt::format(
         "holds files barimpact did not write ({}); choose a new or empty directory, or add --force to write "
@@ -270,8 +331,9 @@ void MadeParents::remove_made() {
 }
 
 void prepare_output_directory(const fs::path& target, std::string_view command, const std::vector<std::string>& entries,
-                              bool force, std::string_view option) {
-  (void)check_output_directory(target, force, option);
+                              bool force, std::string_view option, const CommandInputs& inputs) {
+  (void)check_output_directory(target, force, option, inputs);
+  refuse_names_over_inputs(target, entries, inputs, option);
   std::error_code ec;
   fs::create_directories(target, ec);
   if (ec)

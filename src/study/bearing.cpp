@@ -142,7 +142,8 @@ std::vector<BearingRow> run_bearing(const BearingPlan& plan, const fs::path& dir
 
 std::vector<BearingRow> write_bearing(const BearingPlan& plan, const fs::path& dir, const SweepOptions& options,
                                       bool force) {
-  prepare_sweep(dir, options, force, "bearing", {"runs", "bearing.csv", "bearing.png", "bearing.svg"});
+  prepare_sweep(dir, options, force, plan.sweep().inputs(), "bearing",
+                {"runs", "bearing.csv", "bearing.png", "bearing.svg"});
   auto rows = run_bearing(plan, dir, options);
   replace_text(dir / "bearing.csv", bearing_csv(rows));
   return rows;

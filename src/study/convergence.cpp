@@ -498,7 +498,7 @@ void remove_other_runs(const fs::path& runs, const Study& study) {
 Study write_convergence(const Case& base, StudyOptions options, const fs::path& dir, bool force,
                         const std::string& command) {
   check_study(base, options);  // a refusal writes nothing
-  prepare_output_directory(dir, "converge", convergence_entries(), force);
+  prepare_output_directory(dir, "converge", convergence_entries(), force, "--out", {{base.source}, {}});
   options.runs = dir / "runs";
   Study study = converge(base, options);
   remove_other_runs(options.runs, study);

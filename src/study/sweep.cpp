@@ -87,7 +87,16 @@ bool names_no_key(const std::string& what) {
 SweepPlan SweepPlan::from_file(const fs::path& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such sweep file", path.string()));
-  return from_string(read_input_file(path, "sweep file"), path.string(), path.parent_path());
+  SweepPlan plan = from_string(read_input_file(path, "sweep file"), path.string(), path.parent_path());
+  plan.sweep_file_ = path;
+  return plan;
+}
+
+CommandInputs SweepPlan::inputs() const {
+  CommandInputs in;
+  for (const auto& f : {sweep_file_, case_file_})
+    if (!f.empty()) in.files.push_back(f);
+  return in;
 }
 
 SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin, const fs::path& dir) {
@@ -341,11 +350,11 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
   return rows;
 }
 
-void prepare_sweep(const fs::path& dir, const SweepOptions& options, bool force, std::string_view command,
-                   const std::vector<std::string>& entries) {
+void prepare_sweep(const fs::path& dir, const SweepOptions& options, bool force, const CommandInputs& inputs,
+                   std::string_view command, const std::vector<std::string>& entries) {
   check_jobs(options.jobs);
   if (options.batch) (void)simd_path();  // a bad BARIMPACT_SIMD is refused before anything is written
-  prepare_output_directory(dir, command, entries, force);
+  prepare_output_directory(dir, command, entries, force, "--out", inputs);
   std::error_code ec;
   fs::create_directories(dir / "runs", ec);
   if (ec) throw InputError(fmt::format("--out {}: cannot create it ({})", dir.string(), ec.message()));
@@ -376,7 +385,7 @@ SweepOutcome finish_sweep(const SweepPlan& plan, const fs::path& dir, SweepStart
 }
 
 SweepOutcome write_sweep(const SweepPlan& plan, const fs::path& dir, const SweepOptions& options, bool force) {
-  prepare_sweep(dir, options, force);
+  prepare_sweep(dir, options, force, plan.inputs());
   SweepStart start = resume_sweep(plan, dir);
   const auto done = run_sweep(plan, dir, start.todo, options);
   return finish_sweep(plan, dir, std::move(start), done);

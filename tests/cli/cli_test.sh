@@ -44,7 +44,8 @@ for f in results.h5 case.toml summary.json; do [ -s "$work/h5/$f" ] && ok || bad
 for f in history.csv fields.csv; do [ ! -e "$work/h5/$f" ] && ok || bad "hdf5 run wrote $f"; done
 grep -q '"results.h5"' "$work/h5/.barimpact" && ok || bad "results.h5 not in the marker"
 grep -q '^format = "hdf5"$' "$work/h5/case.toml" && ok || bad "output.format not in case.toml"
-"$bin" run "$work/h5/case.toml" --out "$work/h5" > /dev/null && [ -s "$work/h5/results.h5" ] && ok || bad "hdf5 rerun"
+"$bin" run "$work/h5/case.toml" --out "$work/h5-rerun" > /dev/null && cmp -s "$work/h5/case.toml" "$work/h5-rerun/case.toml" &&
+  [ -s "$work/h5-rerun/results.h5" ] && ok || bad "hdf5 rerun"
 "$bin" run "$examples/paper-example1.toml" --out "$work/h5" > /dev/null && [ -s "$work/h5/history.csv" ] &&
   [ ! -e "$work/h5/results.h5" ] && ok || bad "a csv run does not replace an hdf5 one whole"
 

@@ -79,6 +79,11 @@ echo "not,numbers" >> "$work/bad-plot/history.csv"
 "$bin" plot "$work/bad-plot" > /dev/null 2>&1 && bad "plot of a broken history.csv succeeded"
 check "figures/ made" test -d "$work/bad-plot/figures"
 check "the marker lists figures after a failed plot" grep -q '"figures"' "$work/bad-plot/.barimpact"
+# --force reaches the figures: drawn beside the user's files, which stay.
+make_user_dir "$work/plot-theirs"
+check "plot --force beside a user's files" "$bin" plot "$work/for-plot" --out "$work/plot-theirs" --force > /dev/null
+check "the figures beside them" test -s "$work/plot-theirs/energy.svg"
+check "the user's files kept by plot --force" user_dir_intact "$work/plot-theirs"
 fi
 check "a run directory with figures/ is replaced" "$bin" run "$ex1" --out "$work/bad-plot" "${fast[@]}" > /dev/null
 # --force writes beside the user's files and deletes none of them.
@@ -156,6 +161,76 @@ echo mine > "$work/.results.old-1999"  # a user's file that looks like staging s
 check "run beside stale staging" "$bin" run "$ex1" --out "$work/kept" "${fast[@]}" > /dev/null
 ls -a "$work" | grep -q partial && bad "stale staging left" || ok
 check "a user's look-alike file kept" grep -q mine "$work/.results.old-1999"
+# What a command reads is never written over, --force or not. The case run
+# into its own directory with --force: the user's case.toml stays as it is
+# (comments and all), the resolved case goes to case.resolved.toml, which
+# what reads the run back takes.
+mkdir "$work/proj" && { echo "# my comments"; cat "$ex1"; } > "$work/proj/case.toml"
+cp "$work/proj/case.toml" "$work/case-before.toml"
+check "run into the case's directory" "$bin" run "$work/proj/case.toml" --out "$work/proj" --force "${fast[@]}" > /dev/null
+check "the user's case.toml kept" cmp -s "$work/proj/case.toml" "$work/case-before.toml"
+check "the resolved case beside it" grep -q '^end = 0.5' "$work/proj/case.resolved.toml"
+check "exact into the case's directory" "$bin" exact "$work/proj/case.toml" --out "$work/proj" --force \
+  --set time.end=0.25 --set output.fields_at=[] > /dev/null
+check "the user's case.toml kept by exact" cmp -s "$work/proj/case.toml" "$work/case-before.toml"
+check "exact's resolved case" grep -q '^end = 0.25' "$work/proj/case.resolved.toml"
+(cd "$work/proj" && "$bin" run case.toml --out . --force "${fast[@]}" > /dev/null) && ok || bad "run case.toml --out ."
+check "the user's case.toml kept from its directory" cmp -s "$work/proj/case.toml" "$work/case-before.toml"
+# A case read from a directory barimpact would replace: refused, --force or not.
+"$bin" run "$ex1" --out "$work/rerun" "${fast[@]}" > /dev/null || bad "run for a rerun"
+before=$(listing "$work/rerun")
+for force in "" --force; do
+  expect_refusal "--out $work/rerun: holds $work/rerun/case.toml, which this command reads" "$before" "$work/rerun" \
+    run "$work/rerun/case.toml" --out "$work/rerun" $force
+  expect_refusal "which this command reads" "$before" "$work/rerun" converge "$work/rerun/case.toml" \
+    --out "$work/rerun" --levels 2 $force
+done
+expect_refusal "is the file this command reads" "$before" "$work/rerun" \
+  run "$work/rerun/case.toml" --out "$work/rerun/case.toml" --force
+# A sweep's file and its case beside a sweep run into their directory stay.
+mkdir "$work/sweep-here" && cp "$ex1" "$work/sweep-here/case.toml"
+printf '%b' 'case = "case.toml"\n[set]\ntime.end = 0.5\noutput.fields_at = []\n[[axis]]\nkey = "bar.elements"\nvalues = [50, 100]\n' \
+  > "$work/sweep-here/sweep.toml"
+cp -r "$work/sweep-here" "$work/sweep-before"
+check "sweep into its own directory" "$bin" sweep "$work/sweep-here/sweep.toml" --out "$work/sweep-here" --force > /dev/null
+check "the sweep's inputs kept" diff -q "$work/sweep-here/sweep.toml" "$work/sweep-before/sweep.toml"
+check "the sweep's case kept" diff -q "$work/sweep-here/case.toml" "$work/sweep-before/case.toml"
+# A sweep whose case lies in a directory barimpact would resume in: refused.
+printf 'case = "%s"\n[[axis]]\nkey = "bar.elements"\nvalues = [50, 100]\n' "$work/rerun/case.toml" > "$work/sweep-rerun.toml"
+expect_refusal "which this command reads" "$before" "$work/rerun" sweep "$work/sweep-rerun.toml" --out "$work/rerun" --force
+# hopkinson: a signal file of the name of one of its results is refused, not replaced.
+"$bin" run "$examples/hopkinson/shpb.toml" --out "$work/shpb" > /dev/null 2>&1 || bad "shpb run"
+mkdir "$work/signals"
+for g in incident transmitted; do
+  awk -F, -v g="gauge.$g.strain" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == g) c = i; print "t,strain"; next }
+    { print $1 "," $c }' "$work/shpb/history.csv" > "$work/signals/$g.csv"
+done
+mv "$work/signals/incident.csv" "$work/signals/hopkinson.csv"
+printf '[bar]\nmodulus = 200e9\ndensity = 7850.0\ndiameter = 0.020\n[specimen]\nlength = 0.006\ndiameter = 0.010\n%b\n%b\n' \
+  '[incident]\nsignal = "hopkinson.csv"\ngauge_to_specimen = 0.75' \
+  '[transmitted]\nsignal = "transmitted.csv"\ngauge_to_specimen = 0.75' > "$work/signals/setup.toml"
+before=$(listing "$work/signals")
+expect_refusal "would write hopkinson.csv over" "$before" "$work/signals" hopkinson "$work/signals/setup.toml" \
+  --out "$work/signals" --force --no-plot
+# The directory a command reads, or a parent of it: refused even with --force
+# (hopkinson analysing a run into that run's directory replaced it).
+sed "s|run = .*|run = \"$work/shpb\"|" "$examples/hopkinson/analyse-run.toml" > "$work/analyse-shpb.toml"
+before=$(listing "$work/shpb")
+for force in "" --force; do
+  expect_refusal "--out $work/shpb: is the directory this command reads" "$before" "$work/shpb" \
+    hopkinson "$work/analyse-shpb.toml" --out "$work/shpb" --no-plot $force
+  expect_refusal "--out $work/shpb: is the directory this command reads" "$before" "$work/shpb" \
+    plot "$work/shpb" --out "$work/shpb" $force
+done
+mkdir -p "$work/outer/inner"
+"$bin" run "$examples/hopkinson/shpb.toml" --out "$work/outer/inner/run" > /dev/null 2>&1 || bad "run for a parent"
+sed "s|run = .*|run = \"$work/outer/inner/run\"|" "$examples/hopkinson/analyse-run.toml" > "$work/analyse-inner.toml"
+before=$(listing "$work/outer")
+expect_refusal "is a parent of $work/outer/inner/run, a directory this command reads" "$before" "$work/outer" \
+  plot "$work/outer/inner/run" --out "$work/outer" --force
+expect_refusal "a directory this command reads" "$before" "$work/outer" \
+  hopkinson "$work/analyse-inner.toml" --out "$work/outer/inner" --force
+check "the analysed run kept" test -s "$work/shpb/history.csv"
 
 # 2. Warnings and --strict.
 "$bin" run "$ex1" --out "$work/stiff" --set obstacle.stiffness=1e4 --set time.step=0.001 --set output.fields_at=[] \

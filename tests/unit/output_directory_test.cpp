@@ -145,6 +145,78 @@ TEST_F(OutputDirectory, ForceWritesBesideAndDeletesNothing) {
   EXPECT_FALSE(written_by_barimpact(d));  // still the user's directory
 }
 
+// What the command reads: never written over, --force or not.
+TEST_F(OutputDirectory, ADirectoryTheCommandReadsAndItsParentsAreRefusedEvenWithForce) {
+  const fs::path run = root_ / "outer" / "run";
+  fs::create_directories(run);
+  touch(run / "history.csv");
+  write_output_marker(run, "run", {"history.csv"});
+  const CommandInputs reads{{}, {run}};
+  for (bool force : {false, true}) {
+    for (const auto& target : {run, root_ / "outer", root_ / "outer" / "run" / ".." / "run"}) {
+      try {
+        (void)check_output_directory(target, force, "--out", reads);
+        ADD_FAILURE() << target << " accepted";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("this command reads"), std::string::npos) << e.what();
+      }
+    }
+  }
+  EXPECT_EQ(check_output_directory(run / "figures", false, "--out", reads), OutputMode::create);  // inside it: fine
+  EXPECT_EQ(check_output_directory(run, false), OutputMode::replace);  // read by no one: replaced
+}
+
+TEST_F(OutputDirectory, AnInputFileIsNeverReplacedNorTheDirectoryHoldingIt) {
+  const fs::path run = root_ / "run";
+  fs::create_directory(run);
+  touch(run / "case.toml");
+  write_output_marker(run, "run", {"case.toml"});
+  const CommandInputs reads{{run / "case.toml"}, {}};
+  EXPECT_THROW((void)check_output_directory(run / "case.toml", true, "--out", reads), InputError);
+  for (bool force : {false, true}) EXPECT_THROW((void)check_output_directory(run, force, "--out", reads), InputError);
+  // Beside the user's files it stays, by name.
+  const CommandInputs theirs{{root_ / "cwd" / "case.toml"}, {}};
+  touch(root_ / "cwd" / "case.toml");
+  EXPECT_EQ(check_output_directory(".", true, "--out", theirs), OutputMode::beside);
+  EXPECT_THROW(refuse_names_over_inputs(".", {"summary.json", "case.toml"}, theirs), InputError);
+  EXPECT_NO_THROW(refuse_names_over_inputs(".", {"summary.json", "case.resolved.toml"}, theirs));
+  fs::create_directories(root_ / "cwd" / "runs" / "a");
+  const CommandInputs deep{{root_ / "cwd" / "runs" / "a" / "case.toml"}, {}};
+  EXPECT_THROW(refuse_names_over_inputs(".", {"runs"}, deep), InputError);  // a study's runs/ holds it
+  EXPECT_THROW(prepare_output_directory(".", "sweep", {"runs", "sweep.csv"}, true, "--out", deep), InputError);
+  EXPECT_FALSE(fs::exists(root_ / "cwd" / output_marker));
+}
+
+TEST_F(OutputDirectory, TheCaseRunBesideItsResultsStaysAndTheResolvedOneGoesBesideIt) {
+  const fs::path d = root_ / "cwd";
+  touch(d / "case.toml", "# mine\n[time]\nend = 0.1\n");
+  auto c = Case::from_file(d / "case.toml", {{"output.fields_at=[]"}});
+  ASSERT_EQ(c.source, d / "case.toml");
+  RunDirectory(d, true, "run", true, {{c.source}, {}}).commit(c, run(c));
+  EXPECT_EQ(read_input_file(d / "case.toml", "case"), "# mine\n[time]\nend = 0.1\n");
+  EXPECT_EQ(run_case_file(d), d / "case.resolved.toml");
+  EXPECT_EQ(read_input_file(run_case_file(d), "case"), c.to_toml());
+  ASSERT_TRUE(read_run_directory(d, c.to_toml()));
+  // A later run whose input is elsewhere writes case.toml; the resolved case of before goes.
+  fs::rename(d / "case.toml", root_ / "case.toml");
+  c.source = root_ / "case.toml";
+  RunDirectory(d, true, "run", true, {{c.source}, {}}).commit(c, run(c));
+  EXPECT_FALSE(fs::exists(d / "case.resolved.toml"));
+  EXPECT_EQ(run_case_file(d), d / "case.toml");
+}
+
+TEST_F(OutputDirectory, AnInputOfAnotherNameOfTheResultsIsRefusedAndNothingIsMoved) {
+  const fs::path d = root_ / "cwd";
+  touch(d / "summary.json", "my signal");
+  const auto c = testing::example("paper-example1.toml", {"time.end=0.1", "output.fields_at=[]"});
+  {
+    RunDirectory out(d, true, "run", true, {{d / "summary.json"}, {}});
+    EXPECT_THROW(out.commit(c, run(c)), InputError);
+  }
+  EXPECT_EQ(directory_entries(d), std::vector<std::string>{"summary.json"});
+  EXPECT_EQ(read_input_file(d / "summary.json", "signal"), "my signal");
+}
+
 TEST_F(OutputDirectory, ARunDirectoryReadsBackBitForBit) {
   const auto c = testing::example("paper-example2.toml", {"output.fields_at=[]"});
   const auto result = run(c);

@@ -166,6 +166,9 @@ struct Case {
   OutputData output;
   /// [units] system: "SI" (figures label N, m, s, Pa, J) or "none" (unit-free numbers).
   std::string units = "none";
+  /// The case file it was read from (from_file), empty for text: an input
+  /// its results never overwrite.
+  std::filesystem::path source;
 
   /// The line as the paper's single bar, when it is one: one uniform
   /// elastic bar, no joints, gravity or shaft, its near end free or an

@@ -14,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "barimpact/run/output_directory.hpp"
+
 namespace barimpact {
 
 /// One bar (incident or transmitter): material and size. `wave_speed` c0
@@ -62,6 +64,7 @@ struct ChannelSetup {
 
 struct HopkinsonSetup {
   std::filesystem::path origin;                ///< the setup file, for messages
+  std::filesystem::path file;                  ///< the setup file read (from_file), empty for text
   HopkinsonBar incident_bar, transmitter_bar;  ///< one [bar]; a run may give two
   HopkinsonSpecimen specimen;
   ChannelSetup incident, transmitted;
@@ -79,5 +82,9 @@ struct HopkinsonSetup {
   static HopkinsonSetup from_string(const std::string& toml, const std::filesystem::path& base,
                                     const std::string& origin = "setup");
 };
+
+/// What the analysis reads: the setup file, the signal files and the runs'
+/// directories, which its results never overwrite.
+[[nodiscard]] CommandInputs hopkinson_inputs(const HopkinsonSetup& setup);
 
 }  // namespace barimpact

@@ -16,20 +16,28 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/model/input_error.hpp"
+#include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
 
 class MadeParents;
 
+/// The run's resolved case: case.toml, or case.resolved.toml where
+/// case.toml is an input of the command (`run DIR/case.toml --out DIR
+/// --force`), which is never written over.
+inline constexpr std::string_view case_file_name = "case.toml";
+inline constexpr std::string_view resolved_case_name = "case.resolved.toml";
+
 class RunDirectory {
  public:
-  /// Checks `target` against the output rule (`force` as --force) and
-  /// creates the staging directory, first removing what killed processes
-  /// left beside it (unless the caller cleans the parent once for many
-  /// targets: a sweep's runs/). Throws InputError naming `--out`.
+  /// Checks `target` against the output rule (`force` as --force; `inputs`
+  /// what the command read) and creates the staging directory, first
+  /// removing what killed processes left beside it (unless the caller
+  /// cleans the parent once for many targets: a sweep's runs/). Throws
+  /// InputError naming `--out`.
   explicit RunDirectory(std::filesystem::path target, bool force = false, std::string command = "run",
-                        bool remove_stale = true);
+                        bool remove_stale = true, CommandInputs inputs = {});
   /// Removes the staging directory unless `commit` succeeded (never throws).
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
@@ -41,7 +49,9 @@ class RunDirectory {
   void commit(const Case& c, const RunResult& result);
   /// Lets `write` fill the staging directory with files, marks them as
   /// barimpact's, then moves them into place: `target` is created, or
-  /// replaced if barimpact wrote it, or else receives the files beside its own.
+  /// replaced if barimpact wrote it, or else receives the files beside its own
+  /// (the resolved case as case.resolved.toml where case.toml is an input;
+  /// any other name of an input refused before anything is moved).
   /// What the file system refuses (a full disk) is an OutputError naming
   /// `--out`, the file and the reason; nothing staged is left and the target
   /// is as it was.
@@ -53,11 +63,13 @@ class RunDirectory {
  private:
   void move_into_place();
   void move_beside();
+  void spare_inputs();
   /// `e` naming `--out` and the file by its name in the results.
   [[nodiscard]] OutputError refused(const OutputError& e) const;
 
   std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
-  std::unique_ptr<MadeParents> parents_;            // --out's missing parents, made for the staging
+  CommandInputs inputs_;
+  std::unique_ptr<MadeParents> parents_;  // --out's missing parents, made for the staging
   std::string command_;
   bool beside_ = false;  // --force on someone else's directory
   bool committed_ = false;
@@ -74,6 +86,10 @@ void replace_text(const std::filesystem::path& path, const std::string& text);
 /// The file of a run directory that holds its history: history.csv, or
 /// results.h5 (output.format = "hdf5").
 [[nodiscard]] std::string_view history_file(OutputFormat format);
+
+/// The resolved case of the run in `dir`: case.resolved.toml when its
+/// marker lists it, else case.toml.
+[[nodiscard]] std::filesystem::path run_case_file(const std::filesystem::path& dir);
 
 /// Reads back what `commit` wrote (the history, from history.csv or
 /// results.h5 as its case.toml says, and summary.json; not the fields): the

@@ -10,7 +10,13 @@
 //     unless --force, which writes barimpact's files beside the others and
 //     replaces only files of the same names;
 //   - "/", the home directory and any parent of the working directory:
-//     refused, --force or not.
+//     refused, --force or not;
+//   - what the command reads (CommandInputs) is never written over, --force
+//     or not: --out may not be an input file, nor a directory the command
+//     reads or a parent of one, and a directory barimpact would replace or
+//     resume in may not hold an input file; beside the user's files an
+//     input takes no name of barimpact's (a run's resolved case then goes
+//     to case.resolved.toml, output.hpp).
 // This header owns the rule and the marker; output.hpp writes the files.
 #pragma once
 
@@ -33,15 +39,34 @@ enum class OutputMode {
   beside,   ///< --force on someone else's directory: only barimpact's own names are written
 };
 
+/// What a command reads, which its results never overwrite.
+struct CommandInputs {
+  std::vector<std::filesystem::path> files;        ///< a case, sweep or setup file, signals
+  std::vector<std::filesystem::path> directories;  ///< runs read back (hopkinson, plot)
+
+  /// True when `path` is one of `files` (compared resolved).
+  [[nodiscard]] bool reads_file(const std::filesystem::path& path) const;
+  /// The first of `files` that is `entry` of `dir` or lies inside it, or empty.
+  [[nodiscard]] std::filesystem::path file_under(const std::filesystem::path& dir, const std::string& entry) const;
+};
+
 /// Checks `target` against the rule above. Throws InputError naming
 /// `option` (e.g. "--out") and the rule it breaks.
 [[nodiscard]] OutputMode check_output_directory(const std::filesystem::path& target, bool force,
-                                                std::string_view option = "--out");
+                                                std::string_view option = "--out", const CommandInputs& inputs = {});
+
+/// Throws InputError naming `option` when one of `names`, written into
+/// `dir`, would replace an input of the command, or a directory holding one.
+void refuse_names_over_inputs(const std::filesystem::path& dir, const std::vector<std::string>& names,
+                              const CommandInputs& inputs, std::string_view option = "--out");
 
 /// True when `dir` holds barimpact's marker and nothing the marker does not
 /// list, and each listed directory is barimpact's in turn (a directory with
 /// no marker, such as a study's runs/, holds only directories that are).
 [[nodiscard]] bool written_by_barimpact(const std::filesystem::path& dir);
+
+/// The entries the marker of `dir` lists (none without a marker barimpact wrote).
+[[nodiscard]] std::vector<std::string> marked_entries(const std::filesystem::path& dir);
 
 /// The command that wrote `dir` by its marker ("run", "converge", ...), or empty.
 [[nodiscard]] std::string output_command(const std::filesystem::path& dir);
@@ -85,10 +110,12 @@ class MadeParents {
 };
 
 /// For a command that fills its directory bit by bit and resumes (sweep,
-/// converge): checks `target` (check_output_directory), creates it if need
-/// be and marks it as the command's, listing `entries` (the names it will
-/// write). Throws InputError naming `option`.
+/// converge): checks `target` (check_output_directory, and that none of
+/// `entries`, the names it will write, is or holds one of `inputs`), creates
+/// it if need be and marks it as the command's, listing `entries`. Throws
+/// InputError naming `option`.
 void prepare_output_directory(const std::filesystem::path& target, std::string_view command,
-                              const std::vector<std::string>& entries, bool force, std::string_view option = "--out");
+                              const std::vector<std::string>& entries, bool force, std::string_view option = "--out",
+                              const CommandInputs& inputs = {});
 
 }  // namespace barimpact

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/run/output_directory.hpp"
 
 namespace barimpact {
 
@@ -56,9 +57,11 @@ class SweepPlan {
   [[nodiscard]] const std::vector<std::string>& keys() const { return keys_; }
   /// The case of one point (throws InputError if that combination is invalid).
   [[nodiscard]] Case case_at(const SweepPoint& p) const;
+  /// What the sweep reads: its file (from_file) and its case file.
+  [[nodiscard]] CommandInputs inputs() const;
 
  private:
-  std::filesystem::path case_file_;
+  std::filesystem::path sweep_file_, case_file_;
   std::vector<Case::Override> base_sets_;
   std::vector<std::string> keys_;
   std::vector<SweepPoint> points_;
@@ -90,11 +93,12 @@ struct SweepOptions {
 
 /// Makes `dir` ready for a sweep (or another study of sweep points, as
 /// bearing): checks `options` (--jobs), applies the output rule (new, empty
-/// or the command's own; `force` as --force) and marks `dir` as `command`'s,
-/// listing `entries`; creates dir/runs/ and removes what a killed sweep left
-/// there. Throws InputError.
+/// or the command's own; `force` as --force; never over `inputs`) and marks
+/// `dir` as `command`'s, listing `entries`; creates dir/runs/ and removes
+/// what a killed sweep left there. Throws InputError.
 void prepare_sweep(const std::filesystem::path& dir, const SweepOptions& options, bool force,
-                   std::string_view command = "sweep", const std::vector<std::string>& entries = {"runs", "sweep.csv"});
+                   const CommandInputs& inputs, std::string_view command = "sweep",
+                   const std::vector<std::string>& entries = {"runs", "sweep.csv"});
 
 /// A sweep's rows before it runs: one per point, those whose run directory
 /// holds their run read back (read_row), and the points still to run.
