@@ -103,6 +103,10 @@ Fields FieldRecorder::take() {
   return std::move(fields_);
 }
 
+const ContactInterval* departure(const std::vector<ContactInterval>& episodes) {
+  return !episodes.empty() && episodes.back().closed ? &episodes.back() : nullptr;
+}
+
 void ContactMonitor::begin(const Scheme& scheme, long long steps) {
   velocity_.assign(scheme.nodes(), 0.0);
   intervals_.clear();

@@ -358,10 +358,8 @@ Study converge(const Case& base, const StudyOptions& o) {
     if (t.c && !h.empty() && t.status == "complete") {  // no error is measured on a run cut short
       const auto& s = t.result.summary;
       r.contact_episodes = static_cast<int>(s.contacts.size());
-      if (!s.contacts.empty()) {
-        r.first_contact = s.contacts.front().start;
-        r.lift_off = s.contacts.front().closed ? s.contacts.front().end : nan;
-      }
+      if (!s.contacts.empty()) r.first_contact = s.contacts.front().start;
+      if (const ContactInterval* left = departure(s.contacts)) r.lift_off = left->end;
       auto total = [](const HistoryRow& x) { return x.total(); };
       r.energy_error_end = std::abs(total(h.back()) - total(h.front())) / std::abs(total(h.front()));
 

@@ -46,12 +46,9 @@ SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
   r.t_end = s.t_end;
   r.contacts = static_cast<int>(s.contacts.size());
   r.first_contact = nan_if(!s.contacts.empty(), s.contacts.empty() ? 0 : s.contacts.front().start);
-  r.lift_off =
-      nan_if(!s.contacts.empty() && s.contacts.front().closed, s.contacts.empty() ? 0 : s.contacts.front().end);
-  const ContactInterval* last_closed = nullptr;
-  for (const auto& c : s.contacts)
-    if (c.closed) last_closed = &c;
-  r.rebound_velocity = nan_if(last_closed != nullptr, last_closed ? last_closed->rebound_velocity : 0);
+  const ContactInterval* left = departure(s.contacts);  // lift-off and rebound of one episode
+  r.lift_off = nan_if(left != nullptr, left ? left->end : 0);
+  r.rebound_velocity = nan_if(left != nullptr, left ? left->rebound_velocity : 0);
   r.max_penetration = s.max_penetration;
   r.max_reaction = s.max_reaction;
   r.energy_error_relative =

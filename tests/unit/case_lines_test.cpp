@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../support/run_case.hpp"
+#include "../support/scratch_directory.hpp"
 #include "barimpact/case/case.hpp"
 #include "barimpact/study/sweep.hpp"
 
@@ -681,4 +682,27 @@ law = "elastic"
   EXPECT_EQ(back.one_bar()->bar.stiffness, c.one_bar()->bar.stiffness);
   EXPECT_EQ(back.one_bar()->bar.density, c.one_bar()->bar.density);
   EXPECT_EQ(back.one_bar()->bar.viscosity, c.one_bar()->bar.viscosity);
+}
+
+// A penalty so stiff for its step that the contact chatters (hundreds of
+// brief episodes): the sweep's lift-off and rebound come from one episode,
+// the last (the bar leaves near t = 2), never the first brief touch's end
+// beside the last episode's rebound.
+TEST(SweepRows, LiftOffAndReboundComeFromTheSameEpisode) {
+  const barimpact::testing::ScratchDirectory dir("sweep-episodes");
+  const auto plan = barimpact::SweepPlan::from_string(
+      "case = \"paper-example1.toml\"\n[set]\noutput.fields_at = []\ntime.step = 0.0025\nbar.elements = 800\n"
+      "[[axis]]\nkey = \"obstacle.stiffness\"\nvalues = [800.0]\n",
+      "sweep.toml", BARIMPACT_SOURCE_DIR "/examples");
+  std::filesystem::create_directories(dir.path() / "runs");
+  const auto rows = barimpact::run_sweep(plan, dir.path(), {0}, {});
+  ASSERT_EQ(rows.size(), 1u);
+  const auto& r = rows.front();
+  ASSERT_GT(r.contacts, 10) << "the contact chatters";
+  const barimpact::RunResult run = barimpact::run(plan.case_at(plan.points()[0]));
+  const barimpact::ContactInterval& last = run.summary.contacts.back();
+  ASSERT_TRUE(last.closed);
+  EXPECT_EQ(r.lift_off, last.end);
+  EXPECT_EQ(r.rebound_velocity, last.rebound_velocity);
+  EXPECT_GT(r.lift_off, 1.9);
 }

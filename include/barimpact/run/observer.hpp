@@ -125,6 +125,12 @@ struct ContactInterval {
   double max_reaction = 0.0;
 };
 
+/// The episode the body left the obstacle from: the last one, when it ended
+/// before the run's end; null when there is none or the body is still in
+/// contact at the end. A study's lift-off and rebound both read it, so that
+/// they never mix episodes (chatter's first brief touch with the last).
+[[nodiscard]] const ContactInterval* departure(const std::vector<ContactInterval>& episodes);
+
 /// Watches every step: contact episodes, largest penetration and reaction.
 class ContactMonitor final : public Observer {
  public:

@@ -62,7 +62,7 @@ struct StudyRun {
   double error_R_l1 = 0.0;        ///< sum_n |R - R_ref| dt
   double energy_error_end = 0.0;  ///< |E_total(end) - E_total(0)| / |E_total(0)|
   double first_contact = 0.0;     ///< start of the first contact episode (NaN: none)
-  double lift_off = 0.0;          ///< end of the first contact episode (NaN: none or unclosed)
+  double lift_off = 0.0;          ///< end of the episode the body left from (observer.hpp's departure; NaN: none)
   int contact_episodes = 0;
   double cpu_seconds = 0.0;
   double order_U = 0.0;  ///< observed order against the previous level (NaN on level 0)

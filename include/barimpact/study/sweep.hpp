@@ -75,6 +75,9 @@ struct SweepRow {
   std::string message;
   std::vector<std::string> warnings;  ///< the run's health checks (health.hpp)
   long long steps_done = 0;
+  /// lift_off and rebound_velocity: the end and the rebound of one episode,
+  /// the last, when it ended before the run's end (observer.hpp's
+  /// departure); both NaN when the body is still in contact at the end.
   double t_end = 0, first_contact = 0, lift_off = 0, rebound_velocity = 0, max_penetration = 0, max_reaction = 0,
          energy_error_relative = 0, run_seconds = 0;
   int contacts = 0;
