@@ -4,8 +4,8 @@
 //   barimpact exact CASE.toml --out DIR [--set ...]   (the exact solution, same files)
 //   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
 //   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch]   (also under mpirun -n P)
-//   barimpact bearing CASE.toml --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--jobs N] [--no-plot]
-//   barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
+//   barimpact bearing CASE.toml --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--set K=V ...] [--jobs N]
+//   [--no-plot] barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
 //                      [--vary key=spec] [--schemes a,b] [--reference auto|rigid|finest] [--jobs N]
 //
 // Exit status: 0 done, 2 bad input or results the file system refused (a
@@ -503,6 +503,7 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
 
 struct BearingArgs {
   std::string case_path, out, capacity;
+  std::vector<std::string> sets;
   std::optional<double> toe_share;
   bool no_plot = false;
   barimpact::SweepOptions options;
@@ -513,6 +514,7 @@ int bearing_command(const BearingArgs& a) {
   barimpact::BearingOptions o;
   barimpact::parse_capacity(a.capacity, o);
   o.toe_share = a.toe_share;
+  for (const auto& s : a.sets) o.sets.push_back({s});
   const barimpact::BearingPlan plan(a.case_path, o);
   const std::filesystem::path dir(a.out);
   const auto rows = barimpact::write_bearing(plan, dir, a.options, a.flags.force);
@@ -702,6 +704,7 @@ Command add_bearing(CLI::App& app) {
   c->add_option("--out", a->out, "Output directory: a new or empty one, or a bearing's (resumes)")->required();
   c->add_option("--capacity", a->capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")->required();
   c->add_option("--toe-share", a->toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
+  c->add_option("--set", a->sets, "Override a key of the case for every capacity: section.key=value (repeatable)");
   c->add_option("--jobs", a->options.jobs, jobs_help);
   c->add_flag("--no-plot", a->no_plot, "Skip bearing.png");
   add_write_flags(c, a->flags);

@@ -450,11 +450,13 @@ def sweep(sweep_file, out, *, jobs=None, no_batch=False, force=False, strict=Fal
     return table
 
 
-def bearing(case, out, capacity, toe_share=None, jobs=None, plot=True, force=False, *, no_plot=False, strict=False):
+def bearing(case, out, capacity, toe_share=None, jobs=None, plot=True, force=False, *, no_plot=False, strict=False,
+            set=None):
     """The bearing graph (`barimpact bearing CASE --out OUT --capacity
     FROM:TO:COUNT`): `case` a case file with Smith's soil, `capacity`
     "FROM:TO:COUNT" or (from, to, count), in N, `toe_share` R_toe / capacity
-    in [0, 1] (None: the case's). Runs every capacity on `jobs` threads (None:
+    in [0, 1] (None: the case's), `set` overrides of the case for every
+    capacity, as --set ({"time.end": 0.2}). Runs every capacity on `jobs` threads (None:
     every core; resumes a bearing directory), writes bearing.csv and, unless
     no_plot (or plot=False, the older spelling), bearing.png. Returns
     bearing.csv's table (blow counts inf where the hammer cannot move the
@@ -464,7 +466,7 @@ def bearing(case, out, capacity, toe_share=None, jobs=None, plot=True, force=Fal
     if not isinstance(capacity, str):
         lo, hi, count = capacity
         capacity = f"{float(lo)!r}:{float(hi)!r}:{int(count)}"
-    done = _core._bearing(case, os.fspath(out), capacity, toe_share, _jobs(jobs), bool(force))
+    done = _core._bearing(case, os.fspath(out), capacity, toe_share, _jobs(jobs), bool(force), set)
     summary = {k: done[k] for k in ("toe_share", "from", "to", "count")}
     summary["directory"] = os.fspath(out)
     table = _table_from_csv(done["csv"], summary)

@@ -96,8 +96,8 @@ def sweep(sweep_file: _PathArg | Mapping[str, Any], out: _PathArg, *, jobs: int 
 
 def bearing(case: _PathArg, out: _PathArg, capacity: str | tuple[float, float, int], toe_share: float | None = None,
             jobs: int | None = None, plot: bool = True, force: bool = False, *, no_plot: bool = False,
-            strict: bool = False) -> Table:
-    """barimpact bearing CASE --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--jobs N] [--no-plot]
+            strict: bool = False, set: _Overrides = None) -> Table:
+    """barimpact bearing CASE --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--set K=V] [--jobs N] [--no-plot]
     [--force] [--strict]: bearing.csv's table."""
 
 def hopkinson(setup: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,

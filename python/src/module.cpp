@@ -294,10 +294,11 @@ py::dict sweep_binding(const py::object& sweep, const std::string& out, int jobs
 }
 
 py::dict bearing_binding(const py::object& case_file, const std::string& out, const std::string& capacity,
-                         const std::optional<double>& toe_share, int jobs, bool force) {
+                         const std::optional<double>& toe_share, int jobs, bool force, const py::object& set) {
   BearingOptions o;
   parse_capacity(capacity, o);  // the command's rules
   o.toe_share = toe_share;      // BearingPlan checks it
+  o.sets = overrides_from(set);
   const BearingPlan plan(fspath(case_file), o);
   SweepOptions options;
   options.jobs = jobs;
@@ -609,7 +610,7 @@ void bind_studies(py::module_& m) {
         "write_sweep (the sweep command without MPI); use barimpact.sweep");
 
   m.def("_bearing", &bearing_binding, py::arg("case"), py::arg("out"), py::arg("capacity"), py::arg("toe_share"),
-        py::arg("jobs"), py::arg("force"),
+        py::arg("jobs"), py::arg("force"), py::arg("set") = py::none(),
         "write_bearing (the bearing command without its figure); use barimpact.bearing");
 
   m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,

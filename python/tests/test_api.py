@@ -292,6 +292,8 @@ def test_bearing_takes_the_commands_capacity_and_returns_a_table(tmp_path):
     assert t.summary["toe_share"] == 0.5 and t.summary["count"] == 2
     assert not (tmp_path / "b" / "bearing.png").exists()
     assert_tables_equal(t, barimpact.read_table(tmp_path / "b"))
+    s = barimpact.bearing(pipe, tmp_path / "s", "1e6:2e6:2", set={"time.end": 0.05}, no_plot=True, jobs=2)
+    assert s.rows == 2 and "end = 0.05\n" in (tmp_path / "s" / "runs" / "0001" / "case.toml").read_text()
     with pytest.raises(barimpact.InputError, match="--toe-share") as e:
         barimpact.bearing(pipe, tmp_path / "c", (1e6, 5e7, 2), toe_share=1.5)
     assert str(e.value) == cli_error("bearing", str(pipe), "--out", str(tmp_path / "c"), "--capacity", "1e6:5e7:2",

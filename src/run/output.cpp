@@ -312,6 +312,24 @@ fs::path run_case_file(const fs::path& dir) {
   return dir / (resolved ? resolved_case_name : case_file_name);
 }
 
+namespace {
+
+// summary.json's blow, the numbers a study's table reads back (not the envelopes).
+BlowSummary read_blow(const nlohmann::json& j) {
+  BlowSummary b;
+  b.set = number_or_nan(j, "set");
+  b.enthru = number_or_nan(j, "enthru");
+  b.hammer_energy = number_or_nan(j, "hammer_energy");
+  b.impact = j.value("impact", true);
+  b.finished = j.value("finished", false);
+  b.rest_time = number_or_nan(j, "rest_time");
+  for (auto [key, peak] : {std::pair{"max_compression", &b.max_compression}, std::pair{"max_tension", &b.max_tension}})
+    if (j.contains(key) && j.at(key).is_object()) peak->value = number_or_nan(j.at(key), "value");
+  return b;
+}
+
+}  // namespace
+
 std::optional<RunResult> read_run_directory(const fs::path& dir, const std::string& case_toml) {
   const fs::path case_file = run_case_file(dir);
   if (!case_toml.empty() && read_text(case_file) != case_toml) return std::nullopt;
@@ -344,6 +362,7 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
     s.energy_error_max = number_or_nan(j, "energy_error_max");
     s.run_seconds = number_or_nan(j, "run_seconds");
     s.warnings = j.value("warnings", std::vector<std::string>{});
+    if (j.contains("blow") && j.at("blow").is_object()) s.blow = read_blow(j.at("blow"));
     // The file the case says the run wrote (a user's file of the other name may lie beside it under --force).
     if (Case::from_file(case_file).output.format == OutputFormat::hdf5)
       read_results_history(dir / results_h5_name, r);

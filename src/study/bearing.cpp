@@ -71,7 +71,7 @@ void parse_capacity(const std::string& text, BearingOptions& o) {
 }
 
 BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
-  const Case c = Case::from_file(case_file);
+  const Case c = Case::from_file(case_file, o.sets);  // an override the case refuses is refused here, named
   const bool toe = c.near_end.law == JointLaw::smith;
   std::vector<std::string> shafts;
   double shaft = 0.0;
@@ -120,6 +120,7 @@ BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
     text = fmt::format("zip = [[{}]]\n", fmt::join(quoted_keys, ", ")) + text;
   }
   sweep_ = SweepPlan::from_string(text, fmt::format("bearing of {}", case_file.string()), fs::current_path());
+  sweep_.set_base(o.sets);
 }
 
 std::vector<BearingRow> run_bearing(const BearingPlan& plan, const fs::path& dir, const SweepOptions& options) {

@@ -55,6 +55,15 @@ SweepRow row_from_summary(const SweepPoint& p, const Summary& s) {
       s.energy_initial != 0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   r.run_seconds = s.run_seconds;
   r.warnings = s.warnings;
+  if (const auto& b = s.blow) {
+    r.blow = true;
+    r.set = b->set;
+    r.blows_per_250mm = b->blows_per_250mm();
+    r.blows_per_m = b->blows_per_m();
+    r.max_compression = b->max_compression.value;
+    r.max_tension = b->max_tension.value;
+    r.enthru = b->enthru;
+  }
   return r;
 }
 
@@ -399,9 +408,12 @@ std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) 
     out += ',';
     out += k;
   }
+  // A sweep of pile blows adds their columns after the contract's.
+  const bool blows = std::any_of(rows.begin(), rows.end(), [](const SweepRow& r) { return r.blow; });
   out +=
       ",status,steps_done,t_end,contacts,first_contact,lift_off,rebound_velocity,max_penetration,max_reaction,"
-      "energy_error_relative,run_seconds,message,warnings\n";
+      "energy_error_relative,run_seconds,message,warnings";
+  out += blows ? ",set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru\n" : "\n";
   for (const auto& r : rows) {
     out += r.id;
     for (const auto& v : r.values) {
@@ -409,10 +421,17 @@ std::string sweep_csv(const SweepPlan& plan, const std::vector<SweepRow>& rows) 
       out += csv_text(v);
     }
     const std::string warnings = join_warnings(r.warnings);
-    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.status, r.steps_done, csv_number(r.t_end),
+    out += fmt::format(",{},{},{},{},{},{},{},{},{},{},{},{},{}", r.status, r.steps_done, csv_number(r.t_end),
                        r.contacts, csv_number(r.first_contact), csv_number(r.lift_off), csv_number(r.rebound_velocity),
                        csv_number(r.max_penetration), csv_number(r.max_reaction), csv_number(r.energy_error_relative),
                        csv_number(r.run_seconds), csv_text(r.message), csv_text(warnings));
+    const double none = std::numeric_limits<double>::quiet_NaN();
+    if (blows)
+      for (const double v : {r.set, r.blows_per_250mm, r.blows_per_m, r.max_compression, r.max_tension, r.enthru}) {
+        out += ',';
+        out += csv_number(r.blow ? v : none);
+      }
+    out += "\n";
   }
   return out;
 }
@@ -433,7 +452,11 @@ std::string row_to_json(const SweepRow& r) {
                         {"max_reaction", num(r.max_reaction)},
                         {"energy_error_relative", num(r.energy_error_relative)},
                         {"run_seconds", num(r.run_seconds)},
-                        {"warnings", r.warnings}}
+                        {"warnings", r.warnings},
+                        {"blow", r.blow},
+                        {"blow_values",
+                         {num(r.set), num(r.blows_per_250mm), num(r.blows_per_m), num(r.max_compression),
+                          num(r.max_tension), num(r.enthru)}}}
       .dump();
 }
 
@@ -458,6 +481,13 @@ SweepRow row_from_json(const std::string& text) {
   r.energy_error_relative = num("energy_error_relative");
   r.run_seconds = num("run_seconds");
   r.warnings = j["warnings"].get<std::vector<std::string>>();
+  r.blow = j.value("blow", false);
+  if (r.blow) {
+    const auto& v = j["blow_values"];
+    auto at = [&](std::size_t i) { return v[i].is_number() ? v[i].get<double>() : std::nan(""); };
+    r.set = at(0), r.blows_per_250mm = at(1), r.blows_per_m = at(2);
+    r.max_compression = at(3), r.max_tension = at(4), r.enthru = at(5);
+  }
   return r;
 }
 

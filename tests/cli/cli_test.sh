@@ -368,6 +368,10 @@ cp "$work/bearing/bearing.csv" "$work/bearing-first.csv"
 cut -d, -f1-11 "$work/bearing/bearing.csv" | cmp -s - <(cut -d, -f1-11 "$work/bearing-first.csv") && ok || bad "bearing resumed differs"
 expect_refused "--capacity" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6
 expect_refused "--toe-share" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share 2
+# bearing --set reaches every capacity's case (the blow-unfinished advice: raise time.end).
+"$bin" bearing "$pipe" --out "$work/bearing-set" --capacity 1e6:2e6:2 --set time.end=0.05 --no-plot > /dev/null && ok || bad "bearing --set exit"
+grep -q '^end = 0.05$' "$work/bearing-set/runs/0001/case.toml" && ok || bad "bearing --set not in the runs' cases"
+expect_refused "--set time.nope=1" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:2 --set time.nope=1
 expect_refused "--toe-share must be in [0, 1]" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share -0.5
 expect_refused "--jobs: must be 1 .. 1024" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --jobs -1
 expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3

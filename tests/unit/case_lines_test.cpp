@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -705,4 +706,41 @@ TEST(SweepRows, LiftOffAndReboundComeFromTheSameEpisode) {
   EXPECT_EQ(r.lift_off, last.end);
   EXPECT_EQ(r.rebound_velocity, last.rebound_velocity);
   EXPECT_GT(r.lift_off, 1.9);
+}
+
+// A sweep of pile blows: sweep.csv adds the blow's columns after the
+// contract's (set, blow counts, driving stresses, ENTHRU), the run's own
+// numbers, and a resumed sweep reads them back from the runs.
+TEST(SweepRows, APileSweepHasTheBlowsColumns) {
+  const barimpact::testing::ScratchDirectory dir("sweep-blows");
+  const auto plan = barimpact::SweepPlan::from_string(
+      "case = \"steel-pipe-sand.toml\"\n[set]\noutput.fields_at = []\nbody.pile.elements = 40\n"
+      "[[axis]]\nkey = \"near_end.ultimate\"\nvalues = [1.0e6, 2.0e6]\n",
+      "sweep.toml", BARIMPACT_SOURCE_DIR "/examples/pile");
+  const auto out = dir.path() / "sweep";
+  const auto first = barimpact::write_sweep(plan, out, {}, false);
+  ASSERT_EQ(first.rows.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& r = first.rows[i];
+    ASSERT_TRUE(r.blow);
+    const auto b = *barimpact::run(plan.case_at(plan.points()[i])).summary.blow;
+    EXPECT_EQ(r.set, b.set);
+    EXPECT_EQ(r.blows_per_250mm, b.blows_per_250mm());
+    EXPECT_EQ(r.max_compression, b.max_compression.value);
+    EXPECT_EQ(r.max_tension, b.max_tension.value);
+    EXPECT_EQ(r.enthru, b.enthru);
+  }
+  std::ifstream csv(out / "sweep.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",message,warnings,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru"),
+            std::string::npos)
+      << header;
+  const auto again = barimpact::write_sweep(plan, out, {}, false);  // resumed: read back from the runs
+  EXPECT_EQ(again.resumed, 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_TRUE(again.rows[i].blow);
+    EXPECT_EQ(again.rows[i].set, first.rows[i].set);
+    EXPECT_EQ(again.rows[i].enthru, first.rows[i].enthru);
+  }
 }

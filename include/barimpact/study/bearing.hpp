@@ -18,9 +18,10 @@
 namespace barimpact {
 
 struct BearingOptions {
-  double from = 0.0, to = 0.0;      ///< the capacities R_toe + R_shaft, N
-  int count = 0;                    ///< spaced linearly, from and to included
-  std::optional<double> toe_share;  ///< R_toe / capacity in [0, 1] (none: the case's); BearingPlan checks it
+  double from = 0.0, to = 0.0;       ///< the capacities R_toe + R_shaft, N
+  int count = 0;                     ///< spaced linearly, from and to included
+  std::optional<double> toe_share;   ///< R_toe / capacity in [0, 1] (none: the case's); BearingPlan checks it
+  std::vector<Case::Override> sets;  ///< --set overrides of the case, for every capacity (time.end, the mesh, ...)
 };
 
 /// Reads --capacity FROM:TO:COUNT into `o` (count >= 2, or 1 with FROM = TO).

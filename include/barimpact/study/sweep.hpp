@@ -52,6 +52,9 @@ class SweepPlan {
   /// Same from TOML text: `origin` names it in error messages and `case`
   /// is resolved relative to `dir` (the sweep file's directory).
   static SweepPlan from_string(std::string_view toml, std::string_view origin, const std::filesystem::path& dir);
+  /// Overrides every point's case takes before its own values (a study's
+  /// --set, already checked against the case); they replace [set]'s.
+  void set_base(std::vector<Case::Override> sets) { base_sets_ = std::move(sets); }
 
   [[nodiscard]] const std::vector<SweepPoint>& points() const { return points_; }
   [[nodiscard]] const std::vector<std::string>& keys() const { return keys_; }
@@ -81,6 +84,10 @@ struct SweepRow {
   double t_end = 0, first_contact = 0, lift_off = 0, rebound_velocity = 0, max_penetration = 0, max_reaction = 0,
          energy_error_relative = 0, run_seconds = 0;
   int contacts = 0;
+  /// A pile-driving blow's (summary.json's blow), after the contract's
+  /// columns: set, blow counts, driving stresses and ENTHRU; NaN without a blow.
+  bool blow = false;
+  double set = 0, blows_per_250mm = 0, blows_per_m = 0, max_compression = 0, max_tension = 0, enthru = 0;
   bool resumed = false;  ///< read back from a complete run directory
   bool batched = false;  ///< ran in a SIMD batch with other cases
 };
