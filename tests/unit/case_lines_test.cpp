@@ -685,16 +685,27 @@ law = "elastic"
   EXPECT_EQ(back.one_bar()->bar.viscosity, c.one_bar()->bar.viscosity);
 }
 
+namespace {
+
+// A sweep of an example (`example` in examples/`folder`) with its [set] and one axis.
+barimpact::SweepPlan example_sweep(const std::string& folder, const std::string& example, const std::string& set,
+                                   const std::string& key, const std::string& values) {
+  return barimpact::SweepPlan::from_string(
+      fmt::format("case = \"{}\"\n[set]\n{}[[axis]]\nkey = \"{}\"\nvalues = [{}]\n", example, set, key, values),
+      "sweep.toml", std::string(BARIMPACT_SOURCE_DIR "/examples/") + folder);
+}
+
+}  // namespace
+
 // A penalty so stiff for its step that the contact chatters (hundreds of
 // brief episodes): the sweep's lift-off and rebound come from one episode,
 // the last (the bar leaves near t = 2), never the first brief touch's end
 // beside the last episode's rebound.
 TEST(SweepRows, LiftOffAndReboundComeFromTheSameEpisode) {
   const barimpact::testing::ScratchDirectory dir("sweep-episodes");
-  const auto plan = barimpact::SweepPlan::from_string(
-      "case = \"paper-example1.toml\"\n[set]\noutput.fields_at = []\ntime.step = 0.0025\nbar.elements = 800\n"
-      "[[axis]]\nkey = \"obstacle.stiffness\"\nvalues = [800.0]\n",
-      "sweep.toml", BARIMPACT_SOURCE_DIR "/examples");
+  const auto plan =
+      example_sweep(".", "paper-example1.toml", "output.fields_at = []\ntime.step = 0.0025\nbar.elements = 800\n",
+                    "obstacle.stiffness", "800.0");
   std::filesystem::create_directories(dir.path() / "runs");
   const auto rows = barimpact::run_sweep(plan, dir.path(), {0}, {});
   ASSERT_EQ(rows.size(), 1u);
@@ -713,10 +724,8 @@ TEST(SweepRows, LiftOffAndReboundComeFromTheSameEpisode) {
 // numbers, and a resumed sweep reads them back from the runs.
 TEST(SweepRows, APileSweepHasTheBlowsColumns) {
   const barimpact::testing::ScratchDirectory dir("sweep-blows");
-  const auto plan = barimpact::SweepPlan::from_string(
-      "case = \"steel-pipe-sand.toml\"\n[set]\noutput.fields_at = []\nbody.pile.elements = 40\n"
-      "[[axis]]\nkey = \"near_end.ultimate\"\nvalues = [1.0e6, 2.0e6]\n",
-      "sweep.toml", BARIMPACT_SOURCE_DIR "/examples/pile");
+  const auto plan = example_sweep("pile", "steel-pipe-sand.toml", "output.fields_at = []\nbody.pile.elements = 40\n",
+                                  "near_end.ultimate", "1.0e6, 2.0e6");
   const auto out = dir.path() / "sweep";
   const auto first = barimpact::write_sweep(plan, out, {}, false);
   ASSERT_EQ(first.rows.size(), 2u);
