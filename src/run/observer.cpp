@@ -115,7 +115,7 @@ void ContactMonitor::begin(const Scheme& scheme, long long steps) {
   // loop never allocates unless a run chatters more often than that.
   intervals_.reserve(static_cast<std::size_t>(std::min<long long>(steps / 2 + 1, 65536)));
   in_contact_ = have_previous_ = false;
-  max_penetration_ = max_reaction_ = 0.0;
+  max_penetration_ = max_reaction_ = max_impulse_ = 0.0;
 }
 
 bool ContactMonitor::observe(const Scheme& s) {
@@ -133,7 +133,8 @@ bool ContactMonitor::observe(const Scheme& s) {
     if (!have_previous_ || previous_d_ == d) return t;  // a rigid end sits at d = 0
     return std::clamp(previous_t_ + (t - previous_t_) * previous_d_ / (previous_d_ - d), previous_t_, latest);
   };
-  if (contact && !in_contact_) {
+  const bool opened = contact && !in_contact_;
+  if (opened) {
     intervals_.push_back({crossing(t + (t - previous_t_)), t, false, 0.0, 0.0});
   } else if (!contact && in_contact_) {
     auto& last = intervals_.back();
@@ -149,9 +150,14 @@ bool ContactMonitor::observe(const Scheme& s) {
   if (contact) {
     auto& last = intervals_.back();
     last.end = std::max(t, last.start);
-    last.max_reaction = std::max(last.max_reaction, R);
     max_penetration_ = std::max(max_penetration_, -d);
-    max_reaction_ = std::max(max_reaction_, R);
+    if (opened && law_.kind() == ObstacleKind::rigid) {  // the impact step: an impulse
+      last.impact_impulse = R * (dt_ > 0.0 ? dt_ : have_previous_ ? t - previous_t_ : 0.0);
+      max_impulse_ = std::max(max_impulse_, last.impact_impulse);
+    } else {
+      last.max_reaction = std::max(last.max_reaction, R);
+      max_reaction_ = std::max(max_reaction_, R);
+    }
   }
   in_contact_ = contact;
   have_previous_ = true;

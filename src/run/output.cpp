@@ -353,10 +353,12 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
       ci.exit_velocity = number_or_nan(e, "exit_velocity");
       ci.rebound_velocity = number_or_nan(e, "rebound_velocity");
       ci.max_reaction = e.at("max_reaction").get<double>();
+      ci.impact_impulse = e.value("impact_impulse", 0.0);
       s.contacts.push_back(ci);
     }
     s.max_penetration = number_or_nan(j, "max_penetration");
     s.max_reaction = number_or_nan(j, "max_reaction");
+    s.max_impact_impulse = j.value("max_impact_impulse", 0.0);
     s.energy_initial = number_or_nan(j, "energy_initial");
     s.energy_final = number_or_nan(j, "energy_final");
     s.energy_error_max = number_or_nan(j, "energy_error_max");
@@ -382,7 +384,8 @@ std::string summary_json(const Case& c, const Summary& s) {
                         {"closed", ci.closed},
                         {"exit_velocity", ci.closed ? number_or_null(ci.exit_velocity) : nlohmann::json(nullptr)},
                         {"rebound_velocity", ci.closed ? number_or_null(ci.rebound_velocity) : nlohmann::json(nullptr)},
-                        {"max_reaction", ci.max_reaction}});
+                        {"max_reaction", ci.max_reaction},
+                        {"impact_impulse", ci.impact_impulse}});
   nlohmann::json links = nlohmann::json::object();
   for (std::size_t i = 0; i < s.link_names.size(); ++i) {
     nlohmann::json list = nlohmann::json::array();
@@ -449,6 +452,7 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"contact_count", s.contacts.size()},
       {"max_penetration", s.max_penetration},
       {"max_reaction", s.max_reaction},
+      {"max_impact_impulse", s.max_impact_impulse},
       {"links", links},
       {"plastic", plastic},
       {"blow", blow},
@@ -523,7 +527,11 @@ std::string summary_text(const Case& c, const Summary& s) {
   if (s.contacts.size() > shown)
     out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);
   if (obstacle || s.link_names.empty())
-    out += fmt::format("  max penetration {:.4g}, max reaction {:.4g}\n", s.max_penetration, s.max_reaction);
+    out += fmt::format(
+        "  max penetration {:.4g}, max reaction {:.4g}{}\n", s.max_penetration, s.max_reaction,
+        s.max_impact_impulse > 0.0
+            ? fmt::format(" after the impact steps (largest impact impulse {:.4g} over one step)", s.max_impact_impulse)
+            : std::string());
   for (std::size_t i = 0; i < s.link_names.size(); ++i) {
     if (s.link_names[i] == "near_end") continue;  // the contacts above
     double largest = 0.0;

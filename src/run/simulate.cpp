@@ -87,7 +87,7 @@ RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
       probes_(c, line_),
       history_(c.output.every, &probes_),
       fields_(c, line_, c.output.fields_at),
-      contact_(near_obstacle(c)),
+      contact_(near_obstacle(c), c.time.step),
       links_(line_),
       plastic_(line_, c.output.every) {
   if (reports_blow(c, line_)) blow_.emplace(c, line_);
@@ -165,6 +165,7 @@ RunResult RunRecorder::finish(LoopResult loop, long long steps, std::chrono::ste
   s.link_episodes = links_.episodes();
   s.max_penetration = contact_.max_penetration();
   s.max_reaction = contact_.max_reaction();
+  s.max_impact_impulse = contact_.max_impact_impulse();
   if (plastic_.any()) s.plastic = plastic_summary();
   book_energy(r.history, s);
   r.fields = fields_.take();

@@ -122,7 +122,11 @@ struct ContactInterval {
   bool closed = false;            ///< false: still in contact at the last step
   double exit_velocity = 0.0;     ///< V, the end's velocity, at the first step after separation
   double rebound_velocity = 0.0;  ///< the bar's mean velocity (momentum / mass) then
+  /// The largest reaction, past the episode's first step against a rigid
+  /// obstacle: that step's reaction is the impact's impulse over one step
+  /// (the velocity stopped at once), not a force, and is reported apart.
   double max_reaction = 0.0;
+  double impact_impulse = 0.0;  ///< rigid: the first step's reaction times its step (N s); 0 for a penalty
 };
 
 /// The episode the body left the obstacle from: the last one, when it ended
@@ -134,13 +138,17 @@ struct ContactInterval {
 /// Watches every step: contact episodes, largest penetration and reaction.
 class ContactMonitor final : public Observer {
  public:
-  explicit ContactMonitor(const ObstacleData& obstacle) : law_(obstacle) {}
+  /// `dt` the run's step, which turns a rigid impact step's reaction into its impulse.
+  explicit ContactMonitor(const ObstacleData& obstacle, double dt = 0.0) : law_(obstacle), dt_(dt) {}
   void begin(const Scheme& scheme, long long steps) override;
   /// Allocates only when an episode begins beyond the 65536 reserved.
   bool observe(const Scheme& scheme) override;
   [[nodiscard]] const std::vector<ContactInterval>& intervals() const { return intervals_; }
   [[nodiscard]] double max_penetration() const { return max_penetration_; }
+  /// The largest reaction of every episode (rigid: past its first step).
   [[nodiscard]] double max_reaction() const { return max_reaction_; }
+  /// The largest impact impulse of a rigid obstacle's episodes (0 for a penalty).
+  [[nodiscard]] double max_impact_impulse() const { return max_impulse_; }
 
  private:
   ObstacleLaw law_;
@@ -148,7 +156,8 @@ class ContactMonitor final : public Observer {
   bool in_contact_ = false;
   bool have_previous_ = false;
   double previous_t_ = 0.0, previous_d_ = 0.0;
-  double max_penetration_ = 0.0, max_reaction_ = 0.0;
+  double max_penetration_ = 0.0, max_reaction_ = 0.0, max_impulse_ = 0.0;
+  double dt_ = 0.0;
   std::vector<double> velocity_;
 };
 

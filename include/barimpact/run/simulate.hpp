@@ -56,7 +56,8 @@ struct Summary {
   std::vector<std::string> link_names;
   std::vector<std::vector<LinkEpisode>> link_episodes;
   double max_penetration = 0.0;
-  double max_reaction = 0.0;
+  double max_reaction = 0.0;              ///< rigid: past each impact step (observer.hpp's ContactInterval)
+  double max_impact_impulse = 0.0;        ///< rigid: the largest impact step's impulse (N s); 0 for a penalty
   std::optional<PlasticSummary> plastic;  ///< none: every body elastic
   std::optional<BlowSummary> blow;        ///< none: no Smith soil and no [blow]
   double energy_initial = 0.0;            ///< E_total at t = 0
