@@ -260,148 +260,167 @@ void check_study(const Case& base, const StudyOptions& o) {
   }
 }
 
+namespace {
+
+// The runs' directory made, and what a killed study left in it removed.
+void prepare_runs(const StudyOptions& o) {
+  if (o.runs.empty()) return;
+  std::error_code ec;
+  if (!fs::create_directories(o.runs, ec) && ec)
+    throw OutputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()), o.runs, ec.message());
+  remove_stale_staging(o.runs, "");
+  remove_stale_staging(o.runs.parent_path(), "");
+}
+
+// Level i of `scheme`: its case (h and dt refined by ratio^i, or the varied
+// key's value), its scale for the observed orders, or its refusal.
+Task make_task(const Case& base, const std::string& base_toml, const StudyOptions& o, const std::string& scheme,
+               int i) {
+  Task t;
+  t.id = fmt::format("{}-{:02}", scheme, i);
+  t.scheme = scheme;
+  t.level = i;
+  const auto one = base.one_bar();
+  const bool varies_step = o.vary && o.vary->key == "time.step";
+  const long long f = static_cast<long long>(std::llround(std::pow(o.ratio, i)));
+  const bool refine_h = o.refine == Refine::both || o.refine == Refine::h;
+  const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
+  const long long elements = base.bar_elements() * (refine_h ? f : 1);
+  double step = base.time.step / static_cast<double>(refine_dt ? f : 1);
+  std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""}, {"output.every=1"}, {"output.fields_at=[]"}};
+  if (one)
+    sets.push_back({fmt::format("bar.elements={}", elements)});
+  else  // every bar of the line refined alike
+    for (const auto& b : base.bodies)
+      if (b.kind == BodyKind::bar)
+        sets.push_back({fmt::format("body.{}.elements={}", b.name, b.elements * (refine_h ? f : 1))});
+  if (o.vary) {
+    t.value = o.vary->values[static_cast<std::size_t>(i)];
+    sets.push_back({o.vary->key + "=" + t.value});
+  }
+  // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
+  if (scheme_info(scheme).step == StepRule::transit && one) {
+    step = one->bar.length / static_cast<double>(elements) / std::sqrt(one->bar.stiffness / one->bar.density);
+    if (o.vary) step = varied_courant_step(base_toml, sets, step);
+  }
+  // A varied step wins (check_study refuses it where the study refines the step).
+  if (!varies_step) sets.push_back({fmt::format("time.step={}", step)});
+  t.scale = (o.refine != Refine::none) ? static_cast<double>(f) : nan;
+  if (o.refine == Refine::none && o.vary) {
+    try {
+      t.scale = number(t.value, "--vary");
+      if (varies_step) t.scale = 1.0 / t.scale;  // as 1/h: the orders of a falling step come out positive
+    } catch (const InputError&) {
+      t.scale = nan;
+    }
+  }
+  try {
+    t.c = Case::from_string(base_toml, sets, "study", false);
+  } catch (const InputError& e) {
+    t.status = "refused";
+    t.message = e.what();
+  }
+  return t;
+}
+
+// The exact solution a run is measured against (none: the finest run).
+std::unique_ptr<exact::Solution> reference_solution(const Case& c, const StudyOptions& o) {
+  if (o.reference == Reference::rigid) {
+    Case rigid = c;
+    rigid.near_end.law = JointLaw::rigid;
+    auto solution = exact::for_case(rigid);
+    if (!solution) throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
+    return solution;
+  }
+  if (o.reference == Reference::finest) return nullptr;
+  return c.one_bar() ? exact::for_case(c) : exact::line_end(c);
+}
+
+// The largest error in U and the L1 error in R of `h` against `U(t)`,
+// `R(t)` (NaN past where the reference is known).
+template <class Known>
+void measure_errors(const std::vector<HistoryRow>& h, double dt, StudyRun& r, Known reference) {
+  double eu = 0, er = 0;
+  for (const auto& x : h) {
+    const auto [U, R] = reference(x.t);
+    if (std::isnan(U)) break;
+    eu = std::max(eu, std::abs(x.U - U));
+    er += std::abs(x.R - R) * dt;
+  }
+  r.error_U_max = eu;
+  r.error_R_l1 = er;
+}
+
+// One row of the study: the run's status, mesh and contact, its energy
+// error, and its errors against the exact solution or its scheme's finest run.
+StudyRun measure(const Task& t, const StudyOptions& o, const std::map<std::string, const Task*>& finest, int levels,
+                 std::map<std::string, std::string>& references) {
+  StudyRun r;
+  r.id = t.id;
+  r.scheme = t.scheme;
+  r.level = t.level;
+  r.value = t.value;
+  r.status = t.status;
+  r.message = t.message;
+  r.warnings = t.result.summary.warnings;
+  r.cpu_seconds = t.cpu;
+  r.error_U_max = r.error_R_l1 = r.energy_error_end = r.first_contact = r.lift_off = nan;
+  r.order_U = r.order_R = nan;
+  if (t.c) {
+    r.elements = static_cast<int>(t.c->bar_elements());
+    r.h = t.c->bar_length() / static_cast<double>(t.c->bar_elements());
+    r.step = t.c->time.step;
+  }
+  const auto& h = t.result.history;
+  if (!t.c || h.empty() || t.status != "complete") return r;  // no error is measured on a run cut short
+  const auto& s = t.result.summary;
+  r.contact_episodes = static_cast<int>(s.contacts.size());
+  if (!s.contacts.empty()) r.first_contact = s.contacts.front().start;
+  if (const ContactInterval* left = departure(s.contacts)) r.lift_off = left->end;
+  r.energy_error_end = std::abs(h.back().total() - h.front().total()) / std::abs(h.front().total());
+  const double dt = t.c->time.step;
+  const auto finest_run = finest.find(t.scheme);
+  if (const auto solution = reference_solution(*t.c, o)) {
+    references[fmt::format("exact solution: {}", solution->name())] = "";
+    measure_errors(h, dt, r, [&](double time) {
+      return time > solution->valid_until() ? std::pair{nan, nan}
+                                            : std::pair{solution->U(time), mean_reaction(*solution, time, dt)};
+    });
+  } else if (finest_run != finest.end() && finest_run->second != &t) {
+    references[fmt::format("the finest run of each scheme (level {})", levels - 1)] = "";
+    const auto& ref = finest_run->second->result.history;
+    measure_errors(h, dt, r, [&](double time) {
+      return std::pair{interpolate(ref, &HistoryRow::U, time), interpolate(ref, &HistoryRow::R, time)};
+    });
+  } else if (finest_run != finest.end()) {
+    r.status = "reference";
+  }
+  return r;
+}
+
+}  // namespace
+
 Study converge(const Case& base, const StudyOptions& o) {
   check_study(base, o);
   const int levels = o.vary ? static_cast<int>(o.vary->values.size()) : o.levels;
-  std::error_code ec;
-  if (!o.runs.empty()) {
-    if (!fs::create_directories(o.runs, ec) && ec)
-      throw OutputError(fmt::format("--out: cannot create {} ({})", o.runs.string(), ec.message()), o.runs,
-                        ec.message());
-    remove_stale_staging(o.runs, "");  // what a killed study left
-    remove_stale_staging(o.runs.parent_path(), "");
-  }
+  prepare_runs(o);
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
-  const auto one = base.one_bar();
-  const double c = one ? std::sqrt(one->bar.stiffness / one->bar.density) : nan;
-  const bool varies_step = o.vary && o.vary->key == "time.step";
-
   std::vector<Task> tasks;
-  for (const auto& scheme : schemes) {
-    for (int i = 0; i < levels; ++i) {
-      Task t;
-      t.id = fmt::format("{}-{:02}", scheme, i);
-      t.scheme = scheme;
-      t.level = i;
-      const long long f = static_cast<long long>(std::llround(std::pow(o.ratio, i)));
-      const bool refine_h = o.refine == Refine::both || o.refine == Refine::h;
-      const bool refine_dt = o.refine == Refine::both || o.refine == Refine::dt;
-      const long long elements = base.bar_elements() * (refine_h ? f : 1);
-      double step = base.time.step / static_cast<double>(refine_dt ? f : 1);
-      std::vector<Case::Override> sets{{"time.scheme=\"" + scheme + "\""}, {"output.every=1"}, {"output.fields_at=[]"}};
-      if (one)
-        sets.push_back({fmt::format("bar.elements={}", elements)});
-      else  // every bar of the line refined alike
-        for (const auto& b : base.bodies)
-          if (b.kind == BodyKind::bar)
-            sets.push_back({fmt::format("body.{}.elements={}", b.name, b.elements * (refine_h ? f : 1))});
-      if (o.vary) {
-        t.value = o.vary->values[static_cast<std::size_t>(i)];
-        sets.push_back({o.vary->key + "=" + t.value});
-      }
-      // Courant 1 (a line refines every bar alike: its common h/c falls with the step).
-      if (scheme_info(scheme).step == StepRule::transit && one) {
-        step = one->bar.length / static_cast<double>(elements) / c;
-        if (o.vary) step = varied_courant_step(base_toml, sets, step);
-      }
-      // A varied step wins (check_study refuses it where the study refines the step).
-      if (!varies_step) sets.push_back({fmt::format("time.step={}", step)});
-      t.scale = (o.refine != Refine::none) ? static_cast<double>(f) : nan;
-      if (o.refine == Refine::none && o.vary) {
-        try {
-          t.scale = number(t.value, "--vary");
-          if (varies_step) t.scale = 1.0 / t.scale;  // as 1/h: the orders of a falling step come out positive
-        } catch (const InputError&) {
-          t.scale = nan;
-        }
-      }
-      try {
-        t.c = Case::from_string(base_toml, sets, "study", false);
-      } catch (const InputError& e) {
-        t.status = "refused";
-        t.message = e.what();
-      }
-      tasks.push_back(std::move(t));
-    }
-  }
+  for (const auto& scheme : schemes)
+    for (int i = 0; i < levels; ++i) tasks.push_back(make_task(base, base_toml, o, scheme, i));
 
   OutputStop stop(o.runs.parent_path());
   run_parallel(tasks.size(), o.jobs, [&](std::size_t i) { run_task(tasks[i], o, stop); });
   stop.rethrow();
 
-  // References and errors.
   Study study;
   study.abscissa = o.refine != Refine::none ? "h" : (o.vary ? o.vary->key : "h");
   std::map<std::string, std::string> references;
   std::map<std::string, const Task*> finest;
   for (const auto& t : tasks)
     if (t.level == levels - 1 && t.status == "complete") finest[t.scheme] = &t;
-  for (const auto& t : tasks) {
-    StudyRun r;
-    r.id = t.id;
-    r.scheme = t.scheme;
-    r.level = t.level;
-    r.value = t.value;
-    r.status = t.status;
-    r.message = t.message;
-    r.warnings = t.result.summary.warnings;
-    r.cpu_seconds = t.cpu;
-    r.error_U_max = r.error_R_l1 = r.energy_error_end = r.first_contact = r.lift_off = nan;
-    r.order_U = r.order_R = nan;
-    if (t.c) {
-      r.elements = static_cast<int>(t.c->bar_elements());
-      r.h = t.c->bar_length() / static_cast<double>(t.c->bar_elements());
-      r.step = t.c->time.step;
-    }
-    const auto& h = t.result.history;
-    if (t.c && !h.empty() && t.status == "complete") {  // no error is measured on a run cut short
-      const auto& s = t.result.summary;
-      r.contact_episodes = static_cast<int>(s.contacts.size());
-      if (!s.contacts.empty()) r.first_contact = s.contacts.front().start;
-      if (const ContactInterval* left = departure(s.contacts)) r.lift_off = left->end;
-      auto total = [](const HistoryRow& x) { return x.total(); };
-      r.energy_error_end = std::abs(total(h.back()) - total(h.front())) / std::abs(total(h.front()));
-
-      std::unique_ptr<exact::Solution> solution;
-      const bool one_bar = t.c->one_bar().has_value();
-      if (o.reference == Reference::automatic && one_bar) solution = exact::for_case(*t.c);
-      if (o.reference == Reference::automatic && !one_bar) solution = exact::line_end(*t.c);
-      if (o.reference == Reference::rigid) {
-        Case rigid = *t.c;
-        rigid.near_end.law = JointLaw::rigid;
-        solution = exact::for_case(rigid);
-        if (!solution) throw InputError("--reference rigid: the case with a rigid obstacle admits no exact solution");
-      }
-      const double dt = t.c->time.step;
-      if (solution) {
-        references[fmt::format("exact solution: {}", solution->name())] = "";
-        double eu = 0, er = 0;
-        for (const auto& x : h) {
-          if (x.t > solution->valid_until()) break;
-          eu = std::max(eu, std::abs(x.U - solution->U(x.t)));
-          er += std::abs(x.R - mean_reaction(*solution, x.t, dt)) * dt;
-        }
-        r.error_U_max = eu;
-        r.error_R_l1 = er;
-      } else if (finest.count(t.scheme) && finest[t.scheme] != &t) {
-        references[fmt::format("the finest run of each scheme (level {})", levels - 1)] = "";
-        const auto& ref = finest[t.scheme]->result.history;
-        double eu = 0, er = 0;
-        for (const auto& x : h) {
-          const double U = interpolate(ref, &HistoryRow::U, x.t), R = interpolate(ref, &HistoryRow::R, x.t);
-          if (std::isnan(U)) break;
-          eu = std::max(eu, std::abs(x.U - U));
-          er += std::abs(x.R - R) * dt;
-        }
-        r.error_U_max = eu;
-        r.error_R_l1 = er;
-      } else if (finest.count(t.scheme)) {
-        r.status = "reference";
-      }
-    }
-    study.runs.push_back(r);
-  }
+  for (const auto& t : tasks) study.runs.push_back(measure(t, o, finest, levels, references));
   for (std::size_t i = 0; i < study.runs.size(); ++i) {
     auto& r = study.runs[i];
     if (r.level == 0) continue;
