@@ -105,94 +105,83 @@ CommandInputs SweepPlan::inputs() const {
   return in;
 }
 
-SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin, const fs::path& dir) {
-  const std::string source(origin);
-  toml::table root = parse_toml(text, origin);
-  auto where = [&](const toml::node& n) { return fmt::format("{}:{}", source, n.source().begin.line); };
-  for (auto&& [k, v] : root)
-    if (k != "case" && k != "set" && k != "axis" && k != "zip")
-      throw InputError(fmt::format("{}: unknown key {} (known: case, set, axis, zip)", where(v), k.str()));
-  SweepPlan plan;
-  const auto* c = root.get_as<std::string>("case");
-  if (c == nullptr) throw InputError(fmt::format("{}: case = \"CASE.toml\" is required", source));
-  plan.case_file_ = dir / c->get();
-  if (const auto* set = root.get_as<toml::table>("set")) {
-    for (auto&& [section, keys] : *set) {
-      if (!keys.is_table()) throw InputError(fmt::format("{}: [set] takes section.key = value", where(keys)));
-      add_base_sets(*keys.as_table(), std::string(section.str()), plan.base_sets_);
-    }
+namespace {
+
+std::string where_in(const std::string& source, const toml::node& n) {
+  return fmt::format("{}:{}", source, n.source().begin.line);
+}
+
+// from, to, count and scale: `count` points, linearly or log-spaced.
+std::vector<std::string> range_values(const toml::table& t, const std::string& at, const std::string& key) {
+  const double bad = std::numeric_limits<double>::quiet_NaN();
+  const double from = t["from"].value_or(bad), to = t["to"].value_or(bad);
+  // An integer only: toml++ converts a float out of int64's range with undefined behaviour.
+  const auto* counted = t.get_as<int64_t>("count");
+  const int64_t count = counted != nullptr ? counted->get() : 0;
+  const std::string scale = t["scale"].value_or(std::string("linear"));
+  if (!std::isfinite(from) || !std::isfinite(to) || count < 2 || count > 100000)
+    throw InputError(fmt::format("{}: axis {}: a range needs numbers from, to and count >= 2", at, key));
+  if (scale != "linear" && scale != "log")
+    throw InputError(fmt::format("{}: axis {}: scale must be linear or log", at, key));
+  if (scale == "log" && (from <= 0 || to <= 0))
+    throw InputError(fmt::format("{}: axis {}: a log range needs from, to > 0", at, key));
+  std::vector<std::string> values;
+  for (int64_t i = 0; i < count; ++i) {
+    const double s = static_cast<double>(i) / static_cast<double>(count - 1);
+    const double x = scale == "log" ? from * std::pow(to / from, s) : from + (to - from) * s;
+    values.push_back(fmt::format("{}", x));
   }
-  const auto* axes = root.get_as<toml::array>("axis");
-  if (axes == nullptr || axes->empty()) throw InputError(fmt::format("{}: at least one [[axis]] is required", source));
-  std::vector<SweepAxis> list;
-  for (const auto& node : *axes) {
-    const auto* t = node.as_table();
-    if (t == nullptr) throw InputError(fmt::format("{}: [[axis]] must be a table", where(node)));
-    SweepAxis a;
-    for (auto&& [k, v] : *t)
-      if (k != "key" && k != "values" && k != "from" && k != "to" && k != "count" && k != "scale")
-        throw InputError(
-            fmt::format("{}: unknown key {} in [[axis]] (known: key, values, from, to, count, scale; "
-                        "zip belongs before the first [[axis]])",
-                        where(v), k.str()));
-    const auto* key = t->get_as<std::string>("key");
-    if (key == nullptr) throw InputError(fmt::format("{}: axis.key = \"section.key\" is required", where(node)));
-    a.key = key->get();
-    if (const auto* values = t->get_as<toml::array>("values")) {
-      for (const auto& v : *values) a.values.push_back(toml_value_text(v));
-    } else if (t->contains("from")) {
-      const double bad = std::numeric_limits<double>::quiet_NaN();
-      const double from = (*t)["from"].value_or(bad), to = (*t)["to"].value_or(bad);
-      // An integer only: toml++ converts a float out of int64's range with undefined behaviour.
-      const auto* counted = t->get_as<int64_t>("count");
-      const int64_t count = counted != nullptr ? counted->get() : 0;
-      const std::string scale = (*t)["scale"].value_or(std::string("linear"));
-      if (!std::isfinite(from) || !std::isfinite(to) || count < 2 || count > 100000)
-        throw InputError(fmt::format("{}: axis {}: a range needs numbers from, to and count >= 2", where(node), a.key));
-      if (scale != "linear" && scale != "log")
-        throw InputError(fmt::format("{}: axis {}: scale must be linear or log", where(node), a.key));
-      if (scale == "log" && (from <= 0 || to <= 0))
-        throw InputError(fmt::format("{}: axis {}: a log range needs from, to > 0", where(node), a.key));
-      for (int64_t i = 0; i < count; ++i) {
-        const double s = static_cast<double>(i) / static_cast<double>(count - 1);
-        const double x = scale == "log" ? from * std::pow(to / from, s) : from + (to - from) * s;
-        a.values.push_back(fmt::format("{}", x));
-      }
-    } else {
-      throw InputError(fmt::format("{}: axis {}: give values = [...] or from, to, count", where(node), a.key));
-    }
-    if (a.values.empty()) throw InputError(fmt::format("{}: axis {} has no values", where(node), a.key));
-    for (const auto& other : list)
-      if (other.key == a.key) throw InputError(fmt::format("{}: axis {} given twice", where(node), a.key));
-    // An unknown key is the sweep file's error, not a case's.
-    try {
-      std::vector<Case::Override> probe = plan.base_sets_;
-      probe.push_back({a.key + "=" + a.values.front()});
-      (void)Case::from_file(plan.case_file_, probe);
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      if (names_no_key(what)) throw InputError(fmt::format("{}: axis {}: {}", where(node), a.key, what));
-    }
-    list.push_back(std::move(a));
+  return values;
+}
+
+// One [[axis]]: its key and values (a list, or a range).
+SweepAxis read_axis(const toml::node& node, const std::string& source) {
+  const std::string at = where_in(source, node);
+  const auto* t = node.as_table();
+  if (t == nullptr) throw InputError(fmt::format("{}: [[axis]] must be a table", at));
+  SweepAxis a;
+  for (auto&& [k, v] : *t)
+    if (k != "key" && k != "values" && k != "from" && k != "to" && k != "count" && k != "scale")
+      throw InputError(
+          fmt::format("{}: unknown key {} in [[axis]] (known: key, values, from, to, count, scale; "
+                      "zip belongs before the first [[axis]])",
+                      where_in(source, v), k.str()));
+  const auto* key = t->get_as<std::string>("key");
+  if (key == nullptr) throw InputError(fmt::format("{}: axis.key = \"section.key\" is required", at));
+  a.key = key->get();
+  if (const auto* values = t->get_as<toml::array>("values")) {
+    for (const auto& v : *values) a.values.push_back(toml_value_text(v));
+  } else if (t->contains("from")) {
+    a.values = range_values(*t, at, a.key);
+  } else {
+    throw InputError(fmt::format("{}: axis {}: give values = [...] or from, to, count", at, a.key));
   }
-  // Groups: each zip moves its axes together; every other axis is its own group.
+  if (a.values.empty()) throw InputError(fmt::format("{}: axis {} has no values", at, a.key));
+  return a;
+}
+
+// The axes' groups: each zip moves its axes together; every other axis is
+// its own group; in the axes' order.
+std::vector<std::vector<std::size_t>> axis_groups(const toml::table& root, const std::vector<SweepAxis>& list,
+                                                  const std::string& source) {
   std::vector<std::vector<std::size_t>> groups;
   std::vector<bool> grouped(list.size(), false);
   if (const auto* zips = root.get_as<toml::array>("zip")) {
     for (const auto& z : *zips) {
+      const std::string at = where_in(source, z);
       const auto* names = z.as_array();
       if (names == nullptr || names->size() < 2)
-        throw InputError(fmt::format("{}: zip takes lists of two or more axis keys", where(z)));
+        throw InputError(fmt::format("{}: zip takes lists of two or more axis keys", at));
       std::vector<std::size_t> g;
       for (const auto& n : *names) {
         const auto name = n.value<std::string>();
         std::size_t i = 0;
         while (i < list.size() && (!name || list[i].key != *name)) ++i;
         if (i == list.size())
-          throw InputError(fmt::format("{}: zip names {}, which is no axis", where(z), toml_value_text(n)));
-        if (grouped[i]) throw InputError(fmt::format("{}: axis {} is zipped twice", where(z), list[i].key));
+          throw InputError(fmt::format("{}: zip names {}, which is no axis", at, toml_value_text(n)));
+        if (grouped[i]) throw InputError(fmt::format("{}: axis {} is zipped twice", at, list[i].key));
         if (list[i].values.size() != list[g.empty() ? i : g.front()].values.size())
-          throw InputError(fmt::format("{}: zipped axes must have as many values each", where(z)));
+          throw InputError(fmt::format("{}: zipped axes must have as many values each", at));
         grouped[i] = true;
         g.push_back(i);
       }
@@ -202,12 +191,16 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
   for (std::size_t i = 0; i < list.size(); ++i)
     if (!grouped[i]) groups.push_back({i});
   std::sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.front() < b.front(); });
-  for (const auto& a : list) plan.keys_.push_back(a.key);
+  return groups;
+}
 
-  // The number of cases, refused before the product can wrap around. Each
-  // case is a run directory and the plan holds every case's values: past a
-  // million cases, or two million values over them, it is not a study but a
-  // machine stalled while building its list.
+// Every case of the product of the groups, the last axis varying fastest.
+// The number of cases is refused before the product can wrap around: each
+// case is a run directory and the plan holds every case's values, so past a
+// million cases, or two million values over them, it is not a study but a
+// machine stalled while building its list.
+std::vector<SweepPoint> product(const std::vector<SweepAxis>& list, const std::vector<std::vector<std::size_t>>& groups,
+                                const std::string& source) {
   constexpr std::size_t most = 1'000'000, most_values = 2'000'000;
   std::size_t total = 1;
   for (const auto& g : groups) {
@@ -219,19 +212,63 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
     throw InputError(
         fmt::format("{}: {} cases of {} axes each: more than 2e6 values in all", source, total, list.size()));
   const int width = std::max(4, static_cast<int>(std::to_string(total - 1).size()));
+  std::vector<SweepPoint> points;
   for (std::size_t n = 0; n < total; ++n) {
     SweepPoint p;
     p.id = fmt::format("{:0{}}", n, width);
     std::vector<std::string> chosen(list.size());
     std::size_t rest = n;
-    for (auto g = groups.rbegin(); g != groups.rend(); ++g) {  // the last axis varies fastest
+    for (auto g = groups.rbegin(); g != groups.rend(); ++g) {
       const std::size_t size = list[g->front()].values.size(), k = rest % size;
       rest /= size;
       for (auto i : *g) chosen[i] = list[i].values[k];
     }
     for (std::size_t i = 0; i < list.size(); ++i) p.values.emplace_back(list[i].key, chosen[i]);
-    plan.points_.push_back(std::move(p));
+    points.push_back(std::move(p));
   }
+  return points;
+}
+
+}  // namespace
+
+SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin, const fs::path& dir) {
+  const std::string source(origin);
+  toml::table root = parse_toml(text, origin);
+  for (auto&& [k, v] : root)
+    if (k != "case" && k != "set" && k != "axis" && k != "zip")
+      throw InputError(fmt::format("{}: unknown key {} (known: case, set, axis, zip)", where_in(source, v), k.str()));
+  SweepPlan plan;
+  const auto* c = root.get_as<std::string>("case");
+  if (c == nullptr) throw InputError(fmt::format("{}: case = \"CASE.toml\" is required", source));
+  plan.case_file_ = dir / c->get();
+  if (const auto* set = root.get_as<toml::table>("set")) {
+    for (auto&& [section, keys] : *set) {
+      if (!keys.is_table())
+        throw InputError(fmt::format("{}: [set] takes section.key = value", where_in(source, keys)));
+      add_base_sets(*keys.as_table(), std::string(section.str()), plan.base_sets_);
+    }
+  }
+  const auto* axes = root.get_as<toml::array>("axis");
+  if (axes == nullptr || axes->empty()) throw InputError(fmt::format("{}: at least one [[axis]] is required", source));
+  std::vector<SweepAxis> list;
+  for (const auto& node : *axes) {
+    SweepAxis a = read_axis(node, source);
+    for (const auto& other : list)
+      if (other.key == a.key) throw InputError(fmt::format("{}: axis {} given twice", where_in(source, node), a.key));
+    // An unknown key is the sweep file's error, not a case's.
+    try {
+      std::vector<Case::Override> probe = plan.base_sets_;
+      probe.push_back({a.key + "=" + a.values.front()});
+      (void)Case::from_file(plan.case_file_, probe);
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (names_no_key(what)) throw InputError(fmt::format("{}: axis {}: {}", where_in(source, node), a.key, what));
+    }
+    list.push_back(std::move(a));
+  }
+  const auto groups = axis_groups(root, list, source);
+  for (const auto& a : list) plan.keys_.push_back(a.key);
+  plan.points_ = product(list, groups, source);
   return plan;
 }
 
