@@ -2,7 +2,9 @@
 #   make demo   installs what is missing, builds in Release, runs both paper examples into out/ with figures
 #   make test   the same set-up, then the whole test suite (Release, an install to a scratch prefix with a
 #               consumer project and the build tree moved away, pip and wheel installs with the Python tests
-#               against them, then ASan + UBSan, then a bounded fuzzing run)
+#               against them (pip packages build/ci's module and command, the wheel is compiled from the
+#               sdist), then ASan + UBSan on the quick suite (ctest -LE slow) and the slow tests that matter
+#               under sanitizers (label sanitize: parsers, outputs, the command line), then a bounded fuzzing run)
 #   make fuzz   only the fuzzing run: the input layer's libFuzzer targets (clang), FUZZ_SECONDS each
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
             nlohmann-json3-dev libkissfft-dev libgtest-dev libbenchmark-dev \
@@ -48,10 +50,11 @@ test: deps
 	cmake --build --preset ci -j $(JOBS)
 	ctest --preset ci -j $(JOBS)
 	bash tests/install/install_test.sh build/ci
-	bash tests/install/pip_test.sh
+	bash tests/install/pip_test.sh build/ci
 	cmake --preset dev
 	cmake --build --preset dev -j $(JOBS)
-	ctest --preset dev -j $(JOBS)
+	ctest --preset dev -j $(JOBS) -LE slow
+	ctest --preset dev -j $(JOBS) -L slow -L sanitize
 	$(MAKE) --no-print-directory fuzz
 
 fuzz: deps

@@ -1,7 +1,13 @@
 """setuptools builds the Python package through the project's CMake build:
 the compiled core (_core) goes into the package beside its Python files,
 and the `barimpact` command into the environment's bin/ (it finds the
-package beside itself, in ../lib/pythonX.Y/site-packages)."""
+package beside itself, in ../lib/pythonX.Y/site-packages).
+
+It configures and builds a CMake build of its own (Release), unless
+BARIMPACT_CMAKE_BUILD_DIR names an existing build tree of this source
+tree configured for the same Python (build/release, say): then it brings
+that tree's module and command up to date and packages them, without
+compiling the library again (the test suite's pip installs do this)."""
 import os
 import re
 import subprocess
@@ -23,14 +29,45 @@ class CMakeExtension(Extension):
         super().__init__(name, sources=[])
 
 
+def existing_build(build):
+    """BARIMPACT_CMAKE_BUILD_DIR's build tree, refused unless its module and
+    command are what a build of its own would package: configured from this
+    source tree, for this interpreter (the module's ABI, where the command
+    looks for the package), with the module and without instrumentation (a
+    sanitized or fuzzing _core cannot be imported by a plain Python)."""
+    try:
+        lines = (build / "CMakeCache.txt").read_text().splitlines()
+    except OSError:
+        sys.exit(f"BARIMPACT_CMAKE_BUILD_DIR={build}: not a CMake build tree (no CMakeCache.txt)")
+    cache = dict(m.groups() for m in map(re.compile(r"(\w+):\w+=(.*)").fullmatch, lines) if m)
+
+    def on(option):
+        return cache.get(option, "OFF").upper() in ("1", "ON", "YES", "TRUE", "Y")
+
+    problems = []
+    if Path(cache.get("CMAKE_HOME_DIRECTORY", "")).resolve() != ROOT:
+        problems.append(f"configured from {cache.get('CMAKE_HOME_DIRECTORY')}, not from {ROOT}")
+    if Path(cache.get("BARIMPACT_PYTHON", "")).resolve() != Path(sys.executable).resolve():
+        problems.append(f"configured for {cache.get('BARIMPACT_PYTHON')}, not for this Python ({sys.executable})")
+    if not on("BARIMPACT_BUILD_PYTHON"):
+        problems.append("BARIMPACT_BUILD_PYTHON is OFF")
+    problems += [f"{option} is ON" for option in ("BARIMPACT_SANITIZE", "BARIMPACT_FUZZ") if on(option)]
+    if problems:
+        sys.exit(f"BARIMPACT_CMAKE_BUILD_DIR={build} cannot be packaged: " + "; ".join(problems))
+    return build
+
+
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
-        build = Path(self.build_temp).resolve() / "cmake"
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
-        configure = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
-                     "-DBARIMPACT_BUILD_TESTS=OFF", "-DBARIMPACT_BUILD_BENCH=OFF",
-                     f"-DBARIMPACT_PYTHON={sys.executable}"]
-        subprocess.run(configure, check=True)
+        if os.environ.get("BARIMPACT_CMAKE_BUILD_DIR"):
+            build = existing_build(Path(os.environ["BARIMPACT_CMAKE_BUILD_DIR"]).resolve())
+        else:
+            build = Path(self.build_temp).resolve() / "cmake"
+            configure = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
+                         "-DBARIMPACT_BUILD_TESTS=OFF", "-DBARIMPACT_BUILD_BENCH=OFF",
+                         f"-DBARIMPACT_PYTHON={sys.executable}"]
+            subprocess.run(configure, check=True)
         subprocess.run(["cmake", "--build", str(build), "-j", jobs, "--target", "barimpact_python", "barimpact_cli"],
                        check=True)
         core = next((build / "python" / "barimpact").glob("_core*.so"))

@@ -5,9 +5,15 @@
 # drives CMake), a wheel from `python3 -m build --no-isolation`, and then
 # the Python tests and the tutorial's first lines against the installed
 # package, from a directory outside the source tree.
-#   bash tests/install/pip_test.sh
+#   bash tests/install/pip_test.sh [BUILD_DIR]
+# With BUILD_DIR (a Release build tree of this source, e.g. build/ci), the
+# `pip install .` packages that tree's module and command
+# (BARIMPACT_CMAKE_BUILD_DIR, setup.py) instead of compiling them again.
+# The wheel is always built from the sdist as a user's would be: the one
+# full compile, which also proves the sdist holds all a build needs.
 set -u
 source_dir=$(cd "$(dirname "$0")/../.." && pwd)
+build=${1:+$(cd "$1" && pwd)}
 python=${BARIMPACT_PYTHON:-/usr/bin/python3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -17,15 +23,21 @@ bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
 
 cd "$source_dir"
 "$python" -m venv --system-site-packages "$work/venv" && ok || bad "python3 -m venv"
-"$work/venv/bin/pip" install --no-build-isolation --no-index . > "$work/pip.log" 2>&1 && ok ||
+BARIMPACT_CMAKE_BUILD_DIR=$build "$work/venv/bin/pip" install --no-build-isolation --no-index . > "$work/pip.log" 2>&1 && ok ||
   bad "pip install: $(grep -i error "$work/pip.log" | head -5)"
 # As the README gives it: an sdist, then a wheel built from that sdist.
-"$python" -m build --no-isolation --outdir "$work/dist" . > "$work/build.log" 2>&1 && ok ||
+env -u BARIMPACT_CMAKE_BUILD_DIR "$python" -m build --no-isolation --outdir "$work/dist" . > "$work/build.log" 2>&1 && ok ||
   bad "python3 -m build: $(grep -i error "$work/build.log" | head -5)"
 ls "$work"/dist/barimpact-*.tar.gz > /dev/null 2>&1 && ok || bad "python3 -m build made no sdist"
 "$python" -m venv --system-site-packages "$work/wheel-venv" &&
   "$work/wheel-venv/bin/pip" install --no-index "$work"/dist/barimpact-*.whl > "$work/wheel.log" 2>&1 && ok ||
   bad "pip install of the wheel: $(tail -3 "$work/wheel.log")"
+
+if [ -n "$build" ]; then
+  # Packaged from the build tree, the installed files must not lead back into it.
+  grep -rlF "$build" "$work/venv/bin/barimpact" "$work"/venv/lib/python3*/site-packages/barimpact > "$work/refs"
+  [ ! -s "$work/refs" ] && ok || bad "installed files name the build tree: $(head -3 "$work/refs")"
+fi
 
 mkdir -p "$work/user" && cd "$work/user"
 for venv in venv wheel-venv; do
