@@ -145,8 +145,13 @@ void RunDirectory::commit(const std::function<void(const fs::path& staging)>& wr
   try {
     write(staging_);
     spare_inputs();
+    // The marker first, then the flag away: a process killed in between
+    // leaves a staging directory that is still provably barimpact's (its
+    // flag, or a marker listing all of it), which a rerun removes.
+    auto entries = directory_entries(staging_);
+    entries.erase(std::remove(entries.begin(), entries.end(), std::string(staging_flag)), entries.end());
+    write_output_marker(staging_, command_, entries);
     fs::remove(staging_ / staging_flag);
-    write_output_marker(staging_, command_, directory_entries(staging_));
   } catch (const OutputError& e) {
     throw refused(e);
   } catch (const std::system_error& e) {
