@@ -3,8 +3,9 @@
 #   make test   the same set-up, then the whole test suite (Release, an install to a scratch prefix with a
 #               consumer project and the build tree moved away, pip and wheel installs with the Python tests
 #               against them (pip packages build/ci's module and command, the wheel is compiled from the
-#               sdist), then ASan + UBSan on the quick suite (ctest -LE slow) and the slow tests that matter
-#               under sanitizers (label sanitize: parsers, outputs, the command line), then a bounded fuzzing run)
+#               sdist), then ASan + UBSan on all but the slow numerical verifications (ctest -LE verification:
+#               the quick suite and the slow tests of the parsers, outputs and command line), then a bounded
+#               fuzzing run)
 #   make fuzz   only the fuzzing run: the input layer's libFuzzer targets (clang), FUZZ_SECONDS each
 PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libfmt-dev \
             nlohmann-json3-dev libkissfft-dev libgtest-dev libbenchmark-dev \
@@ -53,8 +54,7 @@ test: deps
 	bash tests/install/pip_test.sh build/ci
 	cmake --preset dev
 	cmake --build --preset dev -j $(JOBS)
-	ctest --preset dev -j $(JOBS) -LE slow
-	ctest --preset dev -j $(JOBS) -L slow -L sanitize
+	ctest --preset dev -j $(JOBS) -LE verification
 	$(MAKE) --no-print-directory fuzz
 
 fuzz: deps
