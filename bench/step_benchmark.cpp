@@ -17,7 +17,7 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/case/line_builder.hpp"
-#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 #include "barimpact/schemes/line_mass_redistribution.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/registry.hpp"
@@ -335,15 +335,16 @@ void BM_BareCharacteristic(benchmark::State& state) {
 // sweep towards x = 0 and its update inside the sweep back.
 struct BareSetup {
   explicit BareSetup(const benchmark::State& state)
-      : mesh(1.0, static_cast<int>(state.range(0))),
-        n(mesh.nodes()),
+      : line(barimpact::build_line(bench_case(state.range(0)))),
+        n(line.nodes()),
         l(n - 1),
-        dt(mesh.h() / 2),
-        mass(mesh.mass(1.0)),
-        ka(mesh.stiffness(1.0)) {}
-  barimpact::Mesh mesh;
+        h(1.0 / static_cast<double>(state.range(0))),
+        dt(h / 2),
+        mass(line.mass(true)),
+        ka(line.stiffness()) {}
+  barimpact::Line line;  // the one bar of bench_case (rho = E = 1 on [0, 1])
   std::size_t n, l;
-  double dt;
+  double h, dt;
   barimpact::Tridiagonal mass, ka;
 };
 
@@ -464,7 +465,7 @@ void BM_BareMassRedistribution(benchmark::State& state) {
   const FactoredTridiagonal A(reduced, false);
   const double *inv = A.inverse_pivots(), *cp = A.coupling();
   const double md = mt.diag[2], mo = mt.off[2], kd = s.ka.diag[1], ko = s.ka.off[0];
-  const double coupling = -0.5 / s.mesh.h(), face = 0.0;
+  const double coupling = -0.5 / s.h, face = 0.0;
   std::vector<double> uu(n, 0.0), vv(n, -1.0), yy(n, 0.0);
   for (auto _ : state) {
     double* __restrict u = uu.data();

@@ -1121,6 +1121,20 @@ std::optional<OneBar> bar_view(const Case& c) {
 
 }  // namespace
 
+std::string_view to_string(ObstacleKind kind) {
+  switch (kind) {
+    case ObstacleKind::none:
+      return "none";
+    case ObstacleKind::elastic:
+      return "elastic";
+    case ObstacleKind::viscoelastic:
+      return "viscoelastic";
+    case ObstacleKind::rigid:
+      return "rigid";
+  }
+  return "?";
+}
+
 std::optional<OneBar> Case::one_bar() const {
   if (bodies.size() == 1 && bodies.front().material.kind != MaterialKind::elastic) return std::nullopt;
   return bar_view(*this);

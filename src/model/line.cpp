@@ -81,12 +81,7 @@ void Line::load(const Expression& f, double t, std::vector<double>& out) const {
   }
   if (gravity != 0.0) {
     // The lumped mass node by node (no temporary: the schemes call this inside their steps).
-    for (std::size_t j = 0; j < nodes(); ++j) {
-      double m = point_mass[j];
-      if (j > 0) m += 0.5 * bonds[j - 1].mass;
-      if (j < bonds.size()) m += 0.5 * bonds[j].mass;
-      out[j] -= gravity * m;
-    }
+    for (std::size_t j = 0; j < nodes(); ++j) out[j] -= gravity * node_mass(j);
   }
 }
 

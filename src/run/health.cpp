@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "barimpact/case/line_builder.hpp"
-#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 #include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {

@@ -29,6 +29,7 @@ bool HistoryRecorder::observe(const Scheme& s) {
 
 FieldRecorder::FieldRecorder(const Case& c, const Line& line, std::vector<double> times)
     : dt_(c.time.step), line_(&line), times_(std::move(times)) {
+  if (times_.empty()) return;  // no snapshots: no rows to describe (and no memory per node)
   fields_.x.reserve(line.nodes());
   fields_.node.reserve(line.nodes());
   fields_.body.reserve(line.nodes());
@@ -107,8 +108,29 @@ const ContactInterval* departure(const std::vector<ContactInterval>& episodes) {
   return !episodes.empty() && episodes.back().closed ? &episodes.back() : nullptr;
 }
 
-void ContactMonitor::begin(const Scheme& scheme, long long steps) {
-  velocity_.assign(scheme.nodes(), 0.0);
+ContactMonitor::ContactMonitor(const Line& line, double dt) : line_(&line), dt_(dt) {
+  if (!line.links.empty() && line.links.front().is_end && line.links.front().a == Link::ground) {
+    present_ = true;
+    rigid_ = line.links.front().law.rigid();
+    gap_ = line.links.front().gap;
+  }
+}
+
+// Momentum over mass, node by node (the consistent mass's momentum is the
+// lumped mass's: its rows sum to the lumped masses). Once an episode: no
+// copy of the velocities is kept.
+double ContactMonitor::mean_velocity(const Scheme& s) const {
+  const Line& line = *line_;
+  double momentum = 0.0, mass = 0.0;
+  for (std::size_t j = 0; j < line.nodes(); ++j) {
+    const double m = line.node_mass(j);
+    momentum += m * s.velocity_at(j);
+    mass += m;
+  }
+  return momentum / mass;
+}
+
+void ContactMonitor::begin(const Scheme& /*scheme*/, long long steps) {
   intervals_.clear();
   // An episode needs a step in contact after one out of it: at most
   // steps / 2 + 1 of them, all reserved up to 65536 (3 MB), so that the time
@@ -120,10 +142,10 @@ void ContactMonitor::begin(const Scheme& scheme, long long steps) {
 
 bool ContactMonitor::observe(const Scheme& s) {
   const double t = s.time();
-  const double d = s.end_displacement() + law_.gap();  // < 0 in contact
+  const double d = s.end_displacement() + gap_;  // < 0 in contact
   const double R = s.reaction();
   // On the obstacle: penetrating (penalty), or held by a reaction (rigid: U + g = 0).
-  const bool contact = law_.kind() != ObstacleKind::none && (d < 0.0 || R > 0.0);
+  const bool contact = present_ && (d < 0.0 || R > 0.0);
   // The crossing of U + g = 0, linear between the last two steps. A rigid
   // end can be held by a reaction one step before it reaches the face (R^n
   // is the force that puts u^{n+1} on it), so an episode's start may lie up
@@ -141,17 +163,13 @@ bool ContactMonitor::observe(const Scheme& s) {
     last.end = std::max(crossing(t), last.start);
     last.closed = true;
     last.exit_velocity = s.end_velocity();
-    // Mean velocity: the consistent P1 mass gives momentum rho h sum (v_j + v_{j+1}) / 2.
-    s.velocity(velocity_);
-    double sum = 0.0;
-    for (std::size_t j = 0; j + 1 < velocity_.size(); ++j) sum += 0.5 * (velocity_[j] + velocity_[j + 1]);
-    last.rebound_velocity = sum / static_cast<double>(velocity_.size() - 1);
+    last.rebound_velocity = mean_velocity(s);
   }
   if (contact) {
     auto& last = intervals_.back();
     last.end = std::max(t, last.start);
     max_penetration_ = std::max(max_penetration_, -d);
-    if (opened && law_.kind() == ObstacleKind::rigid) {  // the impact step: an impulse
+    if (opened && rigid_) {  // the impact step: an impulse
       last.impact_impulse = R * (dt_ > 0.0 ? dt_ : have_previous_ ? t - previous_t_ : 0.0);
       max_impulse_ = std::max(max_impulse_, last.impact_impulse);
     } else {

@@ -59,27 +59,6 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
   return result;
 }
 
-namespace {
-
-// The observers of one run and the summary they add up to.
-// What the near-end contact monitor watches: the obstacle of a single bar,
-// or the near end's unilateral law on a line (none for free, held or loaded ends).
-ObstacleData near_obstacle(const Case& c) {
-  if (const auto one = c.one_bar()) return one->obstacle;
-  ObstacleData o;
-  const JointLaw law = c.near_end.law;
-  o.kind = law == JointLaw::rigid                                                           ? ObstacleKind::rigid
-           : law == JointLaw::elastic || law == JointLaw::cushion || law == JointLaw::smith ? ObstacleKind::elastic
-           : law == JointLaw::viscoelastic                                                  ? ObstacleKind::viscoelastic
-                                                                                            : ObstacleKind::none;
-  o.stiffness = c.near_end.stiffness;
-  o.gap = c.near_end.gap;
-  o.viscosity = c.near_end.viscosity;
-  return o;
-}
-
-}  // namespace
-
 RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
     : case_(c),
       own_(scheme.line() ? std::nullopt : std::optional<Line>(build_line(c))),
@@ -87,7 +66,7 @@ RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
       probes_(c, line_),
       history_(c.output.every, &probes_),
       fields_(c, line_, c.output.fields_at),
-      contact_(near_obstacle(c), c.time.step),
+      contact_(line_, c.time.step),
       links_(line_),
       plastic_(line_, c.output.every) {
   if (reports_blow(c, line_)) blow_.emplace(c, line_);

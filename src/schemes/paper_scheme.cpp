@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "twisted_solve.hpp"
 
@@ -20,34 +21,62 @@ OneBar one_bar_of(const Case& c) {
   return *v;
 }
 
+// The element matrix [[p, q], [q, p]] assembled on `nodes` nodes of the
+// uniform mesh: the mass (p, q = rho h/3, rho h/6) or a stiffness (c/h, -c/h).
+Tridiagonal assemble(std::size_t nodes, double p, double q) {
+  Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes - 1, q)};
+  for (std::size_t e = 0; e + 1 < nodes; ++e) {
+    t.diag[e] += p;
+    t.diag[e + 1] += p;
+  }
+  return t;
+}
+
+// The same on three rows, the first, an inner and the last (the ends' p, the
+// inside's p + p, as assembled), and the one off-diagonal: every row of a
+// uniform mesh's matrix is one of them.
+Tridiagonal three_rows(double p, double q) {
+  return Tridiagonal{{p, p + p, p}, {q, q}};
+}
+
+// c/h sum_e (a_{e+1} - a_e)(b_{e+1} - b_e): a^T K b element by element,
+// free of the cancellation of the assembled form under a large rigid motion.
+double stiffness_form(double coefficient, double h, std::span<const double> a, std::span<const double> b) {
+  double s = 0.0;
+  for (std::size_t e = 0; e + 1 < a.size(); ++e) s += (a[e + 1] - a[e]) * (b[e + 1] - b[e]);
+  return coefficient / h * s;
+}
+
 }  // namespace
 
-PaperScheme::PaperScheme(const Case& c) : PaperScheme(c, one_bar_of(c)) {}
+PaperScheme::PaperScheme(const Case& c) : PaperScheme(c, one_bar_of(c), build_line(c)) {}
 
-PaperScheme::PaperScheme(const Case& c, const OneBar& one)
-    : mesh_(one.bar.length, one.bar.elements),
-      law_(one.obstacle),
+PaperScheme::PaperScheme(const Case& c, Line line) : PaperScheme(c, one_bar_of(c), std::move(line)) {}
+
+PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
+    : line_(std::move(line)),
+      h_(one.bar.length / static_cast<double>(one.bar.elements)),
       dt_(c.time.step),
       alpha_(c.time.alpha),
       lambda_(c.time.lambda),
       density_(one.bar.density),
       a_(one.bar.stiffness),
       b_(one.bar.viscosity),
-      clamped_(one.bar.far_end == FarEnd::clamped),
-      mass_(mesh_.mass(density_)),
-      stiffness_a_(mesh_.stiffness(a_)),
-      stiffness_b_(mesh_.stiffness(b_)) {
-  const std::size_t n = mesh_.nodes();
-  const double k = law_.stiffness();
+      clamped_(one.bar.far_end == FarEnd::clamped) {
+  const std::size_t n = line_.nodes();
+  if (!line_.links.empty()) {  // the near end's link, elastic or viscoelastic (the table's penalty laws)
+    law_ = &line_.links.front().law;
+    gap_ = line_.links.front().gap;
+    k_ = law_->stiffness;
+    l_ = law_->kind == LawKind::viscoelastic ? law_->viscosity : 0.0;
+  }
+  const double k = k_;
   // On the uniform mesh every matrix has three distinct rows, the first, an
   // inner and the last, and one off-diagonal: A, B1 and B0 are formed on
   // those three rows alone, entry by entry as on the whole (the same bits),
   // rather than as n-row temporaries.
-  const std::size_t inner = std::min<std::size_t>(1, n - 1);
-  auto rows = [&](const Tridiagonal& m) {
-    return Tridiagonal{{m.diag[0], m.diag[inner], m.diag[n - 1]}, {m.off[0], m.off[0]}};
-  };
-  const Tridiagonal M3 = rows(mass_), Ka3 = rows(stiffness_a_), Kb3 = rows(stiffness_b_);
+  const Tridiagonal M3 = three_rows(density_ * h_ / 3.0, density_ * h_ / 6.0);
+  const Tridiagonal Ka3 = three_rows(a_ / h_, -a_ / h_), Kb3 = three_rows(b_ / h_, -b_ / h_);
 
   // S = lambda^2 M + K_a + lambda K_b + (k/2) e0 e0^T and D = 2 lambda M + K_b, (6.1)(i).
   Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, M3, 1.0, Ka3);
@@ -88,8 +117,8 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one)
   }
   inv_[twist] = 1.0 / (a_diag(twist) - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
 
-  if (law_.viscosity() > 0.0) {
-    dashpot_sigma_ = law_.viscosity() * (alpha_ * lambda_ + 0.5 / dt_);
+  if (l_ > 0.0) {
+    dashpot_sigma_ = l_ * (alpha_ * lambda_ + 0.5 / dt_);
     dashpot_response_.assign(n, 0.0);
     double* w = dashpot_response_.data();
     twisted_solve(
@@ -119,18 +148,20 @@ double PaperScheme::scale(long long m) const {
 }
 
 void PaperScheme::start() {
-  const std::size_t n = mesh_.nodes();
-  mesh_.interpolate(*initial_displacement_, u0_);
-  mesh_.interpolate(*initial_velocity_, v0_);
+  const std::size_t n = line_.nodes();
+  for (std::size_t j = 0; j < n; ++j) {
+    u0_[j] = (*initial_displacement_)(line_.x[j], 0.0);
+    v0_[j] = (*initial_velocity_)(line_.x[j], 0.0);
+  }
   if (!batched_) {
     prev_ = levels_[2].data();
     cur_ = levels_[0].data();
     next_ = levels_[1].data();
   }
-  if (load_mode_ == LoadMode::steady) mesh_.load(*body_force_, 0.0, loads_[0]);
+  if (load_mode_ == LoadMode::steady) line_.load(*body_force_, 0.0, loads_[0]);
   if (load_mode_ == LoadMode::unsteady) {
-    mesh_.load(*body_force_, 0.0, loads_[0]);
-    mesh_.load(*body_force_, dt_, loads_[1]);
+    line_.load(*body_force_, 0.0, loads_[0]);
+    line_.load(*body_force_, dt_, loads_[1]);
   }
   // A Taylor start, z^1 = z(0) + dt z'(0) + (dt^2/2) z''(0) with (6.1)
   // z' = v0 - lambda u0 and z'' = a0 - 2 lambda v0 + lambda^2 u0: second
@@ -147,6 +178,8 @@ void PaperScheme::start() {
   }
   n_ = 0;
   cached_ = {};
+  start_kinetic_ = 0.5 * assemble(n, density_ * h_ / 3.0, density_ * h_ / 6.0).quadratic_form(v0_);
+  start_strain_ = 0.5 * stiffness_form(a_, h_, u0_, u0_);
   book_first_half_step();
 }
 
@@ -158,9 +191,8 @@ void PaperScheme::book_first_half_step() {
   double power = 0.0;
   if (load_mode_ != LoadMode::zero)
     for (std::size_t j = 0; j < v0_.size(); ++j) power += loads_[0][j] * v0_[j];
-  double dissipation = mesh_.stiffness_form(b_, v0_, v0_);
-  if (dashpot_sigma_ > 0.0)
-    dissipation -= (law_.reaction(u0_[0], v0_[0]) - law_.stiffness() * law_.penetration(u0_[0])) * v0_[0];
+  double dissipation = stiffness_form(b_, h_, v0_, v0_);
+  if (dashpot_sigma_ > 0.0) dissipation -= (end_force(u0_[0], v0_[0]) - k_ * penetration(u0_[0])) * v0_[0];
   work_half_ = 0.5 * dt_ * power;
   dissipation_half_ = 0.5 * dt_ * dissipation;
   work_last_ = dissipation_last_ = 0.0;
@@ -169,14 +201,22 @@ void PaperScheme::book_first_half_step() {
 // a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0), R(0) the obstacle's law at
 // (u0, v0); F(0) is in loads_[0]. Called by start() only: it may allocate.
 std::vector<double> PaperScheme::initial_acceleration() const {
-  const std::size_t n = mesh_.nodes();
-  std::vector<double> a(n, 0.0), viscous(n, 0.0);
-  stiffness_a_.multiply(u0_, a);
-  stiffness_b_.multiply(v0_, viscous);
-  for (std::size_t j = 0; j < n; ++j) a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - a[j] - viscous[j];
-  a[0] += law_.reaction(u0_[0], v0_[0]);
+  const std::size_t n = line_.nodes();
+  // K_a u0 + K_b v0 by the uniform stencil, row by row as Tridiagonal::multiply
+  // (the same bits) without assembling either matrix.
+  const double pa = a_ / h_, qa = -a_ / h_, pb = b_ / h_, qb = -b_ / h_;
+  auto row = [n](double p, double q, const std::vector<double>& x, std::size_t i) {
+    double s = (i == 0 || i == n - 1 ? p : p + p) * x[i];
+    if (i > 0) s += q * x[i - 1];
+    if (i + 1 < n) s += q * x[i + 1];
+    return s;
+  };
+  std::vector<double> a(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j)
+    a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - row(pa, qa, u0_, j) - row(pb, qb, v0_, j);
+  a[0] += end_force(u0_[0], v0_[0]);
   if (clamped_) a[n - 1] = 0.0;
-  FactoredTridiagonal(mass_, clamped_).solve(a);
+  FactoredTridiagonal(assemble(n, density_ * h_ / 3.0, density_ * h_ / 6.0), clamped_).solve(a);
   return a;
 }
 
@@ -187,7 +227,7 @@ std::vector<double> PaperScheme::initial_acceleration() const {
 // two passes over memory, two chains per pass, no allocation.
 template <PaperScheme::LoadMode mode>
 void PaperScheme::solve_level(long long m) {
-  const std::size_t n = mesh_.nodes();
+  const std::size_t n = line_.nodes();
   const double* __restrict zc = next_;
   const double* __restrict zo = cur_;
   double* __restrict zn = prev_;
@@ -208,7 +248,7 @@ void PaperScheme::solve_level(long long m) {
     c0 = ebar;
   } else if constexpr (mode == LoadMode::unsteady) {
     auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
-    mesh_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
     fp = newest.data();
     f0 = loads_[static_cast<std::size_t>(m % 3)].data();
     fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
@@ -229,7 +269,7 @@ void PaperScheme::solve_level(long long m) {
 
   // The explicit half of the penalty, (k/2)|z_0 + g e^{-lambda t_m}|, and the
   // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
-  const double k = law_.stiffness(), g = law_.gap();
+  const double k = k_, g = gap_;
   double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
   const double sigma = dashpot_sigma_ > 0.0 ? viscoelastic_row(zc, zo, e0, em1, contact) : 0.0;
 
@@ -270,7 +310,7 @@ void PaperScheme::solve_level(long long m) {
 // equation is the law's. Adjusts row 0's `contact`; returns sigma, the change
 // of A's (0, 0) entry, applied by Sherman-Morrison.
 double PaperScheme::viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact) {
-  const double k = law_.stiffness(), l = law_.viscosity(), g = law_.gap();
+  const double k = k_, l = l_, g = gap_;
   const double d = -(zc[0] / e0 + g), d_rate = -(zc[0] / e0 - zo[0] / em1) / dt_;
   contact_ = d <= 0.0 ? Contact::apart : k * d + l * d_rate > 0.0 ? Contact::pushing : Contact::clipped;
   if (contact_ == Contact::pushing) {
@@ -317,7 +357,7 @@ void PaperScheme::finish_level(long long m) {
 // (u^{m+1} - u^{m-1}) / 2: dW = F^{m,alpha} . (u^{m+1} - u^{m-1}) / 2 and
 // dD = dt |(u^{m+1} - u^{m-1}) / (2 dt)|^2_{K_b}.
 void PaperScheme::accumulate_budget(long long m) {
-  const std::size_t n = mesh_.nodes(), st = stride_;
+  const std::size_t n = line_.nodes(), st = stride_;
   const double sm = scale(m - 1), sp = scale(m + 1);
   double dw = 0.0;
   if (load_mode_ != LoadMode::zero) {
@@ -346,16 +386,16 @@ void PaperScheme::accumulate_budget(long long m) {
       dd += (right - left) * (right - left);
       left = right;
     }
-    dd *= dt_ * b_ / mesh_.h();
+    dd *= dt_ * b_ / h_;
   }
   if (contact_ == Contact::pushing) {  // the obstacle's dashpot: dt l (du_0/dt)^2
     const double rate = (sp * next_[0] - sm * prev_[0]) / (2.0 * dt_);
-    dd += dt_ * law_.viscosity() * rate * rate;
+    dd += dt_ * l_ * rate * rate;
   } else if (contact_ == Contact::clipped) {
     // The spring lets go unloaded: what k d^2 / 2 loses is dissipated, as
     // k d^m (d^{m-1} - d^{m+1}) / 2, the centred form that telescopes to it.
-    const double d = law_.penetration(scale(m) * cur_[0]);
-    dd += law_.stiffness() * d * 0.5 * (sp * next_[0] - sm * prev_[0]);
+    const double d = penetration(scale(m) * cur_[0]);
+    dd += k_ * d * 0.5 * (sp * next_[0] - sm * prev_[0]);
   }
   work_last_ = dw;
   dissipation_last_ = dd;
@@ -420,8 +460,8 @@ struct HalfStepSums {
 void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
                                      double sc, double (&kinetic)[2], double (&strain)[2]) const {
   // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
-  const double h = mesh_.h();
-  const std::size_t st = stride_, n = mesh_.nodes();
+  const double h = h_;
+  const std::size_t st = stride_, n = line_.nodes();
   const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
   const double extra = (alpha_ - 0.25) * dt_ * dt_, inv_dt = 1.0 / dt_;
   HalfStepSums ab{inv_dt}, bc{inv_dt};
@@ -447,10 +487,10 @@ void PaperScheme::half_step_energies(const double* za, double sa, const double* 
 
 Energies PaperScheme::energies() const {
   Energies e;
-  e.obstacle = law_.energy(end_displacement());
+  e.obstacle = end_energy(end_displacement());
   if (n_ == 0) {
-    e.kinetic = 0.5 * mass_.quadratic_form(v0_);
-    e.strain = 0.5 * mesh_.stiffness_form(a_, u0_, u0_);
+    e.kinetic = start_kinetic_;
+    e.strain = start_strain_;
     return e;
   }
   double k[2] = {0.0, 0.0}, s[2] = {0.0, 0.0}, k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
@@ -472,7 +512,7 @@ Energies PaperScheme::energies() const {
 }
 
 bool PaperScheme::finite() const {
-  const std::size_t last = mesh_.nodes() - 1;
+  const std::size_t last = line_.nodes() - 1;
   const std::size_t at = last * stride_;
   return std::isfinite(cur_[0]) && std::isfinite(cur_[at]) && std::isfinite(next_[0]) && std::isfinite(next_[at]) &&
          std::isfinite(work_half_) && std::isfinite(dissipation_half_) && std::isfinite(scale(n_ + 1));

@@ -29,8 +29,8 @@ std::unique_ptr<Scheme> make(const Case& c, Line line) {
 
 // The paper's scheme on one bar and its near end: the fused sweep of its
 // one uniform stretch (paper_scheme.hpp), which the SIMD batch shares.
-std::unique_ptr<Scheme> make_fused_paper(const Case& c) {
-  return std::make_unique<PaperScheme>(c);
+std::unique_ptr<Scheme> make_fused_paper(const Case& c, Line line) {
+  return std::make_unique<PaperScheme>(c, std::move(line));
 }
 
 bool has_soil(const Line& line) {
@@ -225,8 +225,8 @@ std::unique_ptr<Scheme> make_scheme(const Case& c) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
   Line line = checked_line(s, c);
   if (const auto m = scheme_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
-  if (s.one_bar && c.one_bar()) return s.one_bar(c);
   if (!mesh_matters(s, c)) line = build_line(c);
+  if (s.one_bar && c.one_bar()) return s.one_bar(c, std::move(line));
   return s.make(c, std::move(line));
 }
 

@@ -76,7 +76,7 @@ void PaperBatch::advance() {
     const PaperScheme& s = *lanes_[std::min(l, lanes_.size() - 1)];
     const double em1 = 1.0 / s.scale(m - 1), e0 = 1.0 / s.scale(m), ep1 = 1.0 / s.scale(m + 1);
     const double ebar = s.alpha_ * ep1 + (1.0 - 2.0 * s.alpha_) * e0 + s.alpha_ * em1;
-    const double k = s.law_.stiffness(), g = s.law_.gap();
+    const double k = s.k_, g = s.gap_;
     level.contact[l] = 0.5 * k * (std::abs(s.next_[0] + g * e0) - g * ebar);
     level.load_weight[l] = steady_load_ ? ebar : 0.0;
     level.b1_first[l] = s.b1_diag_[0], level.b1_inner[l] = s.b1_diag_[1], level.b1_last[l] = s.b1_diag_[2];

@@ -61,7 +61,7 @@ Counted count_loop(const Case& c, const std::function<void(const Scheme&)>& each
   const Probes probes(c, line);
   HistoryRecorder history(c.output.every, &probes);
   FieldRecorder fields(c, line, c.output.fields_at);
-  ContactMonitor contact(c.one_bar() ? c.one_bar()->obstacle : ObstacleData{});
+  ContactMonitor contact(line, c.time.step);
   LinkMonitor links(line);
   PlasticMonitor plastic(line, c.output.every);
   const std::array<Observer*, 5> observers{&history, &fields, &contact, &links, &plastic};

@@ -74,9 +74,26 @@ TEST(FieldRecorder, TakesTheNearestStepOncePerStep) {
   EXPECT_EQ(fields.sigma[1 * 3 + 1], 0.0);  // rigid: no strain
 }
 
+// A bar of `nodes` nodes and unit elements against the ground at its near
+// end, by a link of law `kind` (stiffness 10).
+Line bar_on_near_link(std::size_t nodes, LawKind kind) {
+  Line line;
+  for (std::size_t j = 0; j < nodes; ++j) {
+    line.x.push_back(static_cast<double>(j));
+    line.point_mass.push_back(0.0);
+    if (j > 0) line.bonds.push_back({BondKind::element, 1.0, 1.0, 0.0, 1.0, 1.0, 0, 1.0, 0.0});
+  }
+  ContactLaw law;
+  law.kind = kind;
+  law.stiffness = 10.0;
+  line.links.push_back({"near_end", law, Link::ground, 0, 0.0, true});
+  return line;
+}
+
 TEST(ContactMonitor, InterpolatesCrossingsAndReportsEachEpisode) {
   CosineScheme s(0.01);
-  ContactMonitor m(ObstacleData{ObstacleKind::elastic, 10.0, 0.0});
+  const Line line = bar_on_near_link(3, LawKind::elastic);
+  ContactMonitor m(line);
   const std::array<Observer*, 1> obs{&m};
   simulate(s, 1000, obs);  // t up to 10: cos < 0 on (pi/2, 3pi/2) and (5pi/2, 7pi/2)
   ASSERT_EQ(m.intervals().size(), 2u);
@@ -123,7 +140,8 @@ TEST(ContactMonitor, StartsAtMostAStepAheadAndNeverEndsBeforeItStarts) {
   // that saw the contact (R^n places u^{n+1}): 0.3; the end, clamped into
   // its step (0.3, 0.4), is not before it: 0.3 .. 0.3.
   TableScheme s(0.1, {0.3, 0.2, 0.1, 0.05, 0.25, 0.3}, {0, 0, 1, 1, 0, 0});
-  ContactMonitor m(ObstacleData{ObstacleKind::rigid, 0.0, 0.0});
+  const Line line = bar_on_near_link(2, LawKind::rigid);
+  ContactMonitor m(line);
   const std::array<Observer*, 1> obs{&m};
   simulate(s, 5, obs);
   ASSERT_EQ(m.intervals().size(), 1u);

@@ -17,11 +17,21 @@
 #include "barimpact/model/contact_law.hpp"
 #include "barimpact/model/input_error.hpp"
 #include "barimpact/model/material.hpp"
-#include "barimpact/model/obstacle.hpp"
 
 namespace barimpact {
 
 enum class FarEnd { free, clamped };
+
+/// The paper's obstacle at x = 0 (the [obstacle] table), seen as its bar's near end.
+enum class ObstacleKind { none, elastic, viscoelastic, rigid };
+struct ObstacleData {
+  ObstacleKind kind = ObstacleKind::elastic;
+  double stiffness = 100.0;  ///< k, eq. (2.8)
+  double gap = 0.0;          ///< g: the face is at u = -g
+  double viscosity = 0.0;    ///< l, viscoelastic: R = max(0, k d + l dd/dt) while d > 0
+};
+
+[[nodiscard]] std::string_view to_string(ObstacleKind kind);
 
 struct BarData {
   double length = 1.0;            ///< L

@@ -20,7 +20,7 @@
 
 #include "barimpact/model/contact_law.hpp"
 #include "barimpact/model/material.hpp"
-#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 
 namespace barimpact {
 
@@ -30,6 +30,8 @@ enum class BondKind {
   spring,   ///< a bilateral spring joint and its dashpot, no mass
   open      ///< nothing assembled: a unilateral link decides the force, or two bodies apart
 };
+
+class Expression;
 
 struct Bond {
   BondKind kind = BondKind::element;
@@ -128,6 +130,13 @@ struct Line {
   [[nodiscard]] Tridiagonal viscosity() const;
   /// The lumped mass of every node (row sums of M_h plus point masses).
   [[nodiscard]] std::vector<double> lumped_mass() const;
+  /// Node j's lumped mass: its point mass and half of each element beside it.
+  [[nodiscard]] double node_mass(std::size_t j) const {
+    double m = point_mass[j];
+    if (j > 0) m += 0.5 * bonds[j - 1].mass;
+    if (j < bonds.size()) m += 0.5 * bonds[j].mass;
+    return m;
+  }
   /// F_i = int f phi_i over the elements (3-point Gauss each) minus g times
   /// the node's lumped mass, at time t.
   void load(const Expression& f, double t, std::vector<double>& out) const;

@@ -14,7 +14,6 @@
 #include <vector>
 
 #include "barimpact/case/case.hpp"
-#include "barimpact/model/obstacle.hpp"
 #include "barimpact/run/probe.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
@@ -135,11 +134,15 @@ struct ContactInterval {
 /// they never mix episodes (chatter's first brief touch with the last).
 [[nodiscard]] const ContactInterval* departure(const std::vector<ContactInterval>& episodes);
 
-/// Watches every step: contact episodes, largest penetration and reaction.
+/// Watches the near end at every step: its link's contact episodes (the
+/// crossings of its opening U + g = 0 interpolated between steps, where the
+/// links' monitor below counts whole steps of force), the largest
+/// penetration and reaction, a rigid end's impact impulses.
 class ContactMonitor final : public Observer {
  public:
-  /// `dt` the run's step, which turns a rigid impact step's reaction into its impulse.
-  explicit ContactMonitor(const ObstacleData& obstacle, double dt = 0.0) : law_(obstacle), dt_(dt) {}
+  /// The line's near link, if any (none: no episodes); `dt` the run's step,
+  /// which turns a rigid impact step's reaction into its impulse.
+  explicit ContactMonitor(const Line& line, double dt = 0.0);
   void begin(const Scheme& scheme, long long steps) override;
   /// Allocates only when an episode begins beyond the 65536 reserved.
   bool observe(const Scheme& scheme) override;
@@ -151,14 +154,16 @@ class ContactMonitor final : public Observer {
   [[nodiscard]] double max_impact_impulse() const { return max_impulse_; }
 
  private:
-  ObstacleLaw law_;
+  [[nodiscard]] double mean_velocity(const Scheme& s) const;
+  const Line* line_;                      // the run's, which outlives its recorders
+  bool present_ = false, rigid_ = false;  // a near link, and whether it is rigid
+  double gap_ = 0.0;
   std::vector<ContactInterval> intervals_;
   bool in_contact_ = false;
   bool have_previous_ = false;
   double previous_t_ = 0.0, previous_d_ = 0.0;
   double max_penetration_ = 0.0, max_reaction_ = 0.0, max_impulse_ = 0.0;
   double dt_ = 0.0;
-  std::vector<double> velocity_;
 };
 
 /// A link's contact episode (line.hpp): force > 0 (above 1e-9 of the

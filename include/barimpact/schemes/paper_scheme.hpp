@@ -35,8 +35,8 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/model/expression.hpp"
-#include "barimpact/model/mesh.hpp"
-#include "barimpact/model/obstacle.hpp"
+#include "barimpact/model/line.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 #include "barimpact/schemes/scheme.hpp"
 #include "barimpact/schemes/simd.hpp"
 
@@ -46,7 +46,10 @@ class PaperBatch;
 
 class PaperScheme final : public Scheme {
  public:
-  /// Preconditions: `c` validated, a line of one elastic bar (Case::one_bar).
+  /// Preconditions: `c` validated, a line of one elastic bar (Case::one_bar),
+  /// `line` the case's built line, which the scheme keeps (Scheme::line).
+  PaperScheme(const Case& c, Line line);
+  /// The same, building the line.
   explicit PaperScheme(const Case& c);
 
   void start() override;
@@ -54,24 +57,25 @@ class PaperScheme final : public Scheme {
 
   [[nodiscard]] long long step() const override { return n_; }
   [[nodiscard]] double time() const override { return static_cast<double>(n_) * dt_; }
-  [[nodiscard]] std::size_t nodes() const override { return mesh_.nodes(); }
+  [[nodiscard]] std::size_t nodes() const override { return line_.nodes(); }
+  [[nodiscard]] const Line* line() const override { return &line_; }
   [[nodiscard]] double end_displacement() const override;
   [[nodiscard]] double end_velocity() const override;
-  [[nodiscard]] double reaction() const override { return law_.reaction(end_displacement(), end_velocity()); }
+  [[nodiscard]] double reaction() const override { return end_force(end_displacement(), end_velocity()); }
   void displacement(std::span<double> out) const override;
   void velocity(std::span<double> out) const override;
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
   [[nodiscard]] double displacement_at(std::size_t j) const override;
   [[nodiscard]] double velocity_at(std::size_t j) const override;
-  [[nodiscard]] double link_opening(std::size_t /*i*/) const override { return end_displacement() + law_.gap(); }
+  [[nodiscard]] double link_opening(std::size_t /*i*/) const override { return end_displacement() + gap_; }
 
   /// The level z^{n+1}, node j at [j * stride()] (exposed for tests of the scheme itself).
   [[nodiscard]] const double* next_level() const { return next_; }
   [[nodiscard]] std::size_t stride() const { return stride_; }
 
  private:
-  PaperScheme(const Case& c, const OneBar& one);
+  PaperScheme(const Case& c, const OneBar& one, Line line);
   friend class PaperBatch;
   enum class LoadMode { zero, steady, unsteady };
 
@@ -82,6 +86,16 @@ class PaperScheme final : public Scheme {
   /// The viscoelastic obstacle's status at level m and its terms in row 0;
   /// returns the change sigma of A's (0, 0) entry.
   double viscoelastic_row(const double* zc, const double* zo, double e0, double em1, double& contact);
+  /// The obstacle's penetration d = (-(U + g))^+, its force R(U, V) and
+  /// stored energy k d^2 / 2: the near link's law (none: 0).
+  [[nodiscard]] double penetration(double U) const {
+    const double d = -(U + gap_);
+    return law_ != nullptr && d > 0.0 ? d : 0.0;
+  }
+  [[nodiscard]] double end_force(double U, double V) const {
+    return law_ != nullptr ? law_->force(-(U + gap_), -V, 0.0) : 0.0;
+  }
+  [[nodiscard]] double end_energy(double U) const { return law_ != nullptr ? law_->energy(-(U + gap_), 0.0) : 0.0; }
   /// a0 = M^{-1} (F(0) - K_a u0 - K_b v0 + R(0) e0).
   [[nodiscard]] std::vector<double> initial_acceleration() const;
   /// W_ext and D_visc of (0, t_{1/2}), dt/2 times their rates at t = 0.
@@ -97,11 +111,12 @@ class PaperScheme final : public Scheme {
                           double (&kinetic)[2], double (&strain)[2]) const;
   void accumulate_budget(long long m);
 
-  Mesh mesh_;
-  ObstacleLaw law_;
-  double dt_, alpha_, lambda_, density_, a_, b_;
+  Line line_;
+  const ContactLaw* law_ = nullptr;  // the near link's (elastic or viscoelastic), null without one
+  double gap_ = 0.0;
+  double k_ = 0.0, l_ = 0.0;  // the obstacle's stiffness, and its viscosity when viscoelastic
+  double h_, dt_, alpha_, lambda_, density_, a_, b_;
   bool clamped_;
-  Tridiagonal mass_, stiffness_a_, stiffness_b_;
 
   // Constant coefficients of A, B1, B0 on the uniform mesh: the off-diagonal
   // (identical for every element) and the first, inner and last diagonal.
@@ -136,6 +151,7 @@ class PaperScheme final : public Scheme {
   mutable HalfStep cached_;
 
   long long n_ = 0;
+  double start_kinetic_ = 0.0, start_strain_ = 0.0;  // E_kin, E_strain at t = 0 (the mass matrix is not kept)
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // increments of level n
 };

@@ -38,7 +38,7 @@
 #include <vector>
 
 #include "barimpact/model/line.hpp"
-#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 #include "barimpact/schemes/plastic_body.hpp"
 
 namespace barimpact {

@@ -58,7 +58,7 @@ struct SchemeInfo {
   NewmarkFamily (*family)(const Case& c) = nullptr;
   /// A kernel of its own for one bar and its near end (the paper's fused
   /// sweep of one uniform stretch, which the SIMD batch shares), or null.
-  std::unique_ptr<Scheme> (*one_bar)(const Case& c) = nullptr;
+  std::unique_ptr<Scheme> (*one_bar)(const Case& c, Line line) = nullptr;
 };
 
 /// Every scheme, in the order `check`, the refusals and the docs list them.

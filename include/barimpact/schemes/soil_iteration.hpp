@@ -47,7 +47,7 @@
 #include <vector>
 
 #include "barimpact/model/line.hpp"
-#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 
 namespace barimpact {
 

@@ -1,9 +1,6 @@
-// The uniform P1 mesh of (0, L) and its matrices: consistent mass, stiffness,
-// and the load vector (f, phi_i).
-//
-// Owns geometry and assembly; does not know time stepping or obstacles. All
-// matrices are symmetric tridiagonal and, on a uniform mesh, Toeplitz but for
-// the two end rows, which the solvers exploit.
+// Symmetric tridiagonal matrices and their solvers: every matrix of a line of
+// bodies is one (line.hpp). The factored forms are computed once per run; the
+// kernels that fuse their right-hand side into the sweeps read the factors.
 #pragma once
 
 #include <cstddef>
@@ -11,8 +8,6 @@
 #include <vector>
 
 namespace barimpact {
-
-class Expression;
 
 /// A symmetric tridiagonal matrix: `diag` has n entries, `off` n - 1.
 struct Tridiagonal {
@@ -132,38 +127,6 @@ class TwistedTridiagonal {
   std::vector<double> inward_;        // a row's coupling to the row eliminated before it, over its pivot
   std::vector<double> outward_;       // its coupling to the row solved before it on the way out, over its pivot
   double lower_ = 0.0, upper_ = 0.0;  // A_{k,k-1}, A_{k,k+1}
-};
-
-class Mesh {
- public:
-  /// M uniform elements on (0, L). Preconditions: L > 0, M >= 1.
-  Mesh(double length, int elements);
-
-  [[nodiscard]] int elements() const { return elements_; }
-  [[nodiscard]] std::size_t nodes() const { return static_cast<std::size_t>(elements_) + 1; }
-  [[nodiscard]] double length() const { return length_; }
-  [[nodiscard]] double h() const { return h_; }
-  /// x_j = j h.
-  [[nodiscard]] double x(std::size_t j) const { return static_cast<double>(j) * h_; }
-
-  /// (phi_j, phi_i) rho: diag rho h/3 at the ends, 2 rho h/3 inside, off rho h/6.
-  [[nodiscard]] Tridiagonal mass(double density) const;
-  /// int c phi_j' phi_i': the stiffness (c = a) and viscous (c = b) matrices.
-  [[nodiscard]] Tridiagonal stiffness(double coefficient) const;
-  /// F_i = int f(x, t) phi_i dx by 3-point Gauss per element: exact when f is
-  /// a polynomial of degree <= 3 on each element.
-  void load(const Expression& f, double t, std::span<double> out) const;
-  /// a^T K b for K = stiffness(coefficient), element by element:
-  /// sum_e (c/h)(a_{e+1} - a_e)(b_{e+1} - b_e). Free of the cancellation that
-  /// the assembled form suffers when u carries a large rigid motion.
-  [[nodiscard]] double stiffness_form(double coefficient, std::span<const double> a, std::span<const double> b) const;
-  /// Nodal interpolant of g(x, 0).
-  void interpolate(const Expression& g, std::span<double> out) const;
-
- private:
-  double length_;
-  int elements_;
-  double h_;
 };
 
 }  // namespace barimpact

@@ -1,10 +1,8 @@
-#include "barimpact/model/mesh.hpp"
+#include "barimpact/model/tridiagonal.hpp"
 
 #include <array>
 #include <cassert>
 #include <cmath>
-
-#include "barimpact/model/expression.hpp"
 
 namespace barimpact {
 
@@ -82,56 +80,6 @@ TwistedTridiagonal::TwistedTridiagonal(const Tridiagonal& a) {
   upper_ = k < last ? o[k] : 0.0;
   inv_[k] =
       1.0 / (d[k] - (k > 0 ? lower_ * lower_ * inv_[k - 1] : 0.0) - (k < last ? upper_ * upper_ * inv_[k + 1] : 0.0));
-}
-
-Mesh::Mesh(double length, int elements)
-    : length_(length), elements_(elements), h_(length / static_cast<double>(elements)) {}
-
-namespace {
-// Assembles the element matrix [[p, q], [q, p]] on every element.
-Tridiagonal assemble(std::size_t nodes, double p, double q) {
-  Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes - 1, q)};
-  for (std::size_t e = 0; e + 1 < nodes; ++e) {
-    t.diag[e] += p;
-    t.diag[e + 1] += p;
-  }
-  return t;
-}
-}  // namespace
-
-Tridiagonal Mesh::mass(double density) const {
-  return assemble(nodes(), density * h_ / 3.0, density * h_ / 6.0);
-}
-
-Tridiagonal Mesh::stiffness(double coefficient) const {
-  return assemble(nodes(), coefficient / h_, -coefficient / h_);
-}
-
-void Mesh::load(const Expression& f, double t, std::span<double> out) const {
-  // 3-point Gauss-Legendre on [-1, 1]: exact for f phi_i of degree <= 5.
-  static const double r = std::sqrt(0.6);
-  static constexpr std::array<double, 3> weight{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-  const std::array<double, 3> xi{-r, 0.0, r};
-  for (auto& v : out) v = 0.0;
-  for (std::size_t e = 0; e + 1 < nodes(); ++e) {
-    const double left = x(e);
-    for (std::size_t q = 0; q < 3; ++q) {
-      const double s = 0.5 * (1.0 + xi[q]);  // local coordinate in [0, 1]
-      const double fw = f(left + s * h_, t) * weight[q] * 0.5 * h_;
-      out[e] += fw * (1.0 - s);
-      out[e + 1] += fw * s;
-    }
-  }
-}
-
-double Mesh::stiffness_form(double coefficient, std::span<const double> a, std::span<const double> b) const {
-  double s = 0.0;
-  for (std::size_t e = 0; e + 1 < a.size(); ++e) s += (a[e + 1] - a[e]) * (b[e + 1] - b[e]);
-  return coefficient / h_ * s;
-}
-
-void Mesh::interpolate(const Expression& g, std::span<double> out) const {
-  for (std::size_t j = 0; j < nodes(); ++j) out[j] = g(x(j), 0.0);
 }
 
 void solve_tangent(std::vector<double>& diag, std::vector<double>& off, const std::vector<std::size_t>& held,
