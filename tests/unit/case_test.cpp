@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../support/pile.hpp"
 #include "../support/run_case.hpp"
 
 namespace barimpact {
 namespace {
 
 using testing::case_from;
+using testing::pile_toml;
 using testing::refusal;
 
 TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
@@ -279,6 +281,46 @@ TEST(Case, ChecksAConstantExpressionOnceNotAtEveryNode) {
       case_from("[bar]\nelements = 100000000\n[obstacle]\nkind = \"none\"\n[time]\nend = 1e-9\nstep = 1e-9\n");
   EXPECT_EQ(c.one_bar()->bar.elements, 100'000'000);
   EXPECT_REFUSED("[bar]\nelements = 100000000\n[initial]\nvelocity = \"0/0\"", "initial.velocity", "finite");
+}
+
+TEST(SmithCase, RefusesWhatItCannotRun) {
+  EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"smith\"\nultimate = 1.0\n", "far_end.law",
+                 "near-end law only");
+  EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"free\"\nquake = 1.0\n", "far_end.quake",
+                 "not used by law \"free\"");
+  auto with = [](const std::string& from, const std::string& to) {
+    std::string s = pile_toml;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  EXPECT_REFUSED(with("ultimate = 200e3\n", ""), "near_end.ultimate", "is required");
+  EXPECT_REFUSED(with("ultimate = 300e3\n", ""), "body.pile.shaft.ultimate", "is required");
+  EXPECT_REFUSED(with("damping = 0.0\n[near_end]", "skin = 1.0\n[near_end]"), "body.pile.shaft.skin",
+                 "not a shaft key");
+  EXPECT_REFUSED(with("ultimate = 300e3\n", "ultimate = 300e3\nembedded = 11.0\n"), "body.pile.shaft.embedded",
+                 "(0, 10]");
+  EXPECT_REFUSED(with("quake = 0.0025\ndamping = 0.0\n[time]", "quake = 0.0\ndamping = 0.0\n[time]"), "near_end.quake",
+                 "> 0");
+  EXPECT_REFUSED(with("damping = 0.0\n[time]", "damping = 0.0\ndamping_law = \"case\"\n[time]"), "near_end.damping_law",
+                 "smith or viscous");
+  EXPECT_REFUSED(with("scheme = \"central-difference\"", "scheme = \"paper\""), "time.step", "\"auto\"",
+                 "explicit schemes");
+  EXPECT_REFUSED(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"moreau-jean\""),
+                 "time.scheme", "Smith", "paper, newmark, central-difference");
+  const std::string plastic =
+      testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""),
+                       {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
+  EXPECT_NE(plastic.find("elastic-plastic body \"pile\""), std::string::npos) << plastic;
+  const std::string plastic_paper =
+      testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"paper\""),
+                       {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
+  EXPECT_NE(plastic_paper.find("\"paper\" cannot run Smith's soil beside the elastic-plastic body \"pile\""),
+            std::string::npos)
+      << plastic_paper;
+  const std::string explicit_newmark = testing::refusal(
+      with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""), {"time.beta=0"});
+  EXPECT_NE(explicit_newmark.find("time.beta = 0"), std::string::npos) << explicit_newmark;
+  EXPECT_REFUSED(with("step = \"auto\"", "step = \"fast\""), "time.step", "a number or \"auto\"");
 }
 
 }  // namespace

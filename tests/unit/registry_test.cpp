@@ -12,8 +12,10 @@
 
 #include "../support/line_parts.hpp"
 #include "../support/line_runs.hpp"
+#include "../support/pile.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/schemes/line_scheme.hpp"
 
 namespace barimpact {
 namespace {
@@ -24,6 +26,7 @@ using testing::joint;
 using testing::law_joint;
 using testing::line_case;
 using testing::mass;
+using testing::pile_toml;
 
 // A row as docs/methods.md's table of schemes and its health checks state
 // it: the laws each runs ("obstacles": none and rigid, the penalty laws, or
@@ -210,6 +213,21 @@ TEST(LineSchemes, ImplicitPenaltySchemesRefuseRigidLinks) {
     c.near_end.stiffness = 100.0;
     EXPECT_FALSE(scheme_misfit(c, build_line(c)).has_value());
   }
+}
+
+TEST(SmithCase, AutoStepIsTheStableStepOfTheLineWithItsSoil) {
+  const Case c = case_from(pile_toml);
+  const Line line = build_line(c);
+  EXPECT_DOUBLE_EQ(c.time.step, auto_step_fraction * line_stable_step(line, false));
+  // The soil stiffens the toe node: the step is below the bare pile's.
+  std::string free = pile_toml;
+  free.replace(free.find("[near_end]"), free.find("[time]") - free.find("[near_end]"), "");
+  const Case bare = case_from(free, {"body.pile.shaft.ultimate=0"});
+  EXPECT_LT(c.time.step, bare.time.step);
+  // The resolved case reads back to the same case.
+  const Case again = Case::from_string(c.to_toml(), {}, "resolved");
+  EXPECT_EQ(again.to_toml(), c.to_toml());
+  EXPECT_EQ(again.time.step, c.time.step);
 }
 
 }  // namespace
