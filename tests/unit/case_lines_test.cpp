@@ -15,7 +15,6 @@
 #include "../support/run_case.hpp"
 #include "../support/scratch_directory.hpp"
 #include "barimpact/case/case.hpp"
-#include "barimpact/study/sweep.hpp"
 
 namespace barimpact {
 namespace {
@@ -616,52 +615,59 @@ fields_at = [0.5, 1]
   EXPECT_EQ(again.time.scheme, "newmark");
 }
 
+// The paper's Example 1 in the line's spelling runs as the single bar it is:
+// the same history, bit for bit, as today's [bar]/[obstacle] file.
+TEST(LineCase, BothSpellingsOfExample1GiveTheSameHistory) {
+  const Case bar_spelling = testing::example("paper-example1.toml");
+  const Case line_spelling = testing::case_from(R"toml(
+[[body]]
+name = "bar"
+length = 1.0
+elements = 100
+velocity = "-1"
+[near_end]
+law = "elastic"
+stiffness = 100.0
+[time]
+end = 4.0
+step = 0.01
+[output]
+fields_at = [1.0, 2.0]
+)toml");
+  EXPECT_TRUE(line_spelling.one_bar().has_value());
+  const RunResult a = run(bar_spelling), b = run(line_spelling);
+  ASSERT_EQ(a.history.size(), b.history.size());
+  for (std::size_t k = 0; k < a.history.size(); ++k) {
+    EXPECT_EQ(a.history[k].U, b.history[k].U);
+    EXPECT_EQ(a.history[k].R, b.history[k].R);
+    EXPECT_EQ(a.history[k].total(), b.history[k].total());
+  }
+  // And the resolved case.toml, in the line's spelling, reads back to the same run.
+  const Case again = Case::from_string(bar_spelling.to_toml(), {}, "resolved");
+  EXPECT_EQ(again.to_toml(), bar_spelling.to_toml());
+  EXPECT_EQ(run(again).history.back().U, a.history.back().U);
+}
+
+// A single bar's rigid near end with its own restitution: the single-bar
+// schemes run with it (they read time.restitution).
+TEST(LineCase, ASingleBarsRigidEndKeepsItsRestitution) {
+  const Case c = testing::case_from(R"toml(
+[[body]]
+name = "bar"
+velocity = "-1"
+[near_end]
+law = "rigid"
+restitution = 0.5
+[time]
+scheme = "moreau-jean"
+)toml");
+  ASSERT_TRUE(c.one_bar().has_value());
+  EXPECT_EQ(c.time.restitution, 0.5);
+  EXPECT_EQ(Case::from_string(c.to_toml(), {}, "resolved").time.restitution, 0.5);
+}
+
 }  // namespace
 }  // namespace barimpact
-
-namespace {
-
-// A sweep over the pile hammer (examples/lines), its plan given as text.
-barimpact::SweepPlan pile_sweep(const std::string& rest) {
-  return barimpact::SweepPlan::from_string("case = \"pile-hammer.toml\"\n" + rest, "sweep.toml",
-                                           BARIMPACT_SOURCE_DIR "/examples/lines");
-}
-
-}  // namespace
-
-// [set] takes the line's keys as TOML writes them (a dotted key is nested
-// tables): every point's case has them, beside the axes' values.
-TEST(SweepLines, SetTakesTheLinesDottedKeys) {
-  const auto plan = pile_sweep(
-      "[set]\nbody.pile.elements = 50\njoint.capblock.restitution = 0.7\ntime.end = 0.02\noutput.fields_at = []\n"
-      "[[axis]]\nkey = \"body.ram.velocity\"\nvalues = [-1.0, -2.0]\n");
-  ASSERT_EQ(plan.points().size(), 2u);
-  for (std::size_t i = 0; i < 2; ++i) {
-    const barimpact::Case c = plan.case_at(plan.points()[i]);
-    const auto pile = std::find_if(c.bodies.begin(), c.bodies.end(), [](const auto& b) { return b.name == "pile"; });
-    const auto ram = std::find_if(c.bodies.begin(), c.bodies.end(), [](const auto& b) { return b.name == "ram"; });
-    ASSERT_NE(pile, c.bodies.end());
-    ASSERT_NE(ram, c.bodies.end());
-    EXPECT_EQ(pile->elements, 50);
-    EXPECT_EQ(c.joints.at(0).law.restitution, 0.7);
-    EXPECT_EQ(c.time.end, 0.02);
-    EXPECT_EQ(ram->velocity, i == 0 ? "-1" : "-2");
-  }
-}
-
-// An axis naming a body, joint or gauge the case does not have is refused
-// when the plan is read, naming the axis, as a misspelled key is (not run
-// as a sweep of refused cases).
-TEST(SweepLines, RefusesAnAxisNamingNoPartOfTheLine) {
-  for (const char* key : {"body.nobody.velocity", "joint.nojoint.gap", "gauge.nogauge.at"}) {
-    try {
-      (void)pile_sweep(fmt::format("[[axis]]\nkey = \"{}\"\nvalues = [1.0, 2.0]\n", key));
-      ADD_FAILURE() << "accepted " << key;
-    } catch (const barimpact::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(fmt::format("axis {}", key)), std::string::npos) << e.what();
-    }
-  }
-}
 
 // A single bar of area != 1 runs on [bar]'s products E A, rho A, eta A; its
 // case.toml still gives the body's own E, rho and eta, digit for digit.
@@ -683,73 +689,4 @@ law = "elastic"
   EXPECT_EQ(back.one_bar()->bar.stiffness, c.one_bar()->bar.stiffness);
   EXPECT_EQ(back.one_bar()->bar.density, c.one_bar()->bar.density);
   EXPECT_EQ(back.one_bar()->bar.viscosity, c.one_bar()->bar.viscosity);
-}
-
-namespace {
-
-// A sweep of an example (`example` in examples/`folder`) with its [set] and one axis.
-barimpact::SweepPlan example_sweep(const std::string& folder, const std::string& example, const std::string& set,
-                                   const std::string& key, const std::string& values) {
-  return barimpact::SweepPlan::from_string(
-      fmt::format("case = \"{}\"\n[set]\n{}[[axis]]\nkey = \"{}\"\nvalues = [{}]\n", example, set, key, values),
-      "sweep.toml", std::string(BARIMPACT_SOURCE_DIR "/examples/") + folder);
-}
-
-}  // namespace
-
-// A penalty so stiff for its step that the contact chatters (hundreds of
-// brief episodes): the sweep's lift-off and rebound come from one episode,
-// the last (the bar leaves near t = 2), never the first brief touch's end
-// beside the last episode's rebound.
-TEST(SweepRows, LiftOffAndReboundComeFromTheSameEpisode) {
-  const barimpact::testing::ScratchDirectory dir("sweep-episodes");
-  const auto plan =
-      example_sweep(".", "paper-example1.toml", "output.fields_at = []\ntime.step = 0.0025\nbar.elements = 800\n",
-                    "obstacle.stiffness", "800.0");
-  std::filesystem::create_directories(dir.path() / "runs");
-  const auto rows = barimpact::run_sweep(plan, dir.path(), {0}, {});
-  ASSERT_EQ(rows.size(), 1u);
-  const auto& r = rows.front();
-  ASSERT_GT(r.contacts, 10) << "the contact chatters";
-  const barimpact::RunResult run = barimpact::run(plan.case_at(plan.points()[0]));
-  const barimpact::ContactInterval& last = run.summary.contacts.back();
-  ASSERT_TRUE(last.closed);
-  EXPECT_EQ(r.lift_off, last.end);
-  EXPECT_EQ(r.rebound_velocity, last.rebound_velocity);
-  EXPECT_GT(r.lift_off, 1.9);
-}
-
-// A sweep of pile blows: sweep.csv adds the blow's columns after the
-// contract's (set, blow counts, driving stresses, ENTHRU), the run's own
-// numbers, and a resumed sweep reads them back from the runs.
-TEST(SweepRows, APileSweepHasTheBlowsColumns) {
-  const barimpact::testing::ScratchDirectory dir("sweep-blows");
-  const auto plan = example_sweep("pile", "steel-pipe-sand.toml", "output.fields_at = []\nbody.pile.elements = 40\n",
-                                  "near_end.ultimate", "1.0e6, 2.0e6");
-  const auto out = dir.path() / "sweep";
-  const auto first = barimpact::write_sweep(plan, out, {}, false);
-  ASSERT_EQ(first.rows.size(), 2u);
-  for (std::size_t i = 0; i < 2; ++i) {
-    const auto& r = first.rows[i];
-    ASSERT_TRUE(r.blow);
-    const auto b = *barimpact::run(plan.case_at(plan.points()[i])).summary.blow;
-    EXPECT_EQ(r.set, b.set);
-    EXPECT_EQ(r.blows_per_250mm, b.blows_per_250mm());
-    EXPECT_EQ(r.max_compression, b.max_compression.value);
-    EXPECT_EQ(r.max_tension, b.max_tension.value);
-    EXPECT_EQ(r.enthru, b.enthru);
-  }
-  std::ifstream csv(out / "sweep.csv");
-  std::string header;
-  std::getline(csv, header);
-  EXPECT_NE(header.find(",message,warnings,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru"),
-            std::string::npos)
-      << header;
-  const auto again = barimpact::write_sweep(plan, out, {}, false);  // resumed: read back from the runs
-  EXPECT_EQ(again.resumed, 2u);
-  for (std::size_t i = 0; i < 2; ++i) {
-    EXPECT_TRUE(again.rows[i].blow);
-    EXPECT_EQ(again.rows[i].set, first.rows[i].set);
-    EXPECT_EQ(again.rows[i].enthru, first.rows[i].enthru);
-  }
 }

@@ -6,12 +6,14 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../support/pile.hpp"
 #include "../support/run_case.hpp"
 
 namespace barimpact {
 namespace {
 
 using testing::case_from;
+using testing::pile_toml;
 using testing::refusal;
 
 TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
@@ -279,6 +281,126 @@ TEST(Case, ChecksAConstantExpressionOnceNotAtEveryNode) {
       case_from("[bar]\nelements = 100000000\n[obstacle]\nkind = \"none\"\n[time]\nend = 1e-9\nstep = 1e-9\n");
   EXPECT_EQ(c.one_bar()->bar.elements, 100'000'000);
   EXPECT_REFUSED("[bar]\nelements = 100000000\n[initial]\nvelocity = \"0/0\"", "initial.velocity", "finite");
+}
+
+TEST(SmithCase, RefusesWhatItCannotRun) {
+  EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"smith\"\nultimate = 1.0\n", "far_end.law",
+                 "near-end law only");
+  EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"free\"\nquake = 1.0\n", "far_end.quake",
+                 "not used by law \"free\"");
+  auto with = [](const std::string& from, const std::string& to) {
+    std::string s = pile_toml;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  EXPECT_REFUSED(with("ultimate = 200e3\n", ""), "near_end.ultimate", "is required");
+  EXPECT_REFUSED(with("ultimate = 300e3\n", ""), "body.pile.shaft.ultimate", "is required");
+  EXPECT_REFUSED(with("damping = 0.0\n[near_end]", "skin = 1.0\n[near_end]"), "body.pile.shaft.skin",
+                 "not a shaft key");
+  EXPECT_REFUSED(with("ultimate = 300e3\n", "ultimate = 300e3\nembedded = 11.0\n"), "body.pile.shaft.embedded",
+                 "(0, 10]");
+  EXPECT_REFUSED(with("quake = 0.0025\ndamping = 0.0\n[time]", "quake = 0.0\ndamping = 0.0\n[time]"), "near_end.quake",
+                 "> 0");
+  EXPECT_REFUSED(with("damping = 0.0\n[time]", "damping = 0.0\ndamping_law = \"case\"\n[time]"), "near_end.damping_law",
+                 "smith or viscous");
+  EXPECT_REFUSED(with("scheme = \"central-difference\"", "scheme = \"paper\""), "time.step", "\"auto\"",
+                 "explicit schemes");
+  EXPECT_REFUSED(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"moreau-jean\""),
+                 "time.scheme", "Smith", "paper, newmark, central-difference");
+  const std::string plastic =
+      testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""),
+                       {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
+  EXPECT_NE(plastic.find("elastic-plastic body \"pile\""), std::string::npos) << plastic;
+  const std::string plastic_paper =
+      testing::refusal(with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"paper\""),
+                       {"body.pile.material=plastic", "body.pile.yield_stress=250e6"});
+  EXPECT_NE(plastic_paper.find("\"paper\" cannot run Smith's soil beside the elastic-plastic body \"pile\""),
+            std::string::npos)
+      << plastic_paper;
+  const std::string explicit_newmark = testing::refusal(
+      with("step = \"auto\"\nscheme = \"central-difference\"", "step = 1e-5\nscheme = \"newmark\""), {"time.beta=0"});
+  EXPECT_NE(explicit_newmark.find("time.beta = 0"), std::string::npos) << explicit_newmark;
+  EXPECT_REFUSED(with("step = \"auto\"", "step = \"fast\""), "time.step", "a number or \"auto\"");
+}
+
+TEST(PlasticCase, RefusesBadMaterialKeysNamingThem) {
+  const std::string head = "[[body]]\nname = \"b\"\nmodulus = 2.0\n";
+  EXPECT_EQ(refusal(head + "material = \"plastic\"\n"),
+            "test.toml:1: body.b.yield_stress is required when material = \"plastic\"");
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 0.0\n").find("body.b.yield_stress must be > 0"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = -0.1\n")
+                .find("body.b.hardening_modulus must be >= 0"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = 2.0\n")
+                .find("body.b.hardening_modulus must be below modulus = 2"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\nhardening = \"mixed\"\n")
+                .find("body.b.hardening must be kinematic or isotropic"),
+            std::string::npos);
+  EXPECT_NE(refusal(head + "material = \"steel\"\n").find("body.b.material must be elastic or plastic"),
+            std::string::npos);
+  for (const char* key : {"yield_stress = 1.0", "hardening_modulus = 0.1", "hardening = \"isotropic\""})
+    EXPECT_NE(refusal(head + key + "\n").find("is used by material = \"plastic\" only"), std::string::npos) << key;
+  EXPECT_NE(refusal("[[body]]\nname = \"m\"\nkind = \"mass\"\nyield_stress = 1.0\n")
+                .find("body.m.yield_stress is not used by a mass"),
+            std::string::npos);
+  EXPECT_NE(refusal("[bar]\nstiffness = 3.0\nmaterial = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = 3.0\n")
+                .find("bar.hardening_modulus must be below stiffness = 3"),
+            std::string::npos);
+  // characteristic refuses the body before it would discuss the step.
+  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"characteristic\"\n"
+                           "step = 0.001\n")
+                .find("time.scheme = \"characteristic\" cannot run the elastic-plastic body \"b\""),
+            std::string::npos);
+}
+
+// Both spellings hold the material; case.toml writes it and reads back to
+// the same run; a plastic bar is run by the line's schemes.
+TEST(PlasticCase, BothSpellingsReadBackExactly) {
+  for (const char* text : {R"toml([bar]
+stiffness = 2.0
+elements = 20
+material = "plastic"
+yield_stress = 0.3
+hardening_modulus = 0.5
+hardening = "isotropic"
+[initial]
+velocity = "-1"
+[obstacle]
+kind = "rigid"
+gap = -0.001
+[time]
+scheme = "central-difference"
+step = 0.01
+end = 1
+)toml",
+                           R"toml([[body]]
+name = "p"
+area = 3.0
+modulus = 0.1
+elements = 20
+material = "plastic"
+yield_stress = 0.03
+velocity = "-1"
+[near_end]
+law = "rigid"
+[time]
+scheme = "central-difference"
+step = 0.01
+end = 1
+)toml"}) {
+    const Case c = case_from(text);
+    EXPECT_FALSE(c.one_bar().has_value());
+    const Case back = case_from(c.to_toml());
+    EXPECT_EQ(back.to_toml(), c.to_toml());
+    const RunResult a = run(c), b = run(back);
+    ASSERT_EQ(a.history.size(), b.history.size());
+    for (std::size_t n = 0; n < a.history.size(); ++n) {
+      EXPECT_EQ(a.history[n].U, b.history[n].U);
+      EXPECT_EQ(a.history[n].D_plastic, b.history[n].D_plastic);
+    }
+  }
 }
 
 }  // namespace

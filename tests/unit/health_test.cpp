@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <atomic>
 
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
@@ -57,18 +56,6 @@ TEST(Health, TheEnergyScaleOfARunFromRestIsItsWork) {
   EXPECT_EQ(energy_scale(rows), 2.0);
   rows[1].W_ext = 0.0;
   EXPECT_EQ(energy_scale(rows), 2.0);  // no work either: the largest stored energy
-}
-
-TEST(Simulate, AnInterruptEndsTheRunAfterTheStepUnderWay) {
-  const auto c = testing::example("paper-example1.toml", {"output.fields_at=[]"});
-  std::atomic<bool> interrupt{true};
-  RunOptions options;
-  options.interrupt = &interrupt;
-  const auto r = run(c, options);
-  EXPECT_EQ(r.summary.status, RunStatus::interrupted);
-  EXPECT_FALSE(r.summary.complete);
-  EXPECT_EQ(r.summary.steps_done, 1);
-  EXPECT_EQ(r.history.size(), 2u);
 }
 
 }  // namespace

@@ -7,8 +7,14 @@
 #include <stdexcept>
 #include <vector>
 
+#include "../support/plastic_cases.hpp"
+#include "../support/run_case.hpp"
+
 namespace barimpact::exact {
 namespace {
+
+using barimpact::testing::case_from;
+using barimpact::testing::von_karman_case;
 
 // What a body of the line weighs and stores, to integrate its momentum and
 // energy: a bar's rho A and E A, or a mass.
@@ -518,6 +524,30 @@ TEST(ForLineCase, DeclinesWhatTheSolutionsDoNotCover) {
     c.near_end.value = "sin(t)";
   }));
   EXPECT_FALSE(declined([](Case&) {}));
+}
+
+// The tabulated solution's budget (closed form) closes: the driven end's
+// work is kinetic + elastic + hardening energy + plastic work, exactly.
+TEST(VonKarman, TheExactBudgetCloses) {
+  const exact::VonKarman exact({2.0, 3.0, 0.5, 0.2}, 0.4, 0.6, -1.7);  // pulled: tension
+  for (double t : {0.1, 0.5, 0.8}) {
+    const Energies e = *exact.energies(t);
+    EXPECT_NEAR(e.kinetic + e.strain + e.plastic, e.work, 1e-14 * e.work) << t;
+    EXPECT_GT(e.plastic, 0.0);
+  }
+  EXPECT_GT(exact.plateau_stress(), 0.0);
+  EXPECT_GT(exact.plateau_plastic_strain(), 0.0);
+}
+
+// `barimpact exact` knows the case only while nothing else loads the bar
+// before the precursor arrives: a far end driven from t = 0 has no
+// closed form here.
+TEST(VonKarman, IsTheExactSolutionOnlyOfItsOwnCase) {
+  const Case c = case_from(von_karman_case(100, 0.5));
+  EXPECT_NE(exact::for_line_case(c), nullptr);
+  for (const char* far : {"law = \"force\"\nvalue = \"0.5\"", "law = \"velocity\"\nvalue = \"-0.1\""})
+    EXPECT_EQ(exact::for_line_case(case_from(von_karman_case(100, 0.5) + "[far_end]\n" + far + "\n")), nullptr) << far;
+  EXPECT_NE(exact::for_line_case(case_from(von_karman_case(100, 0.5) + "[far_end]\nlaw = \"clamped\"\n")), nullptr);
 }
 
 }  // namespace

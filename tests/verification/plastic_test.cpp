@@ -1,7 +1,5 @@
-// Elastic-plastic bars (material.hpp, plastic_bonds.hpp): the return map,
-// central differences against von Karman's solution with measured orders,
-// the budget with D_plastic, unloading, the elastic limit, the case file's
-// rules and the schemes that refuse plasticity.
+// Elastic-plastic bars across the schemes: von Karman's solution with
+// measured orders, the budget with D_plastic, unloading, the elastic limit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,190 +8,21 @@
 #include <string>
 #include <vector>
 
-#include "../../src/schemes/yield_check.hpp"
+#include "../support/plastic_cases.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/exact/lines.hpp"
-#include "barimpact/model/material.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
-#include "barimpact/schemes/plastic_bonds.hpp"
 #include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {
 
 using testing::case_from;
-using testing::refusal;
-
-MaterialData bilinear(double sigma_y, double e_t, Hardening h) {
-  MaterialData m;
-  m.kind = MaterialKind::plastic;
-  m.yield_stress = sigma_y;
-  m.hardening_modulus = e_t;
-  m.hardening = h;
-  return m;
-}
-
-// ---- The return map
-
-// Monotone loading follows the bilinear curve sigma = sigma_y + E_t (eps -
-// eps_y) past yield whatever the steps; unloading is elastic (slope E). A
-// backward-Euler return map is exact for a piecewise-linear law: 1e-15 is
-// round-off on stresses of order 1.
-TEST(ReturnMap, FollowsTheBilinearCurveAndUnloadsElastically) {
-  for (Hardening h : {Hardening::kinematic, Hardening::isotropic}) {
-    const Plasticity law(2.0, bilinear(1.0, 0.5, h));  // eps_y = 0.5
-    PlasticState s;
-    double dgamma = 0.0;
-    EXPECT_NEAR(law.stress(0.3, s, dgamma), 0.6, 1e-15);
-    EXPECT_EQ(dgamma, 0.0);
-    for (double eps : {0.7, 1.0, 1.6}) {
-      EXPECT_NEAR(law.stress(eps, s, dgamma), 1.0 + 0.5 * (eps - 0.5), 1e-15) << eps;
-      EXPECT_GT(dgamma, 0.0);
-    }
-    const double p = s.strain;  // sigma = E (eps - p) at 1.55 gives p = 1.6 - 1.55 / 2
-    EXPECT_NEAR(p, 1.6 - 1.55 / 2.0, 1e-15);
-    EXPECT_NEAR(law.stress(1.2, s, dgamma), 2.0 * (1.2 - p), 1e-15);  // unloading: elastic
-    EXPECT_EQ(dgamma, 0.0);
-    EXPECT_EQ(s.strain, p);
-  }
-}
-
-// Reverse yield: kinematic hardening moves the elastic range (reverse yield
-// at sigma_max - 2 sigma_y, the Bauschinger effect), isotropic hardening
-// grows it (reverse yield at -sigma_max).
-TEST(ReturnMap, ReverseYieldDependsOnTheHardening) {
-  const double E = 2.0;
-  for (Hardening h : {Hardening::kinematic, Hardening::isotropic}) {
-    const Plasticity law(E, bilinear(1.0, 0.5, h));
-    PlasticState s;
-    double dgamma = 0.0;
-    const double top = law.stress(1.6, s, dgamma);  // 1.55
-    const double p = s.strain;
-    const double reverse = h == Hardening::kinematic ? top - 2.0 : -top;
-    // Just inside the elastic range, then just beyond it.
-    const double inside = p + (reverse + 1e-9) / E, beyond = p + (reverse - 1e-3) / E;
-    EXPECT_NEAR(law.stress(inside, s, dgamma), reverse + 1e-9, 1e-14);
-    EXPECT_EQ(dgamma, 0.0);
-    (void)law.stress(beyond, s, dgamma);
-    EXPECT_GT(dgamma, 0.0) << (h == Hardening::kinematic ? "kinematic" : "isotropic");
-  }
-}
-
-// Perfectly plastic (E_t = 0): the stress never exceeds sigma_y, the plastic
-// strain takes the rest.
-TEST(ReturnMap, PerfectlyPlasticClipsTheStress) {
-  const Plasticity law(1.0, bilinear(0.25, 0.0, Hardening::kinematic));
-  PlasticState s;
-  double dgamma = 0.0;
-  EXPECT_EQ(law.stress(-1.0, s, dgamma), -0.25);
-  EXPECT_EQ(s.strain, -0.75);
-  EXPECT_EQ(law.hardening_energy(s), 0.0);
-}
-
-// The schemes' pass (plastic_bonds.cpp, branch-free so that it vectorises)
-// is the return map above, bit for bit, along random strain histories.
-TEST(ReturnMap, TheSchemesPassIsTheReturnMap) {
-  for (Hardening h : {Hardening::kinematic, Hardening::isotropic}) {
-    const Case c = case_from(fmt::format(R"toml([[body]]
-name = "b"
-elements = 20
-modulus = 3.0
-material = "plastic"
-yield_stress = 0.01
-hardening_modulus = 0.7
-hardening = "{}"
-[time]
-scheme = "central-difference"
-step = 0.001
-)toml",
-                                         h == Hardening::kinematic ? "kinematic" : "isotropic"));
-    const Line line = build_line(c);
-    PlasticBonds bonds(line);
-    const Plasticity law = *line.plasticity[0];
-    std::vector<PlasticState> states(line.bonds.size());
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> step(-0.004, 0.004);
-    std::vector<double> u(line.nodes(), 0.0), up(line.nodes(), 0.0);
-    bonds.start(u.data());
-    for (int n = 0; n < 400; ++n) {
-      for (std::size_t j = 1; j < up.size(); ++j) up[j] = up[j - 1] + (u[j] - u[j - 1]) + step(rng) * 0.05;
-      bonds.advance(u.data(), up.data());
-      for (std::size_t j = 0; j < line.bonds.size(); ++j) {
-        double dgamma = 0.0;
-        (void)law.stress((up[j + 1] - up[j]) * (1.0 / line.bonds[j].h), states[j], dgamma);
-        ASSERT_EQ(bonds.next()[j], states[j].strain) << "step " << n << " bond " << j;
-      }
-      u = up;
-    }
-  }
-}
-
-// The yield checks on each processor path (yield_check.cpp: any x86-64,
-// and AVX2 where the processor has it) against the return map element by
-// element, right at the yield stress and one ulp past it.
-TEST(YieldCheck, AgreesWithTheReturnMapAtTheYieldStress) {
-  std::mt19937 random(17);
-  std::uniform_real_distribution<double> strain(-0.9, 0.9);
-  for (const Hardening h : {Hardening::kinematic, Hardening::isotropic}) {
-    const Plasticity law(2.0, bilinear(1.0, 0.5, h));
-    for (int trial = 0; trial < 200; ++trial) {
-      const std::size_t bonds = 3 + static_cast<std::size_t>(trial % 37);
-      // Bond `at` strained exactly to sigma_y / E (u[at] = 0), or one ulp
-      // past it; the bonds before it elastic, after it unstrained.
-      std::vector<double> u(bonds + 1, 0.0), p(bonds, 0.0), a(bonds, 0.0);
-      const std::size_t at = static_cast<std::size_t>(trial) % bonds;
-      for (std::size_t j = at; j-- > 0;) u[j] = u[j + 1] - strain(random) / law.modulus;
-      const double edge = law.yield_stress / law.modulus;
-      for (std::size_t j = at + 1; j <= bonds; ++j) u[j] = trial % 2 == 0 ? edge : std::nextafter(edge, 1.0);
-      bool reference = false;
-      for (std::size_t j = 0; j < bonds; ++j) {
-        PlasticState state;
-        double dgamma = 0.0;
-        (void)law.stress(u[j + 1] - u[j], state, dgamma);
-        reference = reference || dgamma > 0.0;
-      }
-      for (const bool wide : {false, true}) {
-        const detail::YieldLoops* loops = detail::yield_loops(wide);
-        if (loops == nullptr) continue;  // no AVX2 here
-        EXPECT_EQ(loops->from_rest(0, bonds, law, 1.0, u.data()), reference) << trial << " wide " << wide;
-        const auto from_state = h == Hardening::isotropic ? loops->isotropic : loops->kinematic;
-        EXPECT_EQ(from_state(0, bonds, law, 1.0, u.data(), p.data(), a.data()), reference) << trial;
-      }
-    }
-  }
-}
+using testing::von_karman_case;
 
 // ---- The schemes against von Karman's solution
-
-// A bar of length 1 (E = rho = 1, c0 = 1) driven into at V = 0.3, sigma_y =
-// 0.1, E_t = 0.25 (c1 = 0.5): the precursor (sigma = -0.1, v = 0.1) and the
-// plastic front (sigma = -0.2, v = 0.3, eps_p = -0.3) at t = 0.8 stand at x =
-// 0.8 and 0.4.
-// `wall`: the same bar moving at -0.3 onto a rigid wall instead.
-std::string von_karman_case(int elements, double courant, const char* hardening = "kinematic",
-                            const char* scheme = "central-difference", bool wall = false) {
-  return fmt::format(R"toml([[body]]
-name = "rod"
-length = 1.0
-elements = {}
-{}material = "plastic"
-yield_stress = 0.1
-hardening_modulus = 0.25
-hardening = "{}"
-[near_end]
-{}
-[time]
-scheme = "{}"
-step = {}
-end = 0.8
-[output]
-fields_at = [0.8]
-)toml",
-                     elements, wall ? "velocity = \"-0.3\"\n" : "", hardening,
-                     wall ? "law = \"rigid\"" : "law = \"velocity\"\nvalue = \"0.3\"", scheme, courant / elements);
-}
 
 struct ProfileError {
   double sigma = 0.0, v = 0.0;  // L1 over the bar
@@ -308,30 +137,6 @@ TEST(PaperPlastic, TheExponentialShiftKeepsTheSolution) {
   EXPECT_NEAR(work[1], work[0], 1e-3 * work[0]);
 }
 
-// The implicit schemes' Newton iteration (plastic_iteration.hpp) on von
-// Karman's problem: at dt = h/2 and at four times the explicit limit, a
-// level that yields takes two to four steps (one more each time the
-// plastic front reaches a new element within the step; measured means 2.53
-// and 3.15, at most 3 and 4; paper's three-level step 2.55 and 3.33).
-TEST(PlasticIteration, SettlesInAFewStepsPerLevel) {
-  for (const char* scheme : {"newmark", "moreau-jean", "mass-redistribution", "paper"})
-    for (double courant : {0.5, 4.0}) {
-      const Case c = case_from(von_karman_case(200, courant, "isotropic", scheme));
-      auto s = make_scheme(c);
-      s->start();
-      for (long long n = 0; n < c.step_count(); ++n) s->advance();
-      ASSERT_TRUE(s->finite()) << s->failure();
-      const auto& effort = dynamic_cast<const LineScheme&>(*s).plastic_iteration().effort();
-      ASSERT_GT(effort.yielding_levels, 0);
-      const double mean = static_cast<double>(effort.steps) / static_cast<double>(effort.yielding_levels);
-      fmt::print("{} at Courant {}: {} yielding levels, {:.2f} steps each, at most {}\n", scheme, courant,
-                 effort.yielding_levels, mean, effort.most);
-      const bool paper = std::string(scheme) == "paper";  // measured 2.55 and 3.33
-      EXPECT_LE(mean, courant < 1.0 ? 2.7 : (paper ? 3.4 : 3.3)) << scheme << " " << courant;
-      EXPECT_LE(effort.most, 4) << scheme << " " << courant;
-    }
-}
-
 // Isotropic hardening gives the same run along von Karman's monotone
 // loading (the return maps differ only once the stress reverses).
 TEST(VonKarman, HardeningKindsAgreeUnderMonotoneLoading) {
@@ -339,30 +144,6 @@ TEST(VonKarman, HardeningKindsAgreeUnderMonotoneLoading) {
   const RunResult i = run(case_from(von_karman_case(200, 0.5, "isotropic")));
   ASSERT_EQ(k.history.size(), i.history.size());
   for (std::size_t n = 0; n < k.history.size(); ++n) EXPECT_NEAR(k.history[n].R, i.history[n].R, 1e-12) << n;
-}
-
-// The tabulated solution's budget (closed form) closes: the driven end's
-// work is kinetic + elastic + hardening energy + plastic work, exactly.
-TEST(VonKarman, TheExactBudgetCloses) {
-  const exact::VonKarman exact({2.0, 3.0, 0.5, 0.2}, 0.4, 0.6, -1.7);  // pulled: tension
-  for (double t : {0.1, 0.5, 0.8}) {
-    const Energies e = *exact.energies(t);
-    EXPECT_NEAR(e.kinetic + e.strain + e.plastic, e.work, 1e-14 * e.work) << t;
-    EXPECT_GT(e.plastic, 0.0);
-  }
-  EXPECT_GT(exact.plateau_stress(), 0.0);
-  EXPECT_GT(exact.plateau_plastic_strain(), 0.0);
-}
-
-// `barimpact exact` knows the case only while nothing else loads the bar
-// before the precursor arrives: a far end driven from t = 0 has no
-// closed form here.
-TEST(VonKarman, IsTheExactSolutionOnlyOfItsOwnCase) {
-  const Case c = case_from(von_karman_case(100, 0.5));
-  EXPECT_NE(exact::for_line_case(c), nullptr);
-  for (const char* far : {"law = \"force\"\nvalue = \"0.5\"", "law = \"velocity\"\nvalue = \"-0.1\""})
-    EXPECT_EQ(exact::for_line_case(case_from(von_karman_case(100, 0.5) + "[far_end]\n" + far + "\n")), nullptr) << far;
-  EXPECT_NE(exact::for_line_case(case_from(von_karman_case(100, 0.5) + "[far_end]\nlaw = \"clamped\"\n")), nullptr);
 }
 
 // The bar moving at -0.3 onto a rigid wall is von Karman's problem seen
@@ -720,88 +501,6 @@ end = 3
   for (std::size_t n = 0; n < a.history.size(); ++n) {
     EXPECT_NEAR(a.history[n].U, b.history[n].U, 1e-12) << n;
     EXPECT_NEAR(a.history[n].R, b.history[n].R, 1e-12 * 10.0) << n;  // R = k d: k = 10 on Example 1
-  }
-}
-
-// ---- The case file
-
-TEST(PlasticCase, RefusesBadMaterialKeysNamingThem) {
-  const std::string head = "[[body]]\nname = \"b\"\nmodulus = 2.0\n";
-  EXPECT_EQ(refusal(head + "material = \"plastic\"\n"),
-            "test.toml:1: body.b.yield_stress is required when material = \"plastic\"");
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 0.0\n").find("body.b.yield_stress must be > 0"),
-            std::string::npos);
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = -0.1\n")
-                .find("body.b.hardening_modulus must be >= 0"),
-            std::string::npos);
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = 2.0\n")
-                .find("body.b.hardening_modulus must be below modulus = 2"),
-            std::string::npos);
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\nhardening = \"mixed\"\n")
-                .find("body.b.hardening must be kinematic or isotropic"),
-            std::string::npos);
-  EXPECT_NE(refusal(head + "material = \"steel\"\n").find("body.b.material must be elastic or plastic"),
-            std::string::npos);
-  for (const char* key : {"yield_stress = 1.0", "hardening_modulus = 0.1", "hardening = \"isotropic\""})
-    EXPECT_NE(refusal(head + key + "\n").find("is used by material = \"plastic\" only"), std::string::npos) << key;
-  EXPECT_NE(refusal("[[body]]\nname = \"m\"\nkind = \"mass\"\nyield_stress = 1.0\n")
-                .find("body.m.yield_stress is not used by a mass"),
-            std::string::npos);
-  EXPECT_NE(refusal("[bar]\nstiffness = 3.0\nmaterial = \"plastic\"\nyield_stress = 1.0\nhardening_modulus = 3.0\n")
-                .find("bar.hardening_modulus must be below stiffness = 3"),
-            std::string::npos);
-  // characteristic refuses the body before it would discuss the step.
-  EXPECT_NE(refusal(head + "material = \"plastic\"\nyield_stress = 1.0\n[time]\nscheme = \"characteristic\"\n"
-                           "step = 0.001\n")
-                .find("time.scheme = \"characteristic\" cannot run the elastic-plastic body \"b\""),
-            std::string::npos);
-}
-
-// Both spellings hold the material; case.toml writes it and reads back to
-// the same run; a plastic bar is run by the line's schemes.
-TEST(PlasticCase, BothSpellingsReadBackExactly) {
-  for (const char* text : {R"toml([bar]
-stiffness = 2.0
-elements = 20
-material = "plastic"
-yield_stress = 0.3
-hardening_modulus = 0.5
-hardening = "isotropic"
-[initial]
-velocity = "-1"
-[obstacle]
-kind = "rigid"
-gap = -0.001
-[time]
-scheme = "central-difference"
-step = 0.01
-end = 1
-)toml",
-                           R"toml([[body]]
-name = "p"
-area = 3.0
-modulus = 0.1
-elements = 20
-material = "plastic"
-yield_stress = 0.03
-velocity = "-1"
-[near_end]
-law = "rigid"
-[time]
-scheme = "central-difference"
-step = 0.01
-end = 1
-)toml"}) {
-    const Case c = case_from(text);
-    EXPECT_FALSE(c.one_bar().has_value());
-    const Case back = case_from(c.to_toml());
-    EXPECT_EQ(back.to_toml(), c.to_toml());
-    const RunResult a = run(c), b = run(back);
-    ASSERT_EQ(a.history.size(), b.history.size());
-    for (std::size_t n = 0; n < a.history.size(); ++n) {
-      EXPECT_EQ(a.history[n].U, b.history[n].U);
-      EXPECT_EQ(a.history[n].D_plastic, b.history[n].D_plastic);
-    }
   }
 }
 

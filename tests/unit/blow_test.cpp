@@ -1,0 +1,222 @@
+// A pile-driving blow's results (blow.hpp): the blow counts and transfer
+// ratio by their definitions, which runs report a blow, and a blow's
+// summary against its own history, at refusal, cut short, without impact,
+// and ENTHRU against the closed form of a rigid ram on a long pile.
+#include "barimpact/run/blow.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "../support/line_runs.hpp"
+#include "../support/run_case.hpp"
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/run/output.hpp"
+#include "barimpact/run/simulate.hpp"
+
+namespace barimpact {
+namespace {
+
+using testing::case_from;
+using testing::column;
+
+// Blows per metre are 1 / set: a set of 4 mm is 250 blows a metre, 62.5
+// per 250 mm; a set of 0 after an impact is refusal (infinite), and
+// without an impact there is no count (NaN). The transfer ratio is ENTHRU
+// over the hammer's energy, NaN when the ram brought none.
+TEST(BlowSummary, BlowCountsAndTransferRatioFollowTheirDefinitions) {
+  BlowSummary b;
+  b.set = 0.004;
+  EXPECT_TRUE(std::isnan(b.blows_per_m()));
+  EXPECT_TRUE(std::isnan(b.blows_per_250mm()));
+  b.impact = true;
+  EXPECT_DOUBLE_EQ(b.blows_per_m(), 250.0);
+  EXPECT_DOUBLE_EQ(b.blows_per_250mm(), 62.5);
+  b.set = 0.0;
+  EXPECT_TRUE(std::isinf(b.blows_per_m()));
+  EXPECT_GT(b.blows_per_m(), 0.0);
+  EXPECT_TRUE(std::isnan(b.transfer_ratio()));
+  b.enthru = 3.0;
+  EXPECT_TRUE(std::isnan(b.transfer_ratio()));
+  b.hammer_energy = 4.0;
+  EXPECT_EQ(b.transfer_ratio(), 0.75);
+}
+
+// A run reports a blow when its line has Smith's soil or the case a [blow]
+// section; the paper's bar on its obstacle does not.
+TEST(BlowSummary, ReportedForSmithsSoilOrABlowSection) {
+  const Case pile = testing::example("pile/steel-pipe-sand.toml");
+  EXPECT_TRUE(reports_blow(pile, build_line(pile)));
+  const Case bar = testing::example("paper-example1.toml");
+  EXPECT_FALSE(reports_blow(bar, build_line(bar)));
+  const Case hammer = case_from(R"toml([[body]]
+name = "pile"
+[[body]]
+name = "ram"
+kind = "mass"
+mass = 1.0
+velocity = -1.0
+[[gauge]]
+name = "G"
+body = "pile"
+at = 0.5
+[blow]
+gauge = "G"
+[time]
+scheme = "central-difference"
+step = 0.001
+)toml");
+  EXPECT_TRUE(reports_blow(hammer, build_line(hammer)));
+}
+
+// The blow's results against what the history says, row by row (every step).
+TEST(SmithBlow, ResultsAgreeWithTheHistory) {
+  const Case c = testing::example("pile/steel-pipe-sand.toml", {"output.every=1"});
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.blow);
+  const BlowSummary& b = *r.summary.blow;
+  EXPECT_EQ(b.pile, "pile");
+  EXPECT_EQ(b.ram, "ram");
+  EXPECT_EQ(b.gauge, "head");
+  EXPECT_DOUBLE_EQ(b.hammer_energy, 0.5 * 4000.0 * 4.43 * 4.43);  // in contact from t = 0
+  // ENTHRU: the largest running trapezoid sum of N v at the gauge.
+  double e = 0.0, most = 0.0;
+  for (std::size_t i = 1; i < r.history.size(); ++i) {
+    auto p = [&](std::size_t k) { return column(r, "gauge.head.force", k) * column(r, "gauge.head.velocity", k); };
+    e += 0.5 * (p(i - 1) + p(i)) * (r.history[i].t - r.history[i - 1].t);
+    most = std::max(most, e);
+  }
+  EXPECT_NEAR(b.enthru, most, 1e-12 * most);
+  EXPECT_GT(b.enthru, 0.5 * b.hammer_energy) << "energy flowing down is positive";
+  EXPECT_LT(b.enthru, b.hammer_energy);
+  EXPECT_DOUBLE_EQ(b.transfer_ratio(), b.enthru / b.hammer_energy);
+  // The set: the toe's largest penetration less its quake.
+  double deepest = 0.0;
+  for (const auto& h : r.history) deepest = std::max(deepest, -h.U);
+  EXPECT_DOUBLE_EQ(b.toe_penetration, deepest);
+  EXPECT_DOUBLE_EQ(b.set, deepest - 0.0025);
+  EXPECT_DOUBLE_EQ(b.blows_per_250mm(), 0.25 / b.set);
+  // The stress extremes bound the gauge's, and sit in the pile.
+  for (std::size_t i = 0; i < r.history.size(); ++i) {
+    const double sigma = column(r, "gauge.head.force", i) / 0.0105;
+    EXPECT_LE(-sigma, b.max_compression.value * (1 + 1e-12));
+    EXPECT_LE(sigma, b.max_tension.value * (1 + 1e-12));
+  }
+  EXPECT_GT(b.max_tension.value, 0.0);
+  EXPECT_LE(b.max_compression.x, 20.0);
+  // The envelopes: one entry per pile element, their largest the extremes,
+  // and the gauge's element's at least the gauge's stress at every row.
+  ASSERT_EQ(b.envelope.x.size(), 100u);
+  EXPECT_EQ(*std::max_element(b.envelope.compression.begin(), b.envelope.compression.end()), b.max_compression.value);
+  EXPECT_EQ(*std::max_element(b.envelope.tension.begin(), b.envelope.tension.end()), b.max_tension.value);
+  const std::size_t at_gauge = 96;  // x = 19.2 is node 96, between elements 95 and 96: its force their mean
+  EXPECT_NEAR(b.envelope.x[at_gauge], 19.3, 1e-12);
+  for (std::size_t i = 0; i < r.history.size(); ++i) {
+    const double sigma = column(r, "gauge.head.force", i) / 0.0105;
+    EXPECT_LE(-sigma, std::max(b.envelope.compression[95], b.envelope.compression[96]) * (1 + 1e-12));
+  }
+  EXPECT_NEAR(b.impedance, 0.0105 * std::sqrt(210e9 * 7850.0), 1e-9 * b.impedance);  // E A / c
+  EXPECT_TRUE(b.finished);
+  EXPECT_LT(b.rest_time, c.time.end);
+}
+
+// A hammer the soil does not let through: the toe stays within its quake,
+// set 0, blow counts infinite; a run too short to see the pile at rest warns.
+TEST(SmithBlow, RefusalAndAnUnfinishedBlow) {
+  const RunResult r =
+      run(testing::example("pile/steel-pipe-sand.toml", {"near_end.ultimate=2e8", "body.pile.shaft.ultimate=2e8"}));
+  ASSERT_TRUE(r.summary.blow);
+  EXPECT_EQ(r.summary.blow->set, 0.0);
+  EXPECT_TRUE(std::isinf(r.summary.blow->blows_per_m()));
+  const RunResult cut = run(testing::example("pile/steel-pipe-sand.toml", {"time.end=0.01", "output.fields_at=[0.0]"}));
+  EXPECT_FALSE(cut.summary.blow->finished);
+  bool warned = false;
+  for (const auto& w : cut.summary.warnings) warned = warned || w.rfind("blow-unfinished:", 0) == 0;
+  EXPECT_TRUE(warned);
+}
+
+// A blow cut short before the wave has reached the toe: the pile has not
+// moved yet, so it is not "at rest" (it was, from the first step, before):
+// not finished, warned, and its set of 0 is no refusal on the console.
+TEST(SmithBlow, ABlowCutShortIsUnfinishedNotARefusal) {
+  const Case c = testing::example("pile/steel-pipe-sand.toml", {"time.end=0.0015", "output.fields_at=[]"});
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.blow);
+  const BlowSummary& b = *r.summary.blow;
+  EXPECT_TRUE(b.impact);
+  EXPECT_FALSE(b.finished);
+  EXPECT_TRUE(std::isnan(b.rest_time));
+  bool warned = false;
+  for (const auto& w : r.summary.warnings) warned = warned || w.rfind("blow-unfinished:", 0) == 0;
+  EXPECT_TRUE(warned);
+  const std::string text = summary_text(c, r.summary);
+  EXPECT_EQ(text.find("refusal"), std::string::npos) << text;
+  EXPECT_NE(text.find("not finished"), std::string::npos) << text;
+}
+
+// A ram moving away from the pile never strikes it: no impact, said so; no
+// refusal, no inf or nan on the console, no blow counts or transfer ratio.
+TEST(SmithBlow, ARamMovingAwayIsNoImpact) {
+  const Case c =
+      testing::example("pile/steel-pipe-sand.toml", {"body.ram.velocity=4.43", "time.end=0.01", "output.fields_at=[]"});
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.blow);
+  const BlowSummary& b = *r.summary.blow;
+  EXPECT_FALSE(b.impact);
+  EXPECT_FALSE(b.finished);
+  EXPECT_TRUE(std::isnan(b.blows_per_m()));
+  EXPECT_TRUE(std::isnan(b.transfer_ratio()));
+  const std::string text = summary_text(c, r.summary);
+  EXPECT_NE(text.find("no impact"), std::string::npos) << text;
+  for (const char* word : {"refusal", "inf", "nan"}) EXPECT_EQ(text.find(word), std::string::npos) << word << text;
+  ASSERT_EQ(r.summary.warnings.size(), 1u);
+  EXPECT_EQ(r.summary.warnings[0].rfind("blow-no-impact:", 0), 0u) << r.summary.warnings[0];
+}
+
+// A rigid ram of mass M at v0 welded onto a long elastic pile (impedance Z,
+// no soil): the head force is Z v0 exp(-Z t / M), so the energy through the
+// head gauge by time T (before the toe's reflection returns) is
+// (1 - exp(-2 Z T / M)) M v0^2 / 2. Central differences converge to it at
+// first order (the gauge's force is the mean of the elements beside it, the
+// front a jump): 1% at h = L / 2000.
+TEST(SmithBlow, EnthruOfARigidRamOnALongPileIsTheClosedForm) {
+  const double length = 40.0, area = 0.01, e = 200e9, rho = 8000.0, m = 2000.0, v0 = 3.0;
+  const double c0 = std::sqrt(e / rho), z = e * area / c0, gauge = 39.0, end = 0.9 * 2.0 * (length - 1.0) / c0;
+  const Case c = case_from(fmt::format(R"toml(
+[[body]]
+name = "pile"
+length = {}
+elements = 2000
+area = {}
+modulus = {}
+density = {}
+[[body]]
+name = "ram"
+kind = "mass"
+mass = {}
+velocity = {}
+[[gauge]]
+name = "G"
+body = "pile"
+at = {}
+[blow]
+gauge = "G"
+[time]
+end = {}
+step = "auto"
+scheme = "central-difference"
+)toml",
+                                       length, area, e, rho, m, -v0, gauge, end));
+  const RunResult r = run(c);
+  ASSERT_TRUE(r.summary.blow);
+  const double t_gauge = end - (length - gauge) / c0;  // the time the head's history has reached the gauge
+  const double exact = (1.0 - std::exp(-2.0 * z * t_gauge / m)) * 0.5 * m * v0 * v0;
+  EXPECT_NEAR(r.summary.blow->enthru, exact, 1e-2 * exact);
+  EXPECT_DOUBLE_EQ(r.summary.blow->hammer_energy, 0.5 * m * v0 * v0);
+}
+
+}  // namespace
+}  // namespace barimpact
