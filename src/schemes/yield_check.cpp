@@ -3,7 +3,7 @@
 // read-only pass, which with SSE2 alone costs a quarter of an implicit
 // step (docs/benchmarks.md). Comparisons of the same IEEE products (no
 // contraction, an integer OR): the same answer on either path, which
-// tests/unit/plastic_test.cpp checks on both.
+// tests/unit/plastic_bonds_test.cpp checks on both.
 #include "yield_check.hpp"
 
 #if defined(__x86_64__) && defined(__GNUC__)
