@@ -48,12 +48,8 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
   q_.assign(rigid_.size(), 0.0);
   lambda_.assign(rigid_.size(), 0.0);
   all_.assign(rigid_.size(), 1);
-  set_plastic(a, held_nodes(held_), 0.5,
-              u_);  // a load at t_{n+1} enters Fbar (and a face's halved equilibrium) by half
-  if (plastic_iteration_.active()) {
-    for (auto* x : {&v_, &load_old_, &face_rho_}) snapshot_.keep(*x);
-    for (double* x : {&work_, &contact_}) snapshot_.keep(*x);
-  }
+  set_plastic(a, held_nodes(held_), 0.5);  // a load at t_{n+1} enters Fbar (and a face's halved equilibrium) by half
+  if (plastic_iteration_.active()) kept_.keep(state());  // primed: keeping never allocates
 }
 
 template <bool loaded>

@@ -26,12 +26,9 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
   for (auto* v : {&u_, &v_, &u_old_, &v_old_, &y_, &load_old_}) v->assign(n, 0.0);
   for (auto* v : {&rate_old_, &q_, &p_}) v->assign(rigid_.size(), 0.0);
   active_.assign(rigid_.size(), 0);
-  set_plastic(w, held_nodes(held_), th * th * dt * dt,
-              u_);  // a load at t_{n+1}: v^{n+1} += theta dt W^{-1} g, u^{n+1} by theta dt that
-  if (plastic_iteration_.active()) {
-    for (auto* x : {&v_, &load_old_}) snapshot_.keep(*x);
-    for (double* x : {&work_, &dissipation_, &contact_}) snapshot_.keep(*x);
-  }
+  set_plastic(w, held_nodes(held_),
+              th * th * dt * dt);  // a load at t_{n+1}: v^{n+1} += theta dt W^{-1} g, u^{n+1} by theta dt that
+  if (plastic_iteration_.active()) kept_.keep(state());  // primed: keeping never allocates
 }
 
 template <bool loaded>

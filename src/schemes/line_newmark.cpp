@@ -82,20 +82,10 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   penalty_ = PenaltyLinks(std::move(laws), std::move(delassus), beta_ * dt_ * dt_, gamma_ * dt_);
   for (auto* x : {&u_, &v_, &acc_, &rhs_, &work_, &load_old_}) x->assign(n, 0.0);
   for (auto* x : {&p_old_, &c_old_, &c_free_, &rate_free_, &a_free_last_}) x->assign(links, 0.0);
-  set_plastic(a, held_, beta_ * dt_ * dt_, u_);  // a load at t_{n+1} moves u^{n+1} by beta dt^2 A^{-1}
+  set_plastic(a, held_, beta_ * dt_ * dt_);  // a load at t_{n+1} moves u^{n+1} by beta dt^2 A^{-1}
   soil_ = SoilIteration(line_, a, held_, beta_ * dt_ * dt_, gamma_ / (beta_ * dt_));  // and v^{n+1} by gamma dt A^{-1}
-  if (soil_.active()) {  // line_scheme_misfit refuses elastic-plastic bodies with it: snapshot_ is the soil's
-    soil_load_.assign(n, 0.0);
-    for (auto* x : {&u_, &v_, &acc_, &load_, &load_old_, &p_old_, &c_old_, &force_, &c_max_}) snapshot_.keep(*x);
-    for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_, &near_force_, &far_force_})
-      snapshot_.keep(*x);
-    snapshot_.keep(penalty_.branches());
-  }
-  if (plastic_iteration_.active()) {
-    for (auto* x : {&v_, &acc_, &load_old_, &p_old_, &c_old_}) snapshot_.keep(*x);
-    for (double* x : {&support_old_[0], &support_old_[1], &ext_work_, &dissipation_}) snapshot_.keep(*x);
-    snapshot_.keep(penalty_.branches());  // the active set the next solve starts from
-  }
+  if (soil_.active()) soil_load_.assign(n, 0.0);  // the misfit refuses elastic-plastic bodies with it
+  if (soil_.active() || plastic_iteration_.active()) kept_.keep(state());  // primed: keeping never allocates
 }
 
 // A's blocks: rows joined by element or spring bonds (a link's bond is
@@ -284,7 +274,7 @@ void LineNewmark::advance_soil() {
   if (!advance_soil_level(
           soil_, [this] { advance_elastic(); }, [this] { return soil_.settled(u_.data(), v_.data()); }))
     return;
-  soil_.accept(snapshot_.saved(0).data(), u_.data());
+  soil_.accept(kept_displacement(), u_.data());
   const std::size_t toe = soil_.toe_link();
   if (toe == Link::ground) return;
   force_[toe] = p_old_[toe] = soil_.toe_force();

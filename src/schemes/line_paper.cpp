@@ -143,27 +143,15 @@ void LinePaper::allocate() {
   step_mode_ = load_mode_;
   if (load_mode_ != LoadMode::zero || plastic_iteration_.active() || soil_.active())
     for (auto& f : loads_) f.assign(n, 0.0);
-  if (soil_.active()) {  // line_scheme_misfit refuses elastic-plastic bodies with it: snapshot_ is the soil's
+  if (soil_.active())  // the misfit refuses elastic-plastic bodies with it
     for (auto* x : {&soil_rhs_, &soil_u_, &soil_old_, &soil_v_}) x->assign(n, 0.0);
-    for (auto* x : {&force_, &c_max_}) snapshot_.keep(*x);
-    for (double* x : {&near_force_, &far_force_}) snapshot_.keep(*x);
-    keep_levels();
-  }
   if (plastic_iteration_.active()) {
     plastic_ = PlasticBonds(line_, alpha_);
     if (lambda_ != 0.0)
       for (auto& u : scaled_) u.assign(n, 0.0);
-    keep_levels();
   }
-}
-
-void LinePaper::keep_levels() {
-  for (auto& z : levels_) snapshot_.keep(z);
-  for (auto& f : loads_) snapshot_.keep(f);  // a kept level's loads are overwritten three steps on
-  for (double** z : {&prev_, &cur_, &next_}) snapshot_.keep_object(*z);
-  snapshot_.keep_object(near_f_);
-  snapshot_.keep_object(far_f_);
-  for (double* x : {&work_half_, &dissipation_half_, &work_last_, &dissipation_last_}) snapshot_.keep(*x);
+  // A kept level's loads are kept with it: they are overwritten three steps on.
+  if (soil_.active() || plastic_iteration_.active()) kept_.keep(state());  // primed: keeping never allocates
 }
 
 double LinePaper::scale(long long m) const {

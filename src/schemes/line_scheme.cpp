@@ -55,28 +55,21 @@ void LineScheme::load_into(double t, std::vector<double>& f) {
   if (plastic_iteration_.loading()) plastic_iteration_.add_load(f.data());
 }
 
-void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
-                             std::vector<double>& u) {
+void LineScheme::set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c) {
   if (!plastic_iteration_.active()) return;
   load_steady_ = false;  // the plastic strains' load moves
-  snapshot_.keep(u);     // first: saved(0) is u^n
-  snapshot_.keep(load_);
-  keep_plastic_state(a, held, c, false);
+  set_plastic_matrix(a, held, c, false);
 }
 
 void LineScheme::set_plastic_levels(const Tridiagonal& a, const std::vector<std::size_t>& held, double c) {
   if (!plastic_iteration_.active()) return;
   one_step_plastic_ = false;  // the scheme keeps three load levels: a steady F stays steady until p loads
-  keep_plastic_state(a, held, c, true);
+  set_plastic_matrix(a, held, c, true);
 }
 
-void LineScheme::keep_plastic_state(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
+void LineScheme::set_plastic_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
                                     bool links_in_matrix) {
   plastic_iteration_.set_matrix(a, held, c, links_in_matrix);
-  snapshot_.keep(force_);
-  snapshot_.keep(c_max_);
-  snapshot_.keep(near_force_);
-  snapshot_.keep(far_force_);
   // A steady body force, once: the plastic strains' load makes the loads move, not it.
   if (!body_zero_ && !body_force_->depends_on_t()) {
     steady_body_.assign(line_.nodes(), 0.0);
@@ -95,7 +88,7 @@ void LineScheme::start_plastic(const double* u0) {
 }
 
 void LineScheme::keep_level() {
-  snapshot_.save();
+  keep_state();
   kept_n_ = n_;
   since_kept_ = 0;
   yielded_since_kept_ = false;

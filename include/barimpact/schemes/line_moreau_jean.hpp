@@ -78,6 +78,16 @@ class LineMoreauJean final : public LineScheme {
   double near_impulse_ = 0.0, far_impulse_ = 0.0;  // force ends: dt (theta f(t_{n+1}) + (1 - theta) f(t_n))
   double near_u_old_ = 0.0, far_u_old_ = 0.0;
   double work_ = 0.0, dissipation_ = 0.0, contact_ = 0.0;
+  // The state a step changes, as one value (state.hpp): u first.
+  auto state() {
+    return std::tie(u_, load_, force_, c_max_, near_force_, far_force_, v_, load_old_, work_, dissipation_, contact_);
+  }
+  void keep_state() override { kept_.keep(state()); }
+  void restore_state() override { kept_.restore(state()); }
+  [[nodiscard]] const double* kept_displacement() const override { return kept_.get<0>().data(); }
+  KeptState<std::vector<double>, std::vector<double>, std::vector<double>, std::vector<double>, double, double,
+            std::vector<double>, std::vector<double>, double, double, double>
+      kept_;
 };
 
 }  // namespace barimpact

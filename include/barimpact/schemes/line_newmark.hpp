@@ -103,8 +103,20 @@ class LineNewmark final : public LineScheme {
   double du_end_[2] = {0, 0};                   // the ends' u^{n+1} - u^n
   double step_work_ = 0.0, step_dissipation_ = 0.0;
   bool viscous_ = false;
-  double support_old_[2] = {0, 0};
+  std::array<double, 2> support_old_{};
   double ext_work_ = 0.0, dissipation_ = 0.0;
+  // The state a step changes, as one value (state.hpp): u first.
+  auto state() {
+    return std::tie(u_, v_, acc_, load_, load_old_, p_old_, c_old_, force_, c_max_, support_old_, ext_work_,
+                    dissipation_, near_force_, far_force_, penalty_.branches());
+  }
+  void keep_state() override { kept_.keep(state()); }
+  void restore_state() override { kept_.restore(state()); }
+  [[nodiscard]] const double* kept_displacement() const override { return kept_.get<0>().data(); }
+  KeptState<std::vector<double>, std::vector<double>, std::vector<double>, std::vector<double>, std::vector<double>,
+            std::vector<double>, std::vector<double>, std::vector<double>, std::vector<double>, std::array<double, 2>,
+            double, double, double, double, std::vector<PenaltyLinks::Branch>>
+      kept_;
 };
 
 }  // namespace barimpact

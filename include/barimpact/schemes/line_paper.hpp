@@ -132,7 +132,6 @@ class LinePaper final : public LineScheme {
   /// with the plastic strains' iterate.
   void advance_elastic();
   /// Keeps the level a plastic or soil step starts again from.
-  void keep_levels();
   /// A step with Smith's soil: taken again from level n until the soil's
   /// force at level n holds (soil_iteration.hpp).
   void advance_soil();
@@ -223,6 +222,17 @@ class LinePaper final : public LineScheme {
   std::vector<double> soil_u_, soil_old_, soil_v_;     // u^{m+1}, u^{m-1}, (u^{m+1} - u^{m-1}) / (2 dt)
   PlasticBonds plastic_;                               // levels n - 1, n, n + 1 of the plastic strains, their work
   mutable std::array<std::vector<double>, 3> scaled_;  // u = exp(lambda t) z, when lambda != 0
+  // The state a step changes, as one value (state.hpp): its three levels and their loads, the link forces.
+  auto state() {
+    return std::tie(levels_, loads_, prev_, cur_, next_, near_f_, far_f_, work_half_, dissipation_half_, work_last_,
+                    dissipation_last_, force_, c_max_, near_force_, far_force_);
+  }
+  void keep_state() override { kept_.keep(state()); }
+  void restore_state() override { kept_.restore(state()); }
+  KeptState<std::array<std::vector<double>, 3>, std::array<std::vector<double>, 3>, double*, double*, double*,
+            std::array<double, 3>, std::array<double, 3>, double, double, double, double, std::vector<double>,
+            std::vector<double>, double, double>
+      kept_;
 };
 
 }  // namespace barimpact

@@ -22,7 +22,7 @@
 #include "barimpact/schemes/plastic_iteration.hpp"
 #include "barimpact/schemes/scheme.hpp"
 #include "barimpact/schemes/soil_iteration.hpp"
-#include "barimpact/schemes/step_snapshot.hpp"
+#include "barimpact/schemes/state.hpp"
 
 namespace barimpact {
 
@@ -59,18 +59,17 @@ class LineScheme : public Scheme {
 
   /// A one-step implicit scheme's elastic-plastic elements: `a` its matrix
   /// (the rows of the nodes `held` the identity) and u^{n+1} += c A^{-1} g for a load g at
-  /// t_{n+1}; `u` the vector it keeps u in (after its own sizing).
-  void set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, std::vector<double>& u);
+  /// t_{n+1}.
+  void set_plastic(const Tridiagonal& a, const std::vector<std::size_t>& held, double c);
   /// The same for a three-level scheme that books its plastic work itself
-  /// (plastic_bonds.hpp's record) and whose matrix holds its links; it
-  /// keeps its own levels in snapshot_.
+  /// (plastic_bonds.hpp's record) and whose matrix holds its links.
   void set_plastic_levels(const Tridiagonal& a, const std::vector<std::size_t>& held, double c);
   /// Level 0's plastic strains from u0, before the start's loads.
   void start_plastic(const double* u0);
   /// One step of the elastic-plastic iteration (plastic_iteration.hpp):
   /// `step()` is the scheme's elastic step, taken with the plastic strains
   /// of level n; when an element yields, the step is taken again from level
-  /// n (snapshot_) until the plastic strains it loads with hold. Level n is
+  /// n (the kept state) until the plastic strains it loads with hold. Level n is
   /// kept at every step while the line yields, and at intervals doubling to
   /// 32 steps while it does not: reaching level n may then replay up to 31
   /// steps that did not yield (the same numbers: nothing changed), once per
@@ -97,7 +96,7 @@ class LineScheme : public Scheme {
     if (plastic_iteration_.settled(level.first, force_.data(), level.second)) return false;
     // Back to level n, replaying the quiet steps since the level kept.
     const long long n = n_ - 1;
-    snapshot_.restore();
+    restore_state();
     n_ = kept_n_;
     plastic_iteration_.begin_step();
     while (n_ < n) {
@@ -119,22 +118,22 @@ class LineScheme : public Scheme {
         failed_misfit_ = plastic_iteration_.misfit();
         return false;
       }
-      snapshot_.restore();
+      restore_state();
       n_ = n;
     }
     plastic_iteration_.count(k);
-    plastic_iteration_.accept(one_step_plastic_ ? snapshot_.saved(0).data() : nullptr, level.first);
+    plastic_iteration_.accept(one_step_plastic_ ? kept_displacement() : nullptr, level.first);
     since_kept_ = 1;
     return true;
   }
   /// One step with Smith's soil (soil_iteration.hpp): `step()` is the
   /// scheme's step with the soil's iterate, `holds()` the soil's check at its
-  /// answer; the step is taken again from level n (snapshot_) until it holds.
+  /// answer; the step is taken again from level n (the kept state) until it holds.
   /// False when it did not in SoilIteration::most_iterations steps: the run stops.
   template <class Step, class Holds>
   bool advance_soil_level(SoilIteration& soil, Step&& step, Holds&& holds) {
     const long long n = n_;
-    snapshot_.save();
+    keep_state();
     soil.begin_step();
     for (int k = 1;; ++k) {
       step();
@@ -144,7 +143,7 @@ class LineScheme : public Scheme {
         failed_soil_ = soil.failure();
         return false;
       }
-      snapshot_.restore();
+      restore_state();
       n_ = n;
     }
   }
@@ -153,6 +152,12 @@ class LineScheme : public Scheme {
     const std::size_t toe = soil.toe_link();
     return soil.shaft_slip_work() + (toe == Link::ground ? 0.0 : line_.links[toe].law.hysteresis(c_max_[toe]));
   }
+  /// The scheme's state as one value (state.hpp), for the iterations above:
+  /// keeps it (level n), copies it back, and u^n as kept (a one-step scheme's,
+  /// its state's first member). A scheme that iterates overrides all three.
+  virtual void keep_state() {}
+  virtual void restore_state() {}
+  [[nodiscard]] virtual const double* kept_displacement() const { return nullptr; }
   /// The schemes' loads carry G p^k while it may be nonzero (load_zero_).
   void plastic_loads();
   /// f = the body force and gravity at t, and G p^k while the plastic strains load.
@@ -183,8 +188,7 @@ class LineScheme : public Scheme {
   double dt_, inv_dt_;
   bool near_link_ = false, far_link_ = false;  // the first link is the near end's, the last the far end's
   PlasticIteration plastic_iteration_;
-  StepSnapshot snapshot_;  // the level a plastic step starts from (u first)
-  bool failed_ = false;    // the plastic iteration did not settle (finite() is then false)
+  bool failed_ = false;  // the plastic iteration did not settle (finite() is then false)
   double failed_misfit_ = 0.0;
   std::string failed_soil_;  // why Smith's soil's iteration did not settle (soil_iteration.hpp)
   long long n_ = 0;
@@ -200,11 +204,11 @@ class LineScheme : public Scheme {
 
  private:
   void keep_level();
-  void keep_plastic_state(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, bool links_in_matrix);
-  long long kept_n_ = 0;                    // the level snapshot_ holds
+  void set_plastic_matrix(const Tridiagonal& a, const std::vector<std::size_t>& held, double c, bool links_in_matrix);
+  long long kept_n_ = 0;                    // the level the kept state holds
   int since_kept_ = 1, keep_interval_ = 1;  // steps since it, and between two
   bool yielded_since_kept_ = false;
-  bool one_step_plastic_ = true;     // accept() books Q from snapshot_'s u^n
+  bool one_step_plastic_ = true;     // accept() books Q from the kept u^n
   bool body_zero_ = true;            // no body force and no gravity
   std::vector<double> steady_body_;  // a steady body force and gravity on a plastic line (else empty)
 };
