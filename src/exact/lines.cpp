@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -316,6 +317,60 @@ double exp_integral(const Poly& S, double s) {
   return eval(S, 0.0) - std::exp(-s) * eval(S, s);
 }
 
+// C = A - B: w_out = v0 exp(-sigma) C on an interval.
+Poly outgoing_wave(const Poly& A, const Poly& B) {
+  Poly C(A.size(), 0.0);
+  for (std::size_t j = 0; j < C.size(); ++j) C[j] = A[j] - (j < B.size() ? B[j] : 0.0);
+  return C;
+}
+
+// A - 2 B: the contact force p = Z |v0| exp(-sigma) (A - 2 B) on an interval.
+Poly force_polynomial(const Poly& A, const Poly& B) {
+  Poly q = A;
+  for (std::size_t j = 0; j < B.size(); ++j) q[j] -= 2.0 * B[j];
+  return q;
+}
+
+// The first zero of q on (0, theta], if any. q varies on the scale of
+// sigma ~ 1 (m / Z) at the fastest: 32 samples, and 16 per unit of sigma,
+// then the first sign change bisected.
+std::optional<double> first_zero(const Poly& q, double theta) {
+  const int samples = 32 + static_cast<int>(std::min(1e5, std::ceil(16.0 * theta)));
+  double lo = 0.0;
+  for (int i = 1; i <= samples; ++i) {
+    const double hi = theta * i / samples;
+    if (eval(q, hi) > 0.0) {
+      lo = hi;
+      continue;
+    }
+    double a = lo, b = hi;
+    for (int it = 0; it < 200 && b - a > 0.0; ++it) {
+      const double mid = 0.5 * (a + b);
+      if (mid <= a || mid >= b) break;
+      (eval(q, mid) > 0.0 ? a : b) = mid;
+    }
+    return b;
+  }
+  return std::nullopt;
+}
+
+// The next interval's B: w_in(s) = w_in(s - T) - V(s - T).
+Poly next_incoming_wave(const Poly& A, const Poly& B) {
+  Poly next = B;
+  next.resize(A.size(), 0.0);
+  for (std::size_t j = 0; j < A.size(); ++j) next[j] -= A[j];
+  return next;
+}
+
+// The next interval's A from its B: V continuous across the interval's
+// start; m dV/dt = Z (2 w_in - V), i.e. A' = 2 B.
+Poly next_velocity(const Poly& A, const Poly& next_B, double theta) {
+  Poly next(next_B.size() + 1, 0.0);
+  next[0] = std::exp(-theta) * eval(A, theta);
+  for (std::size_t j = 0; j < next_B.size(); ++j) next[j + 1] = 2.0 * next_B[j] / static_cast<double>(j + 1);
+  return next;
+}
+
 constexpr int max_intervals = 1000;
 
 }  // namespace
@@ -350,46 +405,21 @@ DropMass::DropMass(const Rod& bar, double mass, double v0, double gap) : bar_(ba
   I.B = {0.0};
   for (int k = 0; k < max_intervals; ++k) {
     I.SA = derivative_sum(I.A);
-    Poly C(I.A.size(), 0.0);
-    for (std::size_t j = 0; j < C.size(); ++j) C[j] = I.A[j] - (j < I.B.size() ? I.B[j] : 0.0);
-    I.SC = derivative_sum(C);
+    I.SC = derivative_sum(outgoing_wave(I.A, I.B));
     intervals_.push_back(I);
-    // Separation: the first zero of p = Z |v0| exp(-sigma) (A - 2 B) on (0, theta].
-    Poly q = I.A;
-    for (std::size_t j = 0; j < I.B.size(); ++j) q[j] -= 2.0 * I.B[j];
-    // p varies on the scale of m / Z (sigma ~ 1) at the fastest: 32
-    // samples, and 16 per unit of sigma.
-    const int samples = 32 + static_cast<int>(std::min(1e5, std::ceil(16.0 * theta_)));
-    double lo = 0.0;
-    for (int i = 1; i <= samples; ++i) {
-      const double hi = theta_ * i / samples;
-      if (eval(q, hi) > 0.0) {
-        lo = hi;
-        continue;
-      }
-      double a = lo, b = hi;
-      for (int it = 0; it < 200 && b - a > 0.0; ++it) {
-        const double mid = 0.5 * (a + b);
-        if (mid <= a || mid >= b) break;
-        (eval(q, mid) > 0.0 ? a : b) = mid;
-      }
-      ts_ = k * T_ + b / nu_;
-      Vs_ = v0_ * std::exp(-b) * eval(I.A, b);
-      us_ = -gap_ + I.U0 + v0_ / nu_ * exp_integral(I.SA, b);
-      break;
+    // Separation: the first zero of the contact force on (0, theta].
+    if (const auto b = first_zero(force_polynomial(I.A, I.B), theta_)) {
+      ts_ = k * T_ + *b / nu_;
+      Vs_ = v0_ * std::exp(-*b) * eval(I.A, *b);
+      us_ = -gap_ + I.U0 + v0_ / nu_ * exp_integral(I.SA, *b);
     }
     if (std::isfinite(ts_)) break;
-    // The next interval: V continuous; w_in(s) = w_in(s - T) - V(s - T);
-    // m dV/dt = Z (2 w_in - V), i.e. A' = 2 B.
+    // The next interval: W_out and the mass's displacement carried across its start.
     Interval next;
     next.W0 = I.W0 + v0_ / nu_ * exp_integral(I.SC, theta_);
     next.U0 = I.U0 + v0_ / nu_ * exp_integral(I.SA, theta_);
-    next.B = I.B;
-    next.B.resize(I.A.size(), 0.0);
-    for (std::size_t j = 0; j < I.A.size(); ++j) next.B[j] -= I.A[j];
-    next.A.assign(next.B.size() + 1, 0.0);
-    next.A[0] = std::exp(-theta_) * eval(I.A, theta_);
-    for (std::size_t j = 0; j < next.B.size(); ++j) next.A[j + 1] = 2.0 * next.B[j] / static_cast<double>(j + 1);
+    next.B = next_incoming_wave(I.A, I.B);
+    next.A = next_velocity(I.A, next.B, theta_);
     I = std::move(next);
   }
   if (!std::isfinite(ts_)) {
