@@ -21,14 +21,9 @@ def read_hopkinson(directory):
     return table, summary
 
 
-def plot_hopkinson(directory, formats=("png", "svg")):
-    """Draws the four figures into the directory barimpact hopkinson fills
-    or wrote (nowhere else); returns their paths."""
-    out = study_directory(directory, "hopkinson")
-    h, s = read_hopkinson(out)
+def _waves_figure(h, out, formats, written):
+    """The three waves at the specimen's faces, and the front face's sum."""
     t = h["t"]
-    written = []
-
     fig, ax = _figure("The three waves, moved to the specimen's faces")
     for name, label in (("incident", "incident"), ("reflected", "reflected"), ("transmitted", "transmitted")):
         if name in h:
@@ -41,11 +36,13 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     ax.legend(fontsize=8)
     _save(fig, out, "waves", formats, written)
 
+
+def _stress_strain_figure(h, fit, out, formats, written):
+    """The three analyses' curves, with the fitted modulus and yield when the fit found them."""
     fig, ax = _figure("Specimen stress-strain")
     ax.plot(h["strain_1w"], h["stress_1w"], lw=1.2, label="1-wave: transmitted force, reflected strain")
     ax.plot(h["strain_3w"], h["stress_2w"], lw=1.2, label="2-wave: front-face force (3-wave strain)")
     ax.plot(h["strain_3w"], h["stress_3w"], "k", lw=1.6, label="3-wave: mean force, faces' velocities")
-    fit = s.get("fit") or {}
     if fit.get("modulus"):
         e, e0 = fit["modulus"], fit["strain_intercept"]
         top = np.nanmax(h["stress_3w"])
@@ -62,6 +59,8 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     ax.legend(fontsize=8)
     _save(fig, out, "stress_strain", formats, written)
 
+
+def _strain_rate_figure(h, out, formats, written):
     fig, ax = _figure("Strain rate")
     ax.plot(h["strain_1w"], h["strain_rate_1w"], lw=1.2, label="1-wave: 2 c0 eps_r / L_s")
     ax.plot(h["strain_3w"], h["strain_rate_3w"], "k", lw=1.4, label="3-wave: c0 (eps_r + eps_t - eps_i) / L_s")
@@ -70,6 +69,11 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     ax.legend(fontsize=8)
     _save(fig, out, "strain_rate", formats, written)
 
+
+def _equilibrium_figure(h, s, out, formats, written):
+    """The equilibrium measure against time, the two forces on a second axis
+    (one legend for both axes)."""
+    t = h["t"]
     fig, ax = _figure("Specimen equilibrium (where both forces pass 5% of their peak)")
     ax.plot(t, h["equilibrium"], "k", lw=1.2, label="2 (F_front - F_back) / (F_front + F_back)")
     ax.axhspan(-0.05, 0.05, color="tab:green", alpha=0.15, label="within 5%")
@@ -86,6 +90,18 @@ def plot_hopkinson(directory, formats=("png", "svg")):
     lines2 = ax2.get_legend_handles_labels()
     ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=8, loc="lower right")
     _save(fig, out, "equilibrium", formats, written)
+
+
+def plot_hopkinson(directory, formats=("png", "svg")):
+    """Draws the four figures into the directory barimpact hopkinson fills
+    or wrote (nowhere else); returns their paths."""
+    out = study_directory(directory, "hopkinson")
+    h, s = read_hopkinson(out)
+    written = []
+    _waves_figure(h, out, formats, written)
+    _stress_strain_figure(h, s.get("fit") or {}, out, formats, written)
+    _strain_rate_figure(h, out, formats, written)
+    _equilibrium_figure(h, s, out, formats, written)
     return written
 
 

@@ -85,6 +85,44 @@ def _soil(case, pile):
                                                    toe.get("damping_law", "smith") == "viscous")
 
 
+def _initial_velocities(case, count):
+    """The weights' velocities at t = 0, down positive: the masses' given ones."""
+    v = np.zeros(count)
+    for k_body, body in enumerate(reversed(case["body"])):
+        if body.get("kind") == "mass" and "velocity" in body:
+            v[k_body] = -float(body["velocity"])
+    return v
+
+
+def _spring_forces(k, restitution, cushion, c, c_max):
+    """F_m from the compressions C_m: a cushion loads along K, unloads along
+    K / e^2 from its largest compression and never pulls."""
+    f = k * c
+    e2 = restitution**2
+    unloading = k / e2 * (c - (1 - e2) * c_max)
+    return np.where(cushion, np.clip(np.minimum(f, unloading), 0.0, None), f)
+
+
+def _shaft(d, v, plastic, ru, quake, damp, viscous, stiff):
+    """The shaft: D' within Q of D both ways, R = K'(D - D') plus damping.
+    Returns the new D' and R."""
+    plastic = np.where(ru > 0, np.clip(plastic, d - quake, d + quake), 0.0)  # weights without soil never slip
+    rs = stiff * (d - plastic)
+    r = rs + np.where(viscous, damp * ru * v, damp * np.abs(rs) * v)
+    return plastic, np.where(ru > 0, r, 0.0)
+
+
+def _toe_resistance(w, v, toe, slip):
+    """The toe: compression only, past its slip (max - Q)^+."""
+    toe_ru, toe_q, toe_j, toe_viscous = toe
+    toe_k = toe_ru / toe_q
+    toe_r = 0.0
+    if w > slip:
+        rs_toe = min(toe_ru, toe_k * (w - slip))
+        toe_r = max(0.0, rs_toe + (toe_j * toe_ru * v if toe_viscous else toe_j * rs_toe * v))
+    return toe_r
+
+
 def blow(case_file, segments, ratio=0.5, end=None):
     """Smith's model of the case's blow with the pile in `segments` segments and
     dt = ratio dl / c. Returns a dict: set, max_compression, last_slip, dt, steps."""
@@ -106,14 +144,10 @@ def blow(case_file, segments, ratio=0.5, end=None):
     steps = int(round(t_end / dt))
 
     d = np.zeros(count)
-    v = np.zeros(count)
-    for k_body, body in enumerate(reversed(case["body"])):  # initial velocities, down positive
-        if body.get("kind") == "mass" and "velocity" in body:
-            v[k_body] = -float(body["velocity"])
+    v = _initial_velocities(case, count)
     c_max = np.zeros(len(springs))
     plastic = np.zeros(count)  # D' of the shaft
-    toe_ru, toe_q, toe_j, toe_viscous = toe
-    toe_k = toe_ru / toe_q
+    toe_q = toe[1]
     toe_max = 0.0  # the toe's largest penetration (its D' = (max - Q)^+)
     stiff = np.where(ru > 0, ru / np.where(quake > 0, quake, 1.0), 0.0)
     area = b["area"]
@@ -122,26 +156,13 @@ def blow(case_file, segments, ratio=0.5, end=None):
         d += v * dt
         c = d[:-1] - d[1:]
         c_max = np.maximum(c_max, c)
-        f = k * c
-        e2 = restitution**2
-        unloading = k / e2 * (c - (1 - e2) * c_max)
-        f = np.where(cushion, np.clip(np.minimum(f, unloading), 0.0, None), f)
-        # the shaft: D' within Q of D both ways, R = K'(D - D') plus damping
+        f = _spring_forces(k, restitution, cushion, c, c_max)
         before = plastic.copy()
-        plastic = np.where(ru > 0, np.clip(plastic, d - quake, d + quake), 0.0)  # weights without soil never slip
-        rs = stiff * (d - plastic)
-        r = rs + np.where(viscous, damp * ru * v, damp * np.abs(rs) * v)
-        r = np.where(ru > 0, r, 0.0)
-        # the toe: compression only, its slip (max - Q)^+
+        plastic, r = _shaft(d, v, plastic, ru, quake, damp, viscous, stiff)
         w = d[-1]
         toe_max_before = toe_max
         toe_max = max(toe_max, w)
-        slip = max(0.0, toe_max - toe_q)
-        toe_r = 0.0
-        if w > slip:
-            rs_toe = min(toe_ru, toe_k * (w - slip))
-            toe_r = max(0.0, rs_toe + (toe_j * toe_ru * v[-1] if toe_viscous else toe_j * rs_toe * v[-1]))
-        r[-1] += toe_r
+        r[-1] += _toe_resistance(w, v[-1], toe, max(0.0, toe_max - toe_q))
         net = np.zeros(count)
         net[:-1] -= f
         net[1:] += f

@@ -74,6 +74,56 @@ def number(x):
     return repr(float(x))
 
 
+def _initial_and_load(draw, length, far_end):
+    """[initial] and [load]. The bar moves towards the obstacle at 0.1 .. 2
+    with a smooth shape on top (so E(0) > 0); a clamped end x = L must start
+    at rest there."""
+    speed = draw(st.floats(0.1, 2.0))
+    shape = draw(st.sampled_from(["", "ramp", "sine"]))
+    b = number(draw(st.floats(-0.5, 0.5)))
+    L = number(length)
+    velocity = {"": f"-{number(speed)}", "ramp": f"-{number(speed)} * (1 + {b} * x / {L})",
+                "sine": f"-{number(speed)} + {b} * sin(_pi * x / {L})"}[shape]
+    displacement = draw(st.sampled_from(["0", f"{number(draw(st.floats(-0.05, 0.05)))} * sin(_pi * x / {L})"]))
+    if far_end == "clamped":
+        velocity = f"({velocity}) * (1 - x / {L})"
+        displacement = f"({displacement}) * (1 - x / {L})"
+    f0 = number(draw(st.floats(-1.0, 1.0)))
+    force = draw(st.sampled_from(["0", "0", f0, f"{f0} * sin(3 * t)", f"{f0} * cos(x) * t"]))
+    return dict(velocity=f'"{velocity}"', displacement=f'"{displacement}"'), dict(body_force=f'"{force}"')
+
+
+def _obstacle(draw, kind):
+    """[obstacle]: a gap of 0 as often as not, a stiffness of 1 .. 1000."""
+    obstacle = dict(kind=f'"{kind}"', gap=number(draw(st.sampled_from([0.0, draw(st.floats(0.0, 0.1))]))))
+    obstacle["stiffness"] = number(10 ** draw(st.floats(0.0, 3.0)))
+    if kind == "viscoelastic":
+        obstacle["viscosity"] = number(draw(st.floats(0.0, 1.0)))
+    return obstacle
+
+
+def _scheme_parameters(draw, scheme, kind, conserving):
+    """The scheme's own [time] keys: mostly the defaults, now and then any;
+    `conserving`: the values `energy_claim` covers."""
+    params = {}
+    if scheme == "paper":
+        alpha = draw(st.sampled_from([0.25, 0.25, 0.0, 0.5, draw(st.floats(0.0, 0.5))]))
+        params["alpha"] = number(0.25 if conserving and kind == "elastic" else alpha)
+        params["lambda"] = number(0.0 if conserving else draw(st.sampled_from([0.0, 0.0, draw(st.floats(0.0, 1.0))])))
+    elif scheme == "newmark":
+        if conserving or draw(st.booleans()):
+            params["beta"], params["gamma"] = "0.25", "0.5"  # trapezoidal
+        else:
+            params["beta"], params["gamma"] = number(draw(st.floats(0.0, 0.5))), number(draw(st.floats(0.5, 1.0)))
+    elif scheme == "moreau-jean":
+        params["theta"] = number(0.5 if conserving else draw(st.sampled_from([0.5, 0.5, draw(st.floats(0.5, 1.0))])))
+        params["restitution"] = number(1.0 if conserving
+                                       else draw(st.sampled_from([1.0, 0.0, draw(st.floats(0.0, 1.0))])))
+    elif scheme == "paoli-schatzman":
+        params["restitution"] = number(draw(st.sampled_from([0.0, draw(st.floats(0.0, 1.0))])))
+    return params
+
+
 @st.composite
 def cases(draw, conserving=False):
     """A valid small case; `conserving`: one of the configurations of
@@ -95,28 +145,8 @@ def cases(draw, conserving=False):
                     viscosity=number(draw(st.floats(0.001, 0.1)) if viscous else 0.0), elements=str(elements),
                     far_end=f'"{far_end}"')
 
-    # The bar moves towards the obstacle at 0.1 .. 2 with a smooth shape on
-    # top (so E(0) > 0); a clamped end x = L must start at rest there.
-    speed = draw(st.floats(0.1, 2.0))
-    shape = draw(st.sampled_from(["", "ramp", "sine"]))
-    b = number(draw(st.floats(-0.5, 0.5)))
-    L = number(length)
-    velocity = {"": f"-{number(speed)}", "ramp": f"-{number(speed)} * (1 + {b} * x / {L})",
-                "sine": f"-{number(speed)} + {b} * sin(_pi * x / {L})"}[shape]
-    displacement = draw(st.sampled_from(["0", f"{number(draw(st.floats(-0.05, 0.05)))} * sin(_pi * x / {L})"]))
-    if far_end == "clamped":
-        velocity = f"({velocity}) * (1 - x / {L})"
-        displacement = f"({displacement}) * (1 - x / {L})"
-    f0 = number(draw(st.floats(-1.0, 1.0)))
-    force = draw(st.sampled_from(["0", "0", f0, f"{f0} * sin(3 * t)", f"{f0} * cos(x) * t"]))
-    c["initial"] = dict(velocity=f'"{velocity}"', displacement=f'"{displacement}"')
-    c["load"] = dict(body_force=f'"{force}"')
-
-    obstacle = dict(kind=f'"{kind}"', gap=number(draw(st.sampled_from([0.0, draw(st.floats(0.0, 0.1))]))))
-    obstacle["stiffness"] = number(10 ** draw(st.floats(0.0, 3.0)))
-    if kind == "viscoelastic":
-        obstacle["viscosity"] = number(draw(st.floats(0.0, 1.0)))
-    c["obstacle"] = obstacle
+    c["initial"], c["load"] = _initial_and_load(draw, length, far_end)
+    c["obstacle"] = _obstacle(draw, kind)
 
     h = length / elements
     wave = math.sqrt(stiffness / density)
@@ -127,25 +157,12 @@ def cases(draw, conserving=False):
     else:
         if kind == "elastic" and (conserving or draw(st.booleans())):
             # k dt^2 / (rho h) in 1e-4 .. 0.01, where the penalty's energy error is claimed.
-            dt = math.sqrt(10 ** draw(st.floats(-4.0, -2.0)) * density * h / float(obstacle["stiffness"]))
+            dt = math.sqrt(10 ** draw(st.floats(-4.0, -2.0)) * density * h / float(c["obstacle"]["stiffness"]))
         else:
             dt = draw(st.floats(0.05, 1.0 if conserving else 2.0)) * h / wave  # Courant number
         time["step"] = number(dt)
         time["end"] = number(steps * dt)
-    if scheme == "paper":
-        alpha = draw(st.sampled_from([0.25, 0.25, 0.0, 0.5, draw(st.floats(0.0, 0.5))]))
-        time["alpha"] = number(0.25 if conserving and kind == "elastic" else alpha)
-        time["lambda"] = number(0.0 if conserving else draw(st.sampled_from([0.0, 0.0, draw(st.floats(0.0, 1.0))])))
-    elif scheme == "newmark":
-        if conserving or draw(st.booleans()):
-            time["beta"], time["gamma"] = "0.25", "0.5"  # trapezoidal
-        else:
-            time["beta"], time["gamma"] = number(draw(st.floats(0.0, 0.5))), number(draw(st.floats(0.5, 1.0)))
-    elif scheme == "moreau-jean":
-        time["theta"] = number(0.5 if conserving else draw(st.sampled_from([0.5, 0.5, draw(st.floats(0.5, 1.0))])))
-        time["restitution"] = number(1.0 if conserving else draw(st.sampled_from([1.0, 0.0, draw(st.floats(0.0, 1.0))])))
-    elif scheme == "paoli-schatzman":
-        time["restitution"] = number(draw(st.sampled_from([0.0, draw(st.floats(0.0, 1.0))])))
+    time.update(_scheme_parameters(draw, scheme, kind, conserving))
     c["time"] = time
     c["output"] = dict(every="1", fields_at=draw(st.sampled_from(["[]", f"[{time['end']}]"])))
     return c

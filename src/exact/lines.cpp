@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <stdexcept>
 #include <string>
@@ -316,6 +317,60 @@ double exp_integral(const Poly& S, double s) {
   return eval(S, 0.0) - std::exp(-s) * eval(S, s);
 }
 
+// C = A - B: w_out = v0 exp(-sigma) C on an interval.
+Poly outgoing_wave(const Poly& A, const Poly& B) {
+  Poly C(A.size(), 0.0);
+  for (std::size_t j = 0; j < C.size(); ++j) C[j] = A[j] - (j < B.size() ? B[j] : 0.0);
+  return C;
+}
+
+// A - 2 B: the contact force p = Z |v0| exp(-sigma) (A - 2 B) on an interval.
+Poly force_polynomial(const Poly& A, const Poly& B) {
+  Poly q = A;
+  for (std::size_t j = 0; j < B.size(); ++j) q[j] -= 2.0 * B[j];
+  return q;
+}
+
+// The first zero of q on (0, theta], if any. q varies on the scale of
+// sigma ~ 1 (m / Z) at the fastest: 32 samples, and 16 per unit of sigma,
+// then the first sign change bisected.
+std::optional<double> first_zero(const Poly& q, double theta) {
+  const int samples = 32 + static_cast<int>(std::min(1e5, std::ceil(16.0 * theta)));
+  double lo = 0.0;
+  for (int i = 1; i <= samples; ++i) {
+    const double hi = theta * i / samples;
+    if (eval(q, hi) > 0.0) {
+      lo = hi;
+      continue;
+    }
+    double a = lo, b = hi;
+    for (int it = 0; it < 200 && b - a > 0.0; ++it) {
+      const double mid = 0.5 * (a + b);
+      if (mid <= a || mid >= b) break;
+      (eval(q, mid) > 0.0 ? a : b) = mid;
+    }
+    return b;
+  }
+  return std::nullopt;
+}
+
+// The next interval's B: w_in(s) = w_in(s - T) - V(s - T).
+Poly next_incoming_wave(const Poly& A, const Poly& B) {
+  Poly next = B;
+  next.resize(A.size(), 0.0);
+  for (std::size_t j = 0; j < A.size(); ++j) next[j] -= A[j];
+  return next;
+}
+
+// The next interval's A from its B: V continuous across the interval's
+// start; m dV/dt = Z (2 w_in - V), i.e. A' = 2 B.
+Poly next_velocity(const Poly& A, const Poly& next_B, double theta) {
+  Poly next(next_B.size() + 1, 0.0);
+  next[0] = std::exp(-theta) * eval(A, theta);
+  for (std::size_t j = 0; j < next_B.size(); ++j) next[j + 1] = 2.0 * next_B[j] / static_cast<double>(j + 1);
+  return next;
+}
+
 constexpr int max_intervals = 1000;
 
 }  // namespace
@@ -350,46 +405,21 @@ DropMass::DropMass(const Rod& bar, double mass, double v0, double gap) : bar_(ba
   I.B = {0.0};
   for (int k = 0; k < max_intervals; ++k) {
     I.SA = derivative_sum(I.A);
-    Poly C(I.A.size(), 0.0);
-    for (std::size_t j = 0; j < C.size(); ++j) C[j] = I.A[j] - (j < I.B.size() ? I.B[j] : 0.0);
-    I.SC = derivative_sum(C);
+    I.SC = derivative_sum(outgoing_wave(I.A, I.B));
     intervals_.push_back(I);
-    // Separation: the first zero of p = Z |v0| exp(-sigma) (A - 2 B) on (0, theta].
-    Poly q = I.A;
-    for (std::size_t j = 0; j < I.B.size(); ++j) q[j] -= 2.0 * I.B[j];
-    // p varies on the scale of m / Z (sigma ~ 1) at the fastest: 32
-    // samples, and 16 per unit of sigma.
-    const int samples = 32 + static_cast<int>(std::min(1e5, std::ceil(16.0 * theta_)));
-    double lo = 0.0;
-    for (int i = 1; i <= samples; ++i) {
-      const double hi = theta_ * i / samples;
-      if (eval(q, hi) > 0.0) {
-        lo = hi;
-        continue;
-      }
-      double a = lo, b = hi;
-      for (int it = 0; it < 200 && b - a > 0.0; ++it) {
-        const double mid = 0.5 * (a + b);
-        if (mid <= a || mid >= b) break;
-        (eval(q, mid) > 0.0 ? a : b) = mid;
-      }
-      ts_ = k * T_ + b / nu_;
-      Vs_ = v0_ * std::exp(-b) * eval(I.A, b);
-      us_ = -gap_ + I.U0 + v0_ / nu_ * exp_integral(I.SA, b);
-      break;
+    // Separation: the first zero of the contact force on (0, theta].
+    if (const auto b = first_zero(force_polynomial(I.A, I.B), theta_)) {
+      ts_ = k * T_ + *b / nu_;
+      Vs_ = v0_ * std::exp(-*b) * eval(I.A, *b);
+      us_ = -gap_ + I.U0 + v0_ / nu_ * exp_integral(I.SA, *b);
     }
     if (std::isfinite(ts_)) break;
-    // The next interval: V continuous; w_in(s) = w_in(s - T) - V(s - T);
-    // m dV/dt = Z (2 w_in - V), i.e. A' = 2 B.
+    // The next interval: W_out and the mass's displacement carried across its start.
     Interval next;
     next.W0 = I.W0 + v0_ / nu_ * exp_integral(I.SC, theta_);
     next.U0 = I.U0 + v0_ / nu_ * exp_integral(I.SA, theta_);
-    next.B = I.B;
-    next.B.resize(I.A.size(), 0.0);
-    for (std::size_t j = 0; j < I.A.size(); ++j) next.B[j] -= I.A[j];
-    next.A.assign(next.B.size() + 1, 0.0);
-    next.A[0] = std::exp(-theta_) * eval(I.A, theta_);
-    for (std::size_t j = 0; j < next.B.size(); ++j) next.A[j + 1] = 2.0 * next.B[j] / static_cast<double>(j + 1);
+    next.B = next_incoming_wave(I.A, I.B);
+    next.A = next_velocity(I.A, next.B, theta_);
     I = std::move(next);
   }
   if (!std::isfinite(ts_)) {
@@ -550,6 +580,119 @@ double Junction::Steps::integral(double t) const {
   return i == 0 ? 0.0 : t * sum[i - 1] - moment[i - 1];
 }
 
+namespace {
+
+// The velocity jumps of the fronts at one node of the lattice of times
+// n1 tau1 + n2 tau2: a at x = 0, b and d at the junction (in bar 1 and in
+// bar 2), e at the far end.
+struct NodeJumps {
+  double a = 0.0, b = 0.0, d = 0.0, e = 0.0;
+};
+
+using JumpList = std::vector<std::pair<double, double>>;  // (time, jump), in time order
+
+// Every front's jumps up to the horizon, by where they happen; valid_until
+// is the horizon, or the time the events ran out.
+struct FrontHistory {
+  JumpList a, b, d, e;
+  double valid_until;
+};
+
+// Velocity coefficients at the junction: r reflected, t transmitted, for a
+// wave from bar 1 (12) or from bar 2 (21).
+struct JunctionRatios {
+  double r12, t12, r21, t21;
+};
+
+JunctionRatios junction_ratios(double Z1, double Z2) {
+  const double sum = Z1 + Z2;
+  return {(Z1 - Z2) / sum, 2.0 * Z1 / sum, (Z2 - Z1) / sum, 2.0 * Z2 / sum};
+}
+
+// The lattice's nodes that fronts have reached but that are not yet
+// passed on, in time order (then level n1 + n2).
+class FrontLattice {
+ public:
+  using Entry = std::tuple<double, std::uint64_t, std::uint64_t, std::uint64_t>;  // time, level, n1, n2
+
+  FrontLattice(double tau1, double tau2) : tau1_(tau1), tau2_(tau2) {}
+
+  // A node's jumps; a node new to the lattice is queued at its time.
+  NodeJumps& at(std::uint64_t n1, std::uint64_t n2) {
+    auto [it, fresh] = pending_.try_emplace(key(n1, n2));
+    if (fresh) queue_.emplace(static_cast<double>(n1) * tau1_ + static_cast<double>(n2) * tau2_, n1 + n2, n1, n2);
+    return it->second;
+  }
+  [[nodiscard]] bool empty() const { return queue_.empty(); }
+  [[nodiscard]] const Entry& next() const { return queue_.top(); }
+  // The earliest node's jumps, the node taken off the lattice.
+  NodeJumps take() {
+    const auto [time, level, n1, n2] = queue_.top();
+    queue_.pop();
+    const auto node = pending_.extract(key(n1, n2));
+    return node.mapped();
+  }
+
+ private:
+  static std::uint64_t key(std::uint64_t n1, std::uint64_t n2) { return (n1 << 32) | n2; }
+
+  double tau1_, tau2_;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue_;
+  std::unordered_map<std::uint64_t, NodeJumps> pending_;
+};
+
+// A node's jumps recorded at its time and passed to the nodes one transit
+// later: a reaches the junction, b the force end (which reflects velocity
+// unchanged), d the free end (so does it), e the junction from bar 2.
+void pass_on(FrontLattice& lattice, std::uint64_t n1, std::uint64_t n2, double time, const NodeJumps& j,
+             const JunctionRatios& r, FrontHistory& history) {
+  if (j.a != 0.0) {
+    history.a.emplace_back(time, j.a);
+    NodeJumps& next = lattice.at(n1 + 1, n2);
+    if (r.r12 != 0.0) next.b += r.r12 * j.a;
+    next.d += r.t12 * j.a;
+  }
+  if (j.b != 0.0) {
+    history.b.emplace_back(time, j.b);
+    lattice.at(n1 + 1, n2).a += j.b;
+  }
+  if (j.d != 0.0) {
+    history.d.emplace_back(time, j.d);
+    lattice.at(n1, n2 + 1).e += j.d;
+  }
+  if (j.e != 0.0) {
+    history.e.emplace_back(time, j.e);
+    NodeJumps& next = lattice.at(n1, n2 + 1);
+    next.b += r.t21 * j.e;
+    if (r.r21 != 0.0) next.d += r.r21 * j.e;
+  }
+}
+
+// The fronts from a velocity jump `a0` at x = 0 at t = 0, up to the horizon.
+// A node's jumps come from nodes one step earlier, so taking nodes in time
+// order completes each before it is used; past 4 million events the
+// history ends early.
+FrontHistory trace_fronts(double tau1, double tau2, const JunctionRatios& r, double a0, double horizon) {
+  FrontHistory history{{}, {}, {}, {}, horizon};
+  FrontLattice lattice(tau1, tau2);
+  lattice.at(0, 0).a = a0;
+  constexpr std::size_t max_events = 4'000'000;
+  std::size_t events = 0;
+  while (!lattice.empty()) {
+    const auto [time, level, n1, n2] = lattice.next();
+    if (time > horizon) break;
+    if (++events > max_events) {
+      history.valid_until = time;
+      break;
+    }
+    const NodeJumps j = lattice.take();
+    pass_on(lattice, n1, n2, time, j, r, history);
+  }
+  return history;
+}
+
+}  // namespace
+
 Junction::Junction(const Rod& bar1, const Rod& bar2, double force, double horizon)
     : bar1_(bar1), bar2_(bar2), F0_(force) {
   check_rod(bar1);
@@ -563,63 +706,12 @@ Junction::Junction(const Rod& bar1, const Rod& bar2, double force, double horizo
   tau2_ = bar2_.transit();
   valid_until_ = infinity;
   if (F0_ == 0.0) return;
-  valid_until_ = horizon;
-  // Front events on the lattice of times n1 tau1 + n2 tau2: each node holds
-  // the jumps of a (at x = 0), b and d (at the junction), e (at the far
-  // end) there. A node's jumps come from nodes one step earlier, so taking
-  // nodes in time order completes each before it is used.
-  const double sum = Z1_ + Z2_;
-  const double r12 = (Z1_ - Z2_) / sum, t12 = 2.0 * Z1_ / sum;  // velocity, wave from bar 1
-  const double r21 = (Z2_ - Z1_) / sum, t21 = 2.0 * Z2_ / sum;  // velocity, wave from bar 2
-  struct Jumps {
-    double a = 0.0, b = 0.0, d = 0.0, e = 0.0;
-  };
-  using Key = std::uint64_t;
-  auto key = [](std::uint64_t n1, std::uint64_t n2) { return (n1 << 32) | n2; };
-  using Entry = std::tuple<double, std::uint64_t, std::uint64_t, std::uint64_t>;  // time, level, n1, n2
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
-  std::unordered_map<Key, Jumps> pending;
-  auto at = [&](std::uint64_t n1, std::uint64_t n2) -> Jumps& {
-    auto [it, fresh] = pending.try_emplace(key(n1, n2));
-    if (fresh) queue.emplace(static_cast<double>(n1) * tau1_ + static_cast<double>(n2) * tau2_, n1 + n2, n1, n2);
-    return it->second;
-  };
-  at(0, 0).a = F0_ / Z1_;  // N = Z1 (b - a) = -F0 at x = 0
-  std::vector<std::pair<double, double>> ja, jb, jd, je;
-  constexpr std::size_t max_events = 4'000'000;
-  std::size_t events = 0;
-  while (!queue.empty()) {
-    const auto [time, level, n1, n2] = queue.top();
-    if (time > horizon) break;
-    if (++events > max_events) {
-      valid_until_ = time;
-      break;
-    }
-    queue.pop();
-    const auto node = pending.extract(key(n1, n2));
-    const Jumps j = node.mapped();
-    if (j.a != 0.0) {
-      ja.emplace_back(time, j.a);
-      Jumps& next = at(n1 + 1, n2);  // reaches the junction
-      if (r12 != 0.0) next.b += r12 * j.a;
-      next.d += t12 * j.a;
-    }
-    if (j.b != 0.0) {
-      jb.emplace_back(time, j.b);
-      at(n1 + 1, n2).a += j.b;  // the force end reflects velocity unchanged
-    }
-    if (j.d != 0.0) {
-      jd.emplace_back(time, j.d);
-      at(n1, n2 + 1).e += j.d;  // so does the free end
-    }
-    if (j.e != 0.0) {
-      je.emplace_back(time, j.e);
-      Jumps& next = at(n1, n2 + 1);
-      next.b += t21 * j.e;
-      if (r21 != 0.0) next.d += r21 * j.e;
-    }
-  }
-  auto steps = [](const std::vector<std::pair<double, double>>& jumps) {
+  // Front events on the lattice of times n1 tau1 + n2 tau2, from the jump
+  // that makes N = Z1 (b - a) = -F0 at x = 0.
+  const FrontHistory history = trace_fronts(tau1_, tau2_, junction_ratios(Z1_, Z2_), F0_ / Z1_, horizon);
+  valid_until_ = history.valid_until;
+  // Each wave's velocity, its running sum of jumps, and the moment that integrates it.
+  auto running_sums = [](const JumpList& jumps) {
     Steps s;
     double sum_j = 0.0, moment = 0.0;
     for (const auto& [t, size] : jumps) {
@@ -631,10 +723,10 @@ Junction::Junction(const Rod& bar1, const Rod& bar2, double force, double horizo
     }
     return s;
   };
-  a_ = steps(ja);
-  b_ = steps(jb);
-  d_ = steps(jd);
-  e_ = steps(je);
+  a_ = running_sums(history.a);
+  b_ = running_sums(history.b);
+  d_ = running_sums(history.d);
+  e_ = running_sums(history.e);
 }
 
 Junction::~Junction() = default;

@@ -413,6 +413,52 @@ void Analysis::measure_equilibrium() {
                     equilibrium_tolerance));
 }
 
+// The samples of the loading branch, from `from` up to the peak, whose `key`
+// (their stress or their strain) lies in `range`; `first` is the earliest
+// one's index (peak + 1 when there is none).
+struct BranchPoints {
+  std::vector<double> strain, stress;
+  std::size_t first = 0;
+};
+
+BranchPoints branch_points(const std::vector<double>& strain, const std::vector<double>& stress,
+                           const std::vector<double>& key, std::size_t from, std::size_t peak,
+                           std::pair<double, double> range) {
+  BranchPoints b;
+  b.first = peak + 1;
+  for (std::size_t i = from; i <= peak; ++i)
+    if (std::isfinite(strain[i]) && key[i] >= range.first && key[i] <= range.second) {
+      b.strain.push_back(strain[i]);
+      b.stress.push_back(stress[i]);
+      b.first = std::min(b.first, i);
+    }
+  return b;
+}
+
+// The stress against strain line through the points: none (nan) below 3 points.
+Line2 line_through(const BranchPoints& b) {
+  return b.strain.size() >= 3 ? least_squares(b.strain, b.stress) : Line2{};
+}
+
+struct YieldPoint {
+  double stress, strain;
+};
+
+// Where the curve, from `first` to the peak, first passes below the 0.2%
+// offset line sigma = E (eps - eps0 - 0.002), between two samples linearly.
+std::optional<YieldPoint> offset_yield(const std::vector<double>& strain, const std::vector<double>& stress,
+                                       std::size_t first, std::size_t peak, double modulus, double strain_intercept) {
+  auto offset = [&](std::size_t i) { return stress[i] - modulus * (strain[i] - strain_intercept - offset_strain); };
+  for (std::size_t i = first; i < peak; ++i) {
+    const double g0 = offset(i), g1 = offset(i + 1);
+    if (g0 >= 0 && g1 < 0) {
+      const double w = g0 / (g0 - g1);
+      return YieldPoint{stress[i] + w * (stress[i + 1] - stress[i]), strain[i] + w * (strain[i + 1] - strain[i])};
+    }
+  }
+  return std::nullopt;
+}
+
 // [fit]: the modulus over the elastic stress range (least squares on the
 // loading branch, up to the 3-wave peak stress), the 0.2% offset yield where
 // the curve crosses sigma = E (eps - eps0 - 0.002), the hardening modulus
@@ -430,35 +476,22 @@ void Analysis::fit() {
     return;
   }
   const auto peak = static_cast<std::size_t>(std::find(t.begin(), t.end(), r_.peak_stress_3w.t) - t.begin());
-  std::vector<double> u, v;
-  std::size_t first = peak + 1;
-  for (std::size_t i = 0; i <= peak; ++i)
-    if (std::isfinite(strain[i]) && stress[i] >= f.elastic_range.first && stress[i] <= f.elastic_range.second) {
-      u.push_back(strain[i]);
-      v.push_back(stress[i]);
-      first = std::min(first, i);
-    }
-  f.elastic_points = static_cast<int>(u.size());
-  const auto elastic = u.size() >= 3 ? least_squares(u, v) : Line2{};
+  const BranchPoints loading = branch_points(strain, stress, stress, 0, peak, f.elastic_range);
+  f.elastic_points = static_cast<int>(loading.strain.size());
+  const Line2 elastic = line_through(loading);
   if (!(elastic.slope > 0)) {
     f.message = fmt::format(
         "fit.elastic: {} samples of the loading branch have a 3-wave stress in [{}, {}]: too few "
         "for a modulus (3 or more with a rising stress)",
-        u.size(), f.elastic_range.first, f.elastic_range.second);
+        loading.strain.size(), f.elastic_range.first, f.elastic_range.second);
     r_.warnings.push_back(f.message);
     return;
   }
   f.modulus = elastic.slope;
   f.strain_intercept = -elastic.intercept / elastic.slope;
-  auto offset = [&](std::size_t i) { return stress[i] - f.modulus * (strain[i] - f.strain_intercept - offset_strain); };
-  for (std::size_t i = first; i < peak; ++i) {
-    const double g0 = offset(i), g1 = offset(i + 1);
-    if (g0 >= 0 && g1 < 0) {
-      const double w = g0 / (g0 - g1);
-      f.yield_stress = stress[i] + w * (stress[i + 1] - stress[i]);
-      f.yield_strain = strain[i] + w * (strain[i + 1] - strain[i]);
-      break;
-    }
+  if (const auto yield = offset_yield(strain, stress, loading.first, peak, f.modulus, f.strain_intercept)) {
+    f.yield_stress = yield->stress;
+    f.yield_strain = yield->strain;
   }
   if (!f.yield_stress) {
     f.message = "no yield: the 3-wave curve stays above the 0.2% offset line up to its peak stress";
@@ -467,22 +500,17 @@ void Analysis::fit() {
   const double span = strain[peak] - *f.yield_strain;
   f.plastic_range =
       setup_.fit_plastic ? *setup_.fit_plastic : std::pair{*f.yield_strain + 0.2 * span, *f.yield_strain + 0.9 * span};
-  u.clear();
-  v.clear();
-  for (std::size_t i = first; i <= peak; ++i)
-    if (std::isfinite(strain[i]) && strain[i] >= f.plastic_range.first && strain[i] <= f.plastic_range.second) {
-      u.push_back(strain[i]);
-      v.push_back(stress[i]);
-    }
-  f.plastic_points = static_cast<int>(u.size());
-  const auto plastic = u.size() >= 3 ? least_squares(u, v) : Line2{};
+  // The plastic range is looked for from the elastic range's first sample on.
+  const BranchPoints hardening = branch_points(strain, stress, strain, loading.first, peak, f.plastic_range);
+  f.plastic_points = static_cast<int>(hardening.strain.size());
+  const Line2 plastic = line_through(hardening);
   if (std::isfinite(plastic.slope)) {
     f.hardening_modulus = plastic.slope;
   } else {
     f.message = fmt::format(
         "fit.plastic: {} samples of the loading branch in the strain range [{:.6g}, {:.6g}]: too "
         "few for a hardening modulus",
-        u.size(), f.plastic_range.first, f.plastic_range.second);
+        hardening.strain.size(), f.plastic_range.first, f.plastic_range.second);
     r_.warnings.push_back(f.message);
   }
 }

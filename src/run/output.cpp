@@ -381,7 +381,11 @@ std::optional<RunResult> read_run_directory(const fs::path& dir, const std::stri
   }
 }
 
-std::string summary_json(const Case& c, const Summary& s) {
+namespace {
+
+// Each contact episode of the near end; the velocities it leaves with only
+// when it closed (an open one has none yet).
+nlohmann::json contacts_json(const Summary& s) {
   nlohmann::json contacts = nlohmann::json::array();
   for (const auto& ci : s.contacts)
     contacts.push_back({{"start", ci.start},
@@ -391,6 +395,11 @@ std::string summary_json(const Case& c, const Summary& s) {
                         {"rebound_velocity", ci.closed ? number_or_null(ci.rebound_velocity) : nlohmann::json(nullptr)},
                         {"max_reaction", ci.max_reaction},
                         {"impact_impulse", ci.impact_impulse}});
+  return contacts;
+}
+
+// Each link's contact episodes, under the link's name.
+nlohmann::json links_json(const Summary& s) {
   nlohmann::json links = nlohmann::json::object();
   for (std::size_t i = 0; i < s.link_names.size(); ++i) {
     nlohmann::json list = nlohmann::json::array();
@@ -403,42 +412,54 @@ std::string summary_json(const Case& c, const Summary& s) {
                       {"velocity_upper", e.closed ? number_or_null(e.velocity_upper) : nlohmann::json(nullptr)}});
     links[s.link_names[i]] = list;
   }
-  nlohmann::json plastic = nullptr;
-  if (s.plastic) {
-    nlohmann::json work = nlohmann::json::object();
-    for (const auto& [body, w] : s.plastic->work) work[body] = w;
-    plastic = {{"largest_strain", s.plastic->largest_strain},
-               {"body", s.plastic->body},
-               {"x", s.plastic->x},
-               {"t", s.plastic->t},
-               {"work", work}};
-  }
-  nlohmann::json blow = nullptr;
-  if (const auto& b = s.blow) {
-    auto peak = [](const StressPeak& p) {
-      return nlohmann::json{{"value", p.value}, {"body", p.body}, {"x", p.x}, {"t", p.t}};
-    };
-    blow = {{"set", b->set},
-            {"blows_per_m", number_or_null(b->blows_per_m())},
-            {"blows_per_250mm", number_or_null(b->blows_per_250mm())},
-            {"max_compression", peak(b->max_compression)},
-            {"max_tension", peak(b->max_tension)},
-            {"enthru", number_or_null(b->enthru)},
-            {"gauge", b->gauge.empty() ? nlohmann::json(nullptr) : nlohmann::json(b->gauge)},
-            {"hammer_energy", b->hammer_energy},
-            {"transfer_ratio", number_or_null(b->transfer_ratio())},
-            {"ram", b->ram},
-            {"pile", b->pile},
-            {"impact_time", b->impact_time},
-            {"impact_velocity", b->impact_velocity},
-            {"toe_penetration", b->toe_penetration},
-            {"finished", b->finished},
-            {"rest_time", number_or_null(b->rest_time)},
-            {"impact", b->impact},
-            {"impedance", number_or_null(b->impedance)},
-            {"envelope",
-             {{"x", b->envelope.x}, {"compression", b->envelope.compression}, {"tension", b->envelope.tension}}}};
-  }
+  return links;
+}
+
+// The largest plastic strain and each body's plastic work; null when no body yields.
+nlohmann::json plastic_json(const Summary& s) {
+  if (!s.plastic) return nullptr;
+  nlohmann::json work = nlohmann::json::object();
+  for (const auto& [body, w] : s.plastic->work) work[body] = w;
+  return {{"largest_strain", s.plastic->largest_strain},
+          {"body", s.plastic->body},
+          {"x", s.plastic->x},
+          {"t", s.plastic->t},
+          {"work", work}};
+}
+
+nlohmann::json stress_peak_json(const StressPeak& p) {
+  return nlohmann::json{{"value", p.value}, {"body", p.body}, {"x", p.x}, {"t", p.t}};
+}
+
+// The pile-driving blow's measures; null when the case has no [blow].
+nlohmann::json blow_json(const Summary& s) {
+  const auto& b = s.blow;
+  if (!b) return nullptr;
+  return {
+      {"set", b->set},
+      {"blows_per_m", number_or_null(b->blows_per_m())},
+      {"blows_per_250mm", number_or_null(b->blows_per_250mm())},
+      {"max_compression", stress_peak_json(b->max_compression)},
+      {"max_tension", stress_peak_json(b->max_tension)},
+      {"enthru", number_or_null(b->enthru)},
+      {"gauge", b->gauge.empty() ? nlohmann::json(nullptr) : nlohmann::json(b->gauge)},
+      {"hammer_energy", b->hammer_energy},
+      {"transfer_ratio", number_or_null(b->transfer_ratio())},
+      {"ram", b->ram},
+      {"pile", b->pile},
+      {"impact_time", b->impact_time},
+      {"impact_velocity", b->impact_velocity},
+      {"toe_penetration", b->toe_penetration},
+      {"finished", b->finished},
+      {"rest_time", number_or_null(b->rest_time)},
+      {"impact", b->impact},
+      {"impedance", number_or_null(b->impedance)},
+      {"envelope", {{"x", b->envelope.x}, {"compression", b->envelope.compression}, {"tension", b->envelope.tension}}}};
+}
+
+}  // namespace
+
+std::string summary_json(const Case& c, const Summary& s) {
   const double rel = s.energy_initial != 0.0 ? s.energy_error_max / std::abs(s.energy_initial) : s.energy_error_max;
   const nlohmann::json j = {
       {"complete", s.complete},
@@ -453,14 +474,14 @@ std::string summary_json(const Case& c, const Summary& s) {
                         : std::string("given")},
       {"elements", c.bar_elements()},
       {"t_end", s.t_end},
-      {"contacts", contacts},
+      {"contacts", contacts_json(s)},
       {"contact_count", s.contacts.size()},
       {"max_penetration", s.max_penetration},
       {"max_reaction", s.max_reaction},
       {"max_impact_impulse", s.max_impact_impulse},
-      {"links", links},
-      {"plastic", plastic},
-      {"blow", blow},
+      {"links", links_json(s)},
+      {"plastic", plastic_json(s)},
+      {"blow", blow_json(s)},
       {"energy_initial", number_or_null(s.energy_initial)},
       {"energy_final", number_or_null(s.energy_final)},
       {"energy_error_max", number_or_null(s.energy_error_max)},

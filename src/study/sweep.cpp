@@ -329,24 +329,82 @@ SweepRow failed_row(const SweepPoint& p, const std::string& why, const char* sta
   return row;
 }
 
+// The points a sweep runs now and what became of each: its case (none when
+// the case is refused) and its row, filled in as the runs end.
+struct SweepWork {
+  const SweepPlan& plan;
+  const std::vector<std::size_t>& todo;
+  std::vector<SweepRow> rows;
+  std::vector<std::optional<Case>> cases;
+
+  const SweepPoint& point(std::size_t i) const { return plan.points()[todo[i]]; }
+  void refuse(std::size_t i, const std::string& why, const char* status = "refused") {
+    rows[i] = failed_row(point(i), why, status);
+  }
+};
+
+// Every point's case read before any run, so a refused one costs nothing
+// and its row says why.
+SweepWork read_cases(const SweepPlan& plan, const std::vector<std::size_t>& todo) {
+  SweepWork work{plan, todo, std::vector<SweepRow>(todo.size()), std::vector<std::optional<Case>>(todo.size())};
+  for (std::size_t i = 0; i < todo.size(); ++i) {
+    try {
+      work.cases[i] = plan.case_at(work.point(i));
+    } catch (const InputError& e) {
+      work.refuse(i, e.what());
+    }
+  }
+  return work;
+}
+
+// One group's runs: a case alone, or several side by side in a SIMD batch.
+std::vector<RunResult> run_group(const SweepWork& work, const std::vector<std::size_t>& g,
+                                 const std::atomic<bool>* interrupt) {
+  std::vector<RunResult> results;
+  if (g.size() == 1) {
+    RunOptions one;
+    one.interrupt = interrupt;
+    results.push_back(run(*work.cases[g.front()], one));
+  } else {
+    std::vector<const Case*> ptrs;
+    for (auto i : g) ptrs.push_back(&*work.cases[i]);
+    results = run_batch(ptrs, interrupt);
+  }
+  return results;
+}
+
+// Each finished run of a group written to runs/<id> and its row taken from
+// its summary. A run cut short is not kept (a rerun runs it whole); one that
+// cannot be written is refused, and a full disk stops the sweep.
+void keep_runs(SweepWork& work, const std::vector<std::size_t>& g, const std::vector<RunResult>& results,
+               const fs::path& dir, OutputStop& stop) {
+  for (std::size_t k = 0; k < g.size(); ++k) {
+    const auto& p = work.point(g[k]);
+    if (results[k].summary.status == RunStatus::interrupted) {
+      work.refuse(g[k], results[k].summary.message, "interrupted");
+      continue;
+    }
+    try {
+      RunDirectory out(dir / "runs" / p.id, false, "sweep", false);  // the caller cleans runs/ once
+      out.commit(*work.cases[g[k]], results[k]);
+      work.rows[g[k]] = row_from_summary(p, results[k].summary);
+      work.rows[g[k]].batched = g.size() > 1;
+    } catch (const OutputError& e) {
+      stop.record(e);
+      work.refuse(g[k], e.what());
+    } catch (const std::exception& e) {
+      work.refuse(g[k], e.what());
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, const std::vector<std::size_t>& todo,
                                 const SweepOptions& options) {
   if (options.batch) (void)simd_path();  // a bad BARIMPACT_SIMD stops the sweep here, not case by case
-  std::vector<SweepRow> rows(todo.size());
-  auto refused = [&](std::size_t i, const std::string& why, const char* status = "refused") {
-    rows[i] = failed_row(plan.points()[todo[i]], why, status);
-  };
-  std::vector<std::optional<Case>> cases(todo.size());
-  for (std::size_t i = 0; i < todo.size(); ++i) {
-    try {
-      cases[i] = plan.case_at(plan.points()[todo[i]]);
-    } catch (const InputError& e) {
-      refused(i, e.what());
-    }
-  }
-  const auto groups = batch_groups(cases, options.batch);
+  SweepWork work = read_cases(plan, todo);
+  const auto groups = batch_groups(work.cases, options.batch);
   auto interrupted = [&] { return options.interrupt != nullptr && options.interrupt->load(); };
   OutputStop stop(dir);  // a full disk ends the sweep: the runs written so far stay, and a rerun resumes
   run_parallel(groups.size(), options.jobs, [&](std::size_t gi) {
@@ -354,43 +412,18 @@ std::vector<SweepRow> run_sweep(const SweepPlan& plan, const fs::path& dir, cons
     std::vector<RunResult> results;
     try {
       if (interrupted() || stop.stopped()) {
-        for (auto i : g) refused(i, "interrupted before it began", "interrupted");
+        for (auto i : g) work.refuse(i, "interrupted before it began", "interrupted");
         return;
       }
-      if (g.size() == 1) {
-        RunOptions one;
-        one.interrupt = options.interrupt;
-        results.push_back(run(*cases[g.front()], one));
-      } else {
-        std::vector<const Case*> ptrs;
-        for (auto i : g) ptrs.push_back(&*cases[i]);
-        results = run_batch(ptrs, options.interrupt);
-      }
+      results = run_group(work, g, options.interrupt);
     } catch (const std::exception& e) {
-      for (auto i : g) refused(i, e.what());
+      for (auto i : g) work.refuse(i, e.what());
       return;
     }
-    for (std::size_t k = 0; k < g.size(); ++k) {
-      const auto& p = plan.points()[todo[g[k]]];
-      if (results[k].summary.status == RunStatus::interrupted) {
-        refused(g[k], results[k].summary.message, "interrupted");  // not kept: a rerun runs it whole
-        continue;
-      }
-      try {
-        RunDirectory out(dir / "runs" / p.id, false, "sweep", false);  // the caller cleans runs/ once
-        out.commit(*cases[g[k]], results[k]);
-        rows[g[k]] = row_from_summary(p, results[k].summary);
-        rows[g[k]].batched = g.size() > 1;
-      } catch (const OutputError& e) {
-        stop.record(e);
-        refused(g[k], e.what());
-      } catch (const std::exception& e) {
-        refused(g[k], e.what());
-      }
-    }
+    keep_runs(work, g, results, dir, stop);
   });
   stop.rethrow();
-  return rows;
+  return std::move(work.rows);
 }
 
 void prepare_sweep(const fs::path& dir, const SweepOptions& options, bool force, const CommandInputs& inputs,
