@@ -124,7 +124,8 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
                 bool exact, const WriteFlags& flags) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
-  const auto c = barimpact::Case::from_file(case_path, overrides);
+  auto fitted = barimpact::fit_scheme(barimpact::Case::from_file(case_path, overrides));
+  const barimpact::Case c = fitted.c;  // what the results are of: time.step as the scheme fitted it
   barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, {{c.source}, {}});
   barimpact::RunOptions options;
   options.interrupt = &interrupted;
@@ -142,7 +143,7 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
       return true;
     };
   }
-  const auto result = exact ? barimpact::run_exact(c, options) : barimpact::run(c, options);
+  const auto result = exact ? barimpact::run_exact(c, options) : barimpact::run(std::move(fitted), options);
   if (reported) fmt::print(stderr, "\r\033[K");
   dir.commit(c, result);
   if (exact) fmt::print("exact solution: {}\n", result.summary.message);
@@ -268,7 +269,7 @@ struct ConvergeArgs {
 int converge_command(ConvergeArgs& a) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : a.sets) overrides.push_back({s});
-  const auto c = barimpact::Case::from_file(a.case_path, overrides);
+  const auto c = barimpact::fit_scheme(barimpact::Case::from_file(a.case_path, overrides)).c;
   std::stringstream list(a.schemes);
   for (std::string s; std::getline(list, s, ',');) a.arguments.schemes.push_back(s);
   auto o = barimpact::study_options(a.arguments);
@@ -572,7 +573,7 @@ int hopkinson_command(const std::string& setup_path, const std::string& out, boo
 int check_command(const std::string& case_path, const std::vector<std::string>& sets) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
-  const auto c = barimpact::Case::from_file(case_path, overrides);
+  const auto c = barimpact::fit_scheme(barimpact::Case::from_file(case_path, overrides)).c;
   const auto k = barimpact::check_case(c);
   fmt::print("{}: valid\n{}", case_path, barimpact::check_text(c, k));
   if (!k.trouble.empty()) {

@@ -119,7 +119,7 @@ std::vector<Case::Override> overrides_from(const py::object& set) {
   return out;
 }
 
-Case make_case(const py::object& source, const py::object& set) {
+Case read_case(const py::object& source, const py::object& set) {
   const auto overrides = overrides_from(set);
   if (source.is_none()) return Case::from_string("", overrides, "defaults");
   if (py::isinstance<Case>(source)) {  // a case with overrides: still the file it was read from
@@ -139,6 +139,12 @@ Case make_case(const py::object& source, const py::object& set) {
   // A path names a file; TOML text has a newline, a '[' or an '='.
   if (is_path || text.find_first_of("\n[=") == std::string::npos) return Case::from_file(text, overrides);
   return Case::from_string(text, overrides, "string");
+}
+
+// A case as the module hands it out: read, and fitted to its scheme (its
+// step as the scheme takes it, every refusal made), as the command does.
+Case make_case(const py::object& source, const py::object& set) {
+  return fit_scheme(read_case(source, set)).c;
 }
 
 // A read-only numpy view of `n` doubles spaced `stride` apart, kept alive by `owner`.

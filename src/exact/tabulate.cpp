@@ -9,6 +9,7 @@
 
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/exact/lines.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 
@@ -43,7 +44,8 @@ RunResult run_exact_line(const Case& c, const RunOptions& options) {
 }
 }  // namespace
 
-RunResult run_exact(const Case& c, const RunOptions& options) {
+RunResult run_exact(const Case& case_read, const RunOptions& options) {
+  const Case c = fit_scheme(case_read).c;  // the step the case's scheme takes: the table's rows
   if (!c.one_bar()) return run_exact_line(c, options);
   std::shared_ptr<const exact::Solution> solution = exact::for_case(c);
   if (!solution)

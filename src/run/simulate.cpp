@@ -75,8 +75,12 @@ RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
 }
 
 RunResult run(const Case& c, const RunOptions& options) {
-  auto scheme = make_scheme(c);
-  return run_scheme(c, *scheme, c.step_count(), options);
+  return run(fit_scheme(c), options);
+}
+
+RunResult run(FittedCase fitted, const RunOptions& options) {
+  auto scheme = make_scheme(fitted);
+  return run_scheme(fitted.c, *scheme, fitted.c.step_count(), options);
 }
 
 RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options, bool finite_rows) {

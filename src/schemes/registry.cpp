@@ -74,7 +74,7 @@ NewmarkFamily newmark_family(const Case& c) {
 // the scheme on the examples it fits (paper 0.85%, newmark 0.12%, central
 // differences 0.72%, characteristic 1.0% (an impact between grid times),
 // paoli-schatzman 0.48%, moreau-jean 0.86%, mass redistribution 1.4%).
-const std::array<SchemeInfo, 7> table{{
+constexpr std::array<SchemeInfo, scheme_names.size()> table{{
     {"paper", make<LinePaper>, MassMatrix::consistent, StepRule::given, true, false, true, true, 0.03,
      implicit_soil_misfit, paper_family, make_fused_paper},
     {"newmark", make<LineNewmark>, MassMatrix::consistent, StepRule::given, true, false, true, true, 0.01,
@@ -90,6 +90,14 @@ const std::array<SchemeInfo, 7> table{{
     {"characteristic", make<LineCharacteristic>, MassMatrix::lumped, StepRule::transit, false, true, false, false, 0.03,
      characteristic_line_misfit},
 }};
+
+// The case layer reads time.scheme against its list of names: the table's.
+constexpr bool names_agree() {
+  for (std::size_t i = 0; i < table.size(); ++i)
+    if (table[i].name != scheme_names[i]) return false;
+  return true;
+}
+static_assert(names_agree(), "case.hpp's scheme_names must list the table's schemes, in its order");
 
 // "a, b, c": the schemes whose row has `can`.
 std::string schemes_that(bool SchemeInfo::*can) {
@@ -198,12 +206,6 @@ const SchemeInfo& scheme_info(std::string_view name) {
   throw InputError(fmt::format("time.scheme: unknown scheme \"{}\"", name));
 }
 
-std::vector<std::string_view> scheme_names() {
-  std::vector<std::string_view> names;
-  for (const auto& s : table) names.push_back(s.name);
-  return names;
-}
-
 std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
   if (auto m = law_misfit(s, line)) return m;
@@ -212,22 +214,32 @@ std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line) {
   return step_misfit(s, c, line);
 }
 
-std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given) {
+FittedCase fit_scheme(Case c) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
-  const Line line = checked_line(s, c);
+  Line line = checked_line(s, c);
+  auto refuse = [&c](const SchemeMisfit& m) { c.refuse("time." + m.key, m.rule); };
   if (c.time.step_auto)
-    if (auto m = choose_step(s, c, line)) return m;
-  if (auto m = set_transit_step(s, c, line, step_given)) return m;
-  return scheme_misfit(c, line);
+    if (const auto m = choose_step(s, c, line)) refuse(*m);
+  if (const auto m = set_transit_step(s, c, line, c.time.step_given)) refuse(*m);
+  if (const auto m = scheme_misfit(c, line)) refuse(*m);
+  c.check_steps();
+  c.time.step_given = !c.time.step_auto;  // the step is the scheme's now: a resolved case writes it
+  const bool whole = mesh_matters(s, c);
+  return {std::move(c), whole ? std::optional<Line>(std::move(line)) : std::nullopt};
+}
+
+std::unique_ptr<Scheme> make_scheme(FittedCase& fitted) {
+  const Case& c = fitted.c;
+  const SchemeInfo& s = scheme_info(c.time.scheme);
+  Line line = fitted.line ? std::move(*fitted.line) : build_line(c);
+  fitted.line.reset();
+  if (s.one_bar && c.one_bar()) return s.one_bar(c, std::move(line));
+  return s.make(c, std::move(line));
 }
 
 std::unique_ptr<Scheme> make_scheme(const Case& c) {
-  const SchemeInfo& s = scheme_info(c.time.scheme);
-  Line line = checked_line(s, c);
-  if (const auto m = scheme_misfit(c, line)) throw InputError(fmt::format("time.{} {}", m->key, m->rule));
-  if (!mesh_matters(s, c)) line = build_line(c);
-  if (s.one_bar && c.one_bar()) return s.one_bar(c, std::move(line));
-  return s.make(c, std::move(line));
+  FittedCase fitted = fit_scheme(c);
+  return make_scheme(fitted);
 }
 
 }  // namespace barimpact

@@ -10,6 +10,7 @@
 
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
+#include "barimpact/schemes/registry.hpp"
 #include "csv_cells.hpp"
 
 namespace barimpact {
@@ -71,7 +72,7 @@ void parse_capacity(const std::string& text, BearingOptions& o) {
 }
 
 BearingPlan::BearingPlan(const fs::path& case_file, const BearingOptions& o) {
-  const Case c = Case::from_file(case_file, o.sets);  // an override the case refuses is refused here, named
+  const Case c = fit_scheme(Case::from_file(case_file, o.sets)).c;  // an override refused is refused here, named
   const bool toe = c.near_end.law == JointLaw::smith;
   std::vector<std::string> shafts;
   double shaft = 0.0;

@@ -139,7 +139,7 @@ double mean_reaction(const exact::Solution& s, double t, double dt) {
 double varied_courant_step(const std::string& base_toml, std::vector<Case::Override> sets, double fallback) {
   sets.push_back({"time.step=\"auto\""});
   try {
-    return Case::from_string(base_toml, sets, "study", false).time.step;
+    return fit_scheme(Case::from_string(base_toml, sets, "study", false)).c.time.step;
   } catch (const InputError&) {
     return fallback;
   }
@@ -198,7 +198,7 @@ StudyOptions study_options(const StudyArguments& a) {
     o.vary = Variation::parse(*a.vary);
     if (!a.refine) o.refine = Refine::none;  // a variation alone changes only its key
   }
-  const auto known = scheme_names();
+  const auto& known = scheme_names;
   for (const auto& s : a.schemes) {
     if (std::find(known.begin(), known.end(), s) == known.end())
       throw InputError(fmt::format("--schemes: unknown scheme \"{}\" (known: {})", s, fmt::join(known, ", ")));
@@ -315,7 +315,7 @@ Task make_task(const Case& base, const std::string& base_toml, const StudyOption
     }
   }
   try {
-    t.c = Case::from_string(base_toml, sets, "study", false);
+    t.c = fit_scheme(Case::from_string(base_toml, sets, "study", false)).c;
   } catch (const InputError& e) {
     t.status = "refused";
     t.message = e.what();

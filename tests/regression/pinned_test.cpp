@@ -112,7 +112,7 @@ std::vector<LineRun> line_runs() {
       "hopkinson/shpb.toml"};
   std::vector<LineRun> runs;
   for (const auto& example : examples)
-    for (const auto scheme : scheme_names()) {
+    for (const auto scheme : scheme_names) {
       const std::string s(scheme);
       std::vector<std::string> sets{"time.scheme=\"" + s + "\"", "output.fields_at=[]"};
       if (s == "central-difference" || s == "paoli-schatzman") sets.push_back("time.step=\"auto\"");

@@ -18,10 +18,12 @@
 
 namespace barimpact::testing {
 
+// The case as the command and the module hand it on: read, then fitted to
+// its scheme (its step as the scheme takes it, every refusal made).
 inline Case case_from(const std::string& toml, const std::vector<std::string>& sets = {}) {
   std::vector<Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
-  return Case::from_string(toml, overrides, "test.toml");
+  return fit_scheme(Case::from_string(toml, overrides, "test.toml")).c;
 }
 
 // The one-line message of a case that must be refused; a failure (and "")
@@ -38,7 +40,7 @@ inline std::string refusal(const std::string& toml, const std::vector<std::strin
   return "";
 }
 
-// The case is refused (case_from throws) with a message holding every part
+// The case is refused (reading or fitting it throws) with a message holding every part
 // (the key first).
 #define EXPECT_REFUSED(toml, ...)                                                    \
   do {                                                                               \
@@ -50,7 +52,7 @@ inline std::string refusal(const std::string& toml, const std::vector<std::strin
 inline Case example(const std::string& name, const std::vector<std::string>& sets = {}) {
   std::vector<Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
-  return Case::from_file(std::string(BARIMPACT_EXAMPLES_DIR) + "/" + name, overrides);
+  return fit_scheme(Case::from_file(std::string(BARIMPACT_EXAMPLES_DIR) + "/" + name, overrides)).c;
 }
 
 // The case through the line engine's scheme (the table's factory), never a

@@ -8,6 +8,7 @@
 
 #include "../support/pile.hpp"
 #include "../support/run_case.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
 namespace {
@@ -83,6 +84,37 @@ TEST(Case, RefusesSchemesThatDoNotFitAndNamesThoseThatDo) {
   EXPECT_REFUSED("[time]\nscheme = \"central-difference\"\nstep = 0.01", "time.step", "stable limit");
   EXPECT_REFUSED("[obstacle]\nkind = \"rigid\"\n[time]\nscheme = \"characteristic\"\nstep = 0.02", "time.step",
                  "h/c = 0.01");
+}
+
+// Reading a case checks the scheme's name (and its keys' ranges) only; what
+// the scheme makes of the step and the line is decided where the scheme is
+// made (fit_scheme), with the same message naming where the key was set.
+TEST(Case, ReadingChecksTheSchemesNameOnlyAndFittingTheRest) {
+  const std::string above = "[time]\nscheme = \"central-difference\"\nstep = 0.05";
+  const Case read = Case::from_string(above, {}, "test.toml");  // reads: the limit is the scheme's to check
+  EXPECT_TRUE(read.time.step_given);
+  try {
+    (void)fit_scheme(read);
+    ADD_FAILURE() << "fitted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(
+        std::string(e.what()).rfind("test.toml:3: time.step = 0.05 is above central-difference's stable limit", 0), 0u)
+        << e.what();
+  }
+  // "auto" is left to the scheme: 0.9 of h/c = 0.01 on the default bar, free.
+  const Case automatic = Case::from_string(
+      "[obstacle]\nkind = \"none\"\n[time]\nscheme = \"central-difference\"\nstep = \"auto\"", {}, "t");
+  EXPECT_TRUE(automatic.time.step_auto);
+  EXPECT_FALSE(automatic.time.step_given);
+  EXPECT_DOUBLE_EQ(fit_scheme(automatic).c.time.step, auto_step_fraction * 0.01);
+  // An unknown name is the reading's refusal.
+  EXPECT_THROW((void)Case::from_string("[time]\nscheme = \"leapfrog\"", {}, "t"), InputError);
+  // The rules that follow from the step wait for it when the scheme sets it
+  // (h/c = 0.01 here, not the default step), and are checked then.
+  const std::string rigid = "[obstacle]\nkind = \"rigid\"\n[time]\nscheme = \"characteristic\"\nend = 0.004";
+  const Case early = Case::from_string(rigid, {}, "test.toml");
+  EXPECT_THROW((void)fit_scheme(early), InputError);  // time.end < h/c
+  EXPECT_EQ(fit_scheme(Case::from_string(rigid, {{"time.end=0.02"}}, "test.toml")).c.step_count(), 2);
 }
 
 TEST(Case, CharacteristicSetsTheStep) {
@@ -224,7 +256,7 @@ TEST(Case, RefusesMissingAndUnreadableFiles) {
 TEST(Case, EmptyCaseFileGivesTheDefaults) {
   const auto path = std::filesystem::temp_directory_path() / "barimpact-empty-case.toml";
   std::ofstream(path).close();
-  const Case c = Case::from_file(path);
+  const Case c = fit_scheme(Case::from_file(path)).c;
   std::filesystem::remove(path);
   EXPECT_EQ(c.to_toml(), case_from("").to_toml());
 }

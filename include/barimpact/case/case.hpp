@@ -7,7 +7,10 @@
 // expressions are kept as text here and compiled by `Expression`.
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -130,6 +133,7 @@ struct TimeData {
   double end = 1.0;
   double step = 0.01;      ///< dt
   bool step_auto = false;  ///< step = "auto": an explicit scheme's stable step for the line
+  bool step_given = true;  ///< step set to a number (in code, or by the file or --set): final but for a refusal
   std::string scheme = "paper";
   double alpha = 0.25;       ///< alpha of (6.3)
   double lambda = 0.0;       ///< lambda_shift: z = exp(-lambda t) u, (6.1)
@@ -138,6 +142,12 @@ struct TimeData {
   double theta = 0.5;        ///< Moreau-Jean theta
   double restitution = 0.0;  ///< e: Paoli-Schatzman, Moreau-Jean
 };
+
+/// The names time.scheme takes, in the order the table of schemes lists them
+/// (schemes/registry.hpp, which holds what each scheme is and runs).
+inline constexpr std::array<std::string_view, 7> scheme_names{
+    "paper",           "newmark",     "central-difference", "mass-redistribution",
+    "paoli-schatzman", "moreau-jean", "characteristic"};
 
 /// How a run directory holds the history and the fields: history.csv and
 /// fields.csv, or one results.h5 (HDF5).
@@ -179,6 +189,14 @@ struct Case {
   /// The case file it was read from (from_file), empty for text: an input
   /// its results never overwrite.
   std::filesystem::path source;
+  /// Where the keys that fitting the step to the scheme may refuse were set
+  /// ("time.step", "time.end", "time.scheme", "time.beta",
+  /// "output.fields_at", "output.every"): a file and line, or a --set.
+  std::map<std::string, std::string, std::less<>> sites;
+
+  /// Throws InputError "<where key was set>: <key> <rule>", as reading does
+  /// (for a case made in code, "<key> <rule>").
+  [[noreturn]] void refuse(std::string_view key, std::string_view rule) const;
 
   /// The line as the paper's single bar, when it is one: one uniform
   /// elastic bar, no joints, gravity or shaft, its near end free or an
@@ -200,6 +218,13 @@ struct Case {
   /// the line when `cite_lines` (not for text made from a dict).
   static Case from_string(std::string_view toml, const std::vector<Override>& overrides = {},
                           std::string_view origin = "case", bool cite_lines = true);
+
+  /// The rules that follow from a final time step: at most 1e10 steps,
+  /// time.end >= time.step, output.fields_at within the run and at most 1e8
+  /// history rows. Reading checks them when time.step is a number; when it
+  /// is "auto" or left to the scheme, fitting the step does (fit_scheme).
+  /// Throws InputError naming the key.
+  void check_steps() const;
 
   /// The number of steps N: t_N = N dt is the first step time >= end
   /// (up to a relative 1e-9, so that end = 4, step = 0.01 gives 400).

@@ -14,6 +14,7 @@
 #include "barimpact/run/blow.hpp"
 #include "barimpact/run/observer.hpp"
 #include "barimpact/run/probe.hpp"
+#include "barimpact/schemes/registry.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
 namespace barimpact {
@@ -89,9 +90,13 @@ struct RunOptions {
   const std::atomic<bool>* interrupt = nullptr;
 };
 
-/// Runs `c` with its scheme and the history, field and contact observers.
-/// Throws InputError when the case does not fit its scheme.
+/// Runs `c` with its scheme and the history, field and contact observers:
+/// fits it to the scheme first (fit_scheme). Throws InputError when the case
+/// does not fit its scheme.
 [[nodiscard]] RunResult run(const Case& c, const RunOptions& options = {});
+/// The same for a case already fitted (the caller keeps fitted.c, the case
+/// the results are of); its line, if fitting kept one, is the run's.
+[[nodiscard]] RunResult run(FittedCase fitted, const RunOptions& options = {});
 
 /// The standard observers of one run of `c` (the history with its probes,
 /// field snapshots, contact and link episodes, plastic strains, the blow)

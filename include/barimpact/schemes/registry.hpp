@@ -67,9 +67,6 @@ struct SchemeInfo {
 /// The row of `name`. Throws InputError naming time.scheme when there is none.
 [[nodiscard]] const SchemeInfo& scheme_info(std::string_view name);
 
-/// The names `time.scheme` accepts.
-[[nodiscard]] std::vector<std::string_view> scheme_names();
-
 /// time.step = "auto" takes this fraction of the explicit scheme's stable step.
 inline constexpr double auto_step_fraction = 0.9;
 
@@ -77,14 +74,27 @@ inline constexpr double auto_step_fraction = 0.9;
 /// does not run, then its step (above an explicit limit, or not h/c).
 [[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line);
 
-/// Checks `c.time.scheme` against `c` as the case is read. `time.step =
-/// "auto"` sets the explicit schemes' step (auto_step_fraction of their
-/// stable step) and `characteristic` sets dt = h/c (when `step_given` it
-/// must already be that). Returns the first misfit, if any.
-[[nodiscard]] std::optional<SchemeMisfit> scheme_misfit(Case& c, bool step_given);
+/// A case fitted to its scheme (fit_scheme), and its line when fitting
+/// needed it whole (an explicit scheme's limit, "auto", h/c): the run takes
+/// that line rather than building it again. Empty when the scheme's fit
+/// reads the bodies alone (a coarse line of them), so that fitting a large
+/// case costs its bodies, not its nodes.
+struct FittedCase {
+  Case c;
+  std::optional<Line> line;
+};
 
-/// The scheme `c.time.scheme` names, set up for `c`. Throws InputError when
-/// it cannot run the case.
+/// Fits `c` to its scheme where the scheme is made, not where the case is
+/// read: time.step = "auto" becomes auto_step_fraction of an explicit
+/// scheme's stable step and characteristic's step dt = h/c (a step given
+/// must be that); the laws, bodies and step the scheme cannot run are
+/// refused, then the rules that follow from the step (Case::check_steps).
+/// Throws InputError naming the key where it was set, as reading does.
+[[nodiscard]] FittedCase fit_scheme(Case c);
+
+/// The scheme of a fitted case, on its line (taken from `fitted`, or built).
+[[nodiscard]] std::unique_ptr<Scheme> make_scheme(FittedCase& fitted);
+/// Fits a copy of `c` and makes its scheme (its step the fitted one).
 [[nodiscard]] std::unique_ptr<Scheme> make_scheme(const Case& c);
 
 }  // namespace barimpact
