@@ -398,54 +398,63 @@ void LinePaper::prepare(long long m) {
   const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
   for (std::size_t j : extra_nodes_) extra_[j] = 0.0;
   changed_.clear();
-  for (std::size_t i = 0; i < line_.links.size(); ++i) {
-    const ContactLaw& law = line_.links[i].law;
-    const double g = line_.links[i].gap, k = law.stiffness;
-    const double ym = along(line_, i, zc), yo = along(line_, i, zo);
-    const double c = -(ym / e0 + g);
-    link_c_[i] = c;
-    c_max_[i] = std::max(c_max_[i], c);
-    if (law.kind == LawKind::smith) {  // soil_'s force, in soil_rhs_
-      status_[i] = Status::base;
-      sigma_[i] = 0.0;
-      continue;
-    }
-    const double implicit_rest = (1.0 - 2.0 * alpha_) * ym + alpha_ * yo;  // y^{m,alpha} but its z^{m+1} part
-    double s = 0.5 * k * (std::abs(ym + g * e0) - g * ebar), sigma = 0.0;
-    Status status = Status::base;
-    if (law.kind == LawKind::viscoelastic && c > 0.0) {
-      const double l = law.viscosity, rate = (c + (yo / em1 + g)) / dt_;  // (c^m - c^{m-1}) / dt
-      if (k * c + l * rate > 0.0) {
-        status = Status::pushing;
-        s += l * (yo * 0.5 / dt_ - lambda_ * implicit_rest);
-        sigma = l * (alpha_ * lambda_ + 0.5 / dt_);
-      } else {
-        status = Status::clipped;
-        s = 0.5 * k * implicit_rest;
-        sigma = -0.5 * alpha_ * k;
-      }
-    } else if (law.kind == LawKind::cushion && c_max_[i] > 0.0 && c < c_max_[i]) {
-      // Off the loading line: the kink moves to c_off = (1 - e^2) c_max, where
-      // the law unloads to 0, as a gap g + c_off. Above it the slope is k/e^2;
-      // at or below it (clipped) the factored k/2 is kept, its force ~0 as the
-      // elastic law's apart, and A is left alone.
-      const double e2 = law.restitution * law.restitution, c_off = (1.0 - e2) * c_max_[i], G = g + c_off;
-      if (c > c_off) {
-        const double kk = k / e2, delta = 0.5 * (kk - k);
-        status = Status::unloading;
-        s = 0.5 * kk * (std::abs(ym + G * e0) - G * ebar) - delta * implicit_rest;
-        sigma = alpha_ * delta;
-      } else {
-        s = 0.5 * k * (std::abs(ym + G * e0) - G * ebar);
-      }
-    }
-    status_[i] = status;
-    sigma_[i] = sigma;
-    if (s != 0.0) add_link_force(i, s, extra_.data());
-  }
+  for (std::size_t i = 0; i < line_.links.size(); ++i) link_row(i, zc, zo, em1, e0, ebar);
   for (std::size_t r = 0; r < modifiable_.size(); ++r)
     if (sigma_[modifiable_[r]] != 0.0) changed_.push_back(r);
+  end_rows(m, zc, e0, ep1);
+}
 
+// Link i's terms at level m: its compression and largest compression, its
+// law's status, the explicit half of its force into extra_ and its share of
+// A (sigma_).
+void LinePaper::link_row(std::size_t i, const double* zc, const double* zo, double em1, double e0, double ebar) {
+  const ContactLaw& law = line_.links[i].law;
+  const double g = line_.links[i].gap, k = law.stiffness;
+  const double ym = along(line_, i, zc), yo = along(line_, i, zo);
+  const double c = -(ym / e0 + g);
+  link_c_[i] = c;
+  c_max_[i] = std::max(c_max_[i], c);
+  if (law.kind == LawKind::smith) {  // soil_'s force, in soil_rhs_
+    status_[i] = Status::base;
+    sigma_[i] = 0.0;
+    return;
+  }
+  const double implicit_rest = (1.0 - 2.0 * alpha_) * ym + alpha_ * yo;  // y^{m,alpha} but its z^{m+1} part
+  double s = 0.5 * k * (std::abs(ym + g * e0) - g * ebar), sigma = 0.0;
+  Status status = Status::base;
+  if (law.kind == LawKind::viscoelastic && c > 0.0) {
+    const double l = law.viscosity, rate = (c + (yo / em1 + g)) / dt_;  // (c^m - c^{m-1}) / dt
+    if (k * c + l * rate > 0.0) {
+      status = Status::pushing;
+      s += l * (yo * 0.5 / dt_ - lambda_ * implicit_rest);
+      sigma = l * (alpha_ * lambda_ + 0.5 / dt_);
+    } else {
+      status = Status::clipped;
+      s = 0.5 * k * implicit_rest;
+      sigma = -0.5 * alpha_ * k;
+    }
+  } else if (law.kind == LawKind::cushion && c_max_[i] > 0.0 && c < c_max_[i]) {
+    // Off the loading line: the kink moves to c_off = (1 - e^2) c_max, where
+    // the law unloads to 0, as a gap g + c_off. Above it the slope is k/e^2;
+    // at or below it (clipped) the factored k/2 is kept, its force ~0 as the
+    // elastic law's apart, and A is left alone.
+    const double e2 = law.restitution * law.restitution, c_off = (1.0 - e2) * c_max_[i], G = g + c_off;
+    if (c > c_off) {
+      const double kk = k / e2, delta = 0.5 * (kk - k);
+      status = Status::unloading;
+      s = 0.5 * kk * (std::abs(ym + G * e0) - G * ebar) - delta * implicit_rest;
+      sigma = alpha_ * delta;
+    } else {
+      s = 0.5 * k * (std::abs(ym + G * e0) - G * ebar);
+    }
+  }
+  status_[i] = status;
+  sigma_[i] = sigma;
+  if (s != 0.0) add_link_force(i, s, extra_.data());
+}
+
+// The force ends' alpha-mean values and the held rows' targets at level m.
+void LinePaper::end_rows(long long m, const double* zc, double e0, double ep1) {
   const double t = static_cast<double>(m + 1) * dt_;
   const std::array<double, 3> w = load_weights(m);
   const auto slot = [](long long k) { return static_cast<std::size_t>(k % 3); };
@@ -482,23 +491,27 @@ double LinePaper::special_row(std::size_t j, double load) {
 // z^{m+1} into prev_: the right-hand side B1 z^m + B0 z^{m-1} + F^{m,alpha} +
 // extra formed row by row as the two-ended solve's sweeps inwards reach it
 // (the single bar's constant stencils in each stretch), then the sweep out.
+// F at t_{m+1}, t_m, t_{m-1} (a steady load's in the middle; an unsteady
+// load's newest formed here, into the slot three levels old).
+template <LinePaper::LoadMode mode>
+std::array<const double*, 3> LinePaper::level_loads(long long m) {
+  if constexpr (mode == LoadMode::steady) {
+    return {nullptr, loads_[0].data(), nullptr};
+  } else if constexpr (mode == LoadMode::unsteady || mode == LoadMode::soil) {
+    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
+    load_into(static_cast<double>(m + 1) * dt_, newest);
+    return {newest.data(), loads_[static_cast<std::size_t>(m % 3)].data(),
+            loads_[static_cast<std::size_t>((m - 1) % 3)].data()};
+  }
+  return {nullptr, nullptr, nullptr};
+}
+
 template <LinePaper::LoadMode mode>
 void LinePaper::sweeps(long long m) {
   const double* __restrict zc = next_;
   const double* __restrict zo = cur_;
   const std::array<double, 3> w = load_weights(m);
-  const double* fp = nullptr;
-  const double* f0 = nullptr;
-  const double* fm = nullptr;
-  if constexpr (mode == LoadMode::steady) {
-    f0 = loads_[0].data();
-  } else if constexpr (mode == LoadMode::unsteady || mode == LoadMode::soil) {
-    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
-    load_into(static_cast<double>(m + 1) * dt_, newest);
-    fp = newest.data();
-    f0 = loads_[static_cast<std::size_t>(m % 3)].data();
-    fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
-  }
+  const auto [fp, f0, fm] = level_loads<mode>(m);
   const double wbar = w[0] + w[1] + w[2];
   const double* soil = soil_rhs_.data();
   auto load = [=](std::size_t j) {

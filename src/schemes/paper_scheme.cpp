@@ -63,13 +63,18 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
       a_(one.bar.stiffness),
       b_(one.bar.viscosity),
       clamped_(one.bar.far_end == FarEnd::clamped) {
-  const std::size_t n = line_.nodes();
   if (!line_.links.empty()) {  // the near end's link, elastic or viscoelastic (the table's penalty laws)
     law_ = &line_.links.front().law;
     gap_ = line_.links.front().gap;
     k_ = law_->stiffness;
     l_ = law_->kind == LawKind::viscoelastic ? law_->viscosity : 0.0;
   }
+  factor(form_matrices());
+  if (l_ > 0.0) respond_to_dashpot();
+  allocate(c, one);
+}
+
+std::array<double, 3> PaperScheme::form_matrices() {
   const double k = k_;
   // On the uniform mesh every matrix has three distinct rows, the first, an
   // inner and the last, and one off-diagonal: A, B1 and B0 are formed on
@@ -96,8 +101,13 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
   b0_off_ = B0.off[0];
   b1_diag_ = {B1.diag[0], B1.diag[1], B1.diag[2]};
   b0_diag_ = {B0.diag[0], B0.diag[1], B0.diag[2]};
+  return {A.diag[0], A.diag[1], A.diag[2]};
+}
+
+void PaperScheme::factor(const std::array<double, 3>& rows) {
+  const std::size_t n = line_.nodes();
   // A's row j: the first, an inner or the last (n = 1: the first is the last).
-  const auto a_diag = [&](std::size_t j) { return A.diag[j == 0 ? (n == 1 ? 2 : 0) : j == n - 1 ? 2 : 1]; };
+  const auto a_diag = [&](std::size_t j) { return rows[j == 0 ? (n == 1 ? 2 : 0) : j == n - 1 ? 2 : 1]; };
 
   // The two-ended factorisation of the symmetric positive definite A, once
   // (see twisted_solve): pivots p_j from row 0 down to row k - 1 and from row
@@ -116,17 +126,22 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
     upper_[j] = a_off_ * inv_[j];
   }
   inv_[twist] = 1.0 / (a_diag(twist) - (twist > 0 ? a_off_ * upper_[twist - 1] : 0.0) - a_off_ * upper_[twist + 1]);
+}
 
-  if (l_ > 0.0) {
-    dashpot_sigma_ = l_ * (alpha_ * lambda_ + 0.5 / dt_);
-    dashpot_response_.assign(n, 0.0);
-    double* w = dashpot_response_.data();
-    twisted_solve(
-        last, a_off_, 1.0, 0.0, [](std::size_t) { return 0.0; }, [&](std::size_t j) { return inv_[j]; },
-        [&](std::size_t j) { return upper_[j]; }, [&](std::size_t j) { return w[j]; },
-        [&](std::size_t j, double v) { w[j] = v; });
-  }
+// The viscoelastic obstacle's w = A^{-1} e0, once (Sherman-Morrison).
+void PaperScheme::respond_to_dashpot() {
+  const std::size_t n = line_.nodes();
+  dashpot_sigma_ = l_ * (alpha_ * lambda_ + 0.5 / dt_);
+  dashpot_response_.assign(n, 0.0);
+  double* w = dashpot_response_.data();
+  twisted_solve(
+      n - 1, a_off_, 1.0, 0.0, [](std::size_t) { return 0.0; }, [&](std::size_t j) { return inv_[j]; },
+      [&](std::size_t j) { return upper_[j]; }, [&](std::size_t j) { return w[j]; },
+      [&](std::size_t j, double v) { w[j] = v; });
+}
 
+void PaperScheme::allocate(const Case& c, const OneBar& one) {
+  const std::size_t n = line_.nodes();
   for (auto& level : levels_) level.assign(n, 0.0);
   u0_.assign(n, 0.0);
   v0_.assign(n, 0.0);
@@ -238,24 +253,11 @@ void PaperScheme::solve_level(long long m) {
   const double em1 = 1.0 / scale(m - 1), e0 = 1.0 / scale(m), ep1 = 1.0 / scale(m + 1);
   const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
 
-  // Load weights: F^{m,alpha} = cp F(t_{m+1}) + c0 F(t_m) + cm F(t_{m-1}), all scaled by exp(-lambda t).
-  const double* __restrict fp = nullptr;
-  const double* __restrict f0 = nullptr;
-  const double* __restrict fm = nullptr;
-  double cp = 0.0, c0 = 0.0, cm = 0.0;
-  if constexpr (mode == LoadMode::steady) {
-    f0 = loads_[0].data();
-    c0 = ebar;
-  } else if constexpr (mode == LoadMode::unsteady) {
-    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
-    line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
-    fp = newest.data();
-    f0 = loads_[static_cast<std::size_t>(m % 3)].data();
-    fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
-    cp = alpha_ * ep1;
-    c0 = (1.0 - 2.0 * alpha_) * e0;
-    cm = alpha_ * em1;
-  }
+  const AlphaLoad f = alpha_load<mode>(m, em1, e0, ep1, ebar);
+  const double* __restrict fp = f.fp;
+  const double* __restrict f0 = f.f0;
+  const double* __restrict fm = f.fm;
+  const double cp = f.cp, c0 = f.c0, cm = f.cm;
   auto load = [&](std::size_t j) {
     if constexpr (mode == LoadMode::zero) {
       (void)j;
@@ -296,12 +298,35 @@ void PaperScheme::solve_level(long long m) {
       },
       [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
       [&](std::size_t j, double v) { zn[j] = v; });
-  if (sigma != 0.0) {
-    // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
-    const double* __restrict w = dashpot_response_.data();
-    const double s = sigma * zn[0] / (1.0 + sigma * w[0]);
-    for (std::size_t j = 0; j < n; ++j) zn[j] -= s * w[j];
+  if (sigma != 0.0) add_dashpot(sigma, zn);
+}
+
+// Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
+void PaperScheme::add_dashpot(double sigma, double* __restrict y) const {
+  const double* __restrict w = dashpot_response_.data();
+  const double s = sigma * y[0] / (1.0 + sigma * w[0]);
+  for (std::size_t j = 0; j < line_.nodes(); ++j) y[j] -= s * w[j];
+}
+
+// Load weights: F^{m,alpha} = cp F(t_{m+1}) + c0 F(t_m) + cm F(t_{m-1}), all
+// scaled by exp(-lambda t); an unsteady load's F(t_{m+1}) formed here.
+template <PaperScheme::LoadMode mode>
+PaperScheme::AlphaLoad PaperScheme::alpha_load(long long m, double em1, double e0, double ep1, double ebar) {
+  AlphaLoad f;
+  if constexpr (mode == LoadMode::steady) {
+    f.f0 = loads_[0].data();
+    f.c0 = ebar;
+  } else if constexpr (mode == LoadMode::unsteady) {
+    auto& newest = loads_[static_cast<std::size_t>((m + 1) % 3)];
+    line_.load(*body_force_, static_cast<double>(m + 1) * dt_, newest);
+    f.fp = newest.data();
+    f.f0 = loads_[static_cast<std::size_t>(m % 3)].data();
+    f.fm = loads_[static_cast<std::size_t>((m - 1) % 3)].data();
+    f.cp = alpha_ * ep1;
+    f.c0 = (1.0 - 2.0 * alpha_) * e0;
+    f.cm = alpha_ * em1;
   }
+  return f;
 }
 
 // The viscoelastic obstacle at level m, its status explicit (d^m and dd/dt^m

@@ -128,6 +128,10 @@ class LinePaper final : public LineScheme {
   /// Each link's status, explicit forces and sigma at level m; the force ends'
   /// values; the held rows' known z^{m+1}.
   void prepare(long long m);
+  template <LoadMode mode>
+  std::array<const double*, 3> level_loads(long long m);
+  void link_row(std::size_t i, const double* zc, const double* zo, double em1, double e0, double ebar);
+  void end_rows(long long m, const double* zc, double e0, double ep1);
   /// The elastic step: z^{m+1} from levels m and m - 1 (m = n + 1), loads
   /// with the plastic strains' iterate.
   void advance_elastic();

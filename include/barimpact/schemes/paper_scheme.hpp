@@ -79,8 +79,26 @@ class PaperScheme final : public Scheme {
   friend class PaperBatch;
   enum class LoadMode { zero, steady, unsteady };
 
+  /// A, B1 and B0 on their three distinct rows (members) and A's diagonal there.
+  [[nodiscard]] std::array<double, 3> form_matrices();
+  /// A's two-ended factors from its rows (the first, an inner, the last).
+  void factor(const std::array<double, 3>& rows);
+  void respond_to_dashpot();
+  /// The levels, the loads and the initial values' expressions.
+  void allocate(const Case& c, const OneBar& one);
   template <LoadMode mode>
   void solve_level(long long m);
+  /// F^{m,alpha}'s loads and weights (paper_scheme.cpp).
+  struct AlphaLoad {
+    const double* fp = nullptr;
+    const double* f0 = nullptr;
+    const double* fm = nullptr;
+    double cp = 0.0, c0 = 0.0, cm = 0.0;
+  };
+  template <LoadMode mode>
+  AlphaLoad alpha_load(long long m, double em1, double e0, double ep1, double ebar);
+  /// The viscoelastic obstacle's dashpot added to a solve's y (add_dashpot's Sherman-Morrison).
+  void add_dashpot(double sigma, double* y) const;
   /// Rotates the levels and books the budget of level m.
   void finish_level(long long m);
   /// The viscoelastic obstacle's status at level m and its terms in row 0;
