@@ -276,10 +276,7 @@ void LineCentralDifference::start() {
     book_link_damping(i, -line_.opening(i, cur_), rate, viscous, contact);
   }
   for (std::size_t j : line_.shaft.nodes) contact -= soil_damping_[j] * v0_[j];  // R_d dw/dt, w = -u
-  work_half_ = 0.5 * dt_ * power;
-  dissipation_half_ = 0.5 * dt_ * viscous;
-  contact_half_ = 0.5 * dt_ * contact;
-  work_last_ = dissipation_last_ = contact_last_ = 0.0;
+  budget_.start(dt_, power, viscous, contact);
 }
 
 void LineCentralDifference::advance() {
@@ -299,12 +296,7 @@ void LineCentralDifference::advance() {
   n_ = m;
   double dw = 0.0, dd = 0.0, dc = soil_damping_work_;
   book_budget(prev_, cur_, next_, dw, dd, dc);
-  work_last_ = dw;
-  dissipation_last_ = dd;
-  contact_last_ = dc;
-  work_half_ += dw;
-  dissipation_half_ += dd;
-  contact_half_ += dc;
+  budget_.book(dw, dd, dc);
 }
 
 // Level m's increments, each force at t_m tested with (u^{m+1} - u^{m-1}) / 2.
@@ -362,9 +354,9 @@ Energies LineCentralDifference::energies() const {
   }
   e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +
                         line_.bond_form(BondKind::spring, false, cur_, next_));
-  e.work = work_half_ - 0.5 * work_last_;
-  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
-  e.contact = contact_half_ - 0.5 * contact_last_ + link_hysteresis() + slip_work_;
+  e.work = budget_.work();
+  e.dissipation = budget_.dissipation();
+  e.contact = budget_.contact() + link_hysteresis() + slip_work_;
   return e;
 }
 
@@ -378,7 +370,7 @@ double LineCentralDifference::soil_slip_work() const {
 bool LineCentralDifference::finite() const {
   const std::size_t last = line_.nodes() - 1;
   return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
-         std::isfinite(work_half_) && std::isfinite(dissipation_half_);
+         std::isfinite(budget_.work_half) && std::isfinite(budget_.dissipation_half);
 }
 
 }  // namespace barimpact

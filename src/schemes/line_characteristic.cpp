@@ -228,10 +228,7 @@ void LineCharacteristic::advance() {
   report_forces(false);
   double dw = 0.0, dc = 0.0;
   book_budget(dw, dc);
-  work_last_ = dw;
-  contact_last_ = dc;
-  work_half_ += dw;
-  contact_half_ += dc;
+  budget_.book(dw, 0.0, dc);
 }
 
 double LineCharacteristic::support(const Port& p) const {
@@ -275,9 +272,7 @@ void LineCharacteristic::book_first_half_step() {
     const double over = (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_;
     contact += impulse_[i] / dt_ * 0.5 * (rate + over);
   }
-  work_half_ = 0.5 * dt_ * power;
-  contact_half_ = 0.5 * dt_ * contact;
-  work_last_ = contact_last_ = 0.0;
+  budget_.start(dt_, power, 0.0, contact);
 }
 
 // Level n's increments: each external force at t_n, (J^{n-1} + J^n) / (2 dt)
@@ -321,15 +316,15 @@ Energies LineCharacteristic::energies() const {
   const double s1 = half_step(prev_, cur_, k1), s2 = half_step(cur_, next_, k2);
   e.kinetic = 0.5 * (k1 + k2);
   e.strain = 0.5 * (s1 + s2);
-  e.work = work_half_ - 0.5 * work_last_;
-  e.contact = contact_half_ - 0.5 * contact_last_;
+  e.work = budget_.work();
+  e.contact = budget_.contact();
   return e;
 }
 
 bool LineCharacteristic::finite() const {
   const std::size_t last = line_.nodes() - 1;
   return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
-         std::isfinite(work_half_) && std::isfinite(contact_half_);
+         std::isfinite(budget_.work_half) && std::isfinite(budget_.contact_half);
 }
 
 namespace {

@@ -75,14 +75,7 @@ double LineMassRedistribution::special_row(std::size_t j) {
     if (j == line_.near.node && line_.near.kind == EndKind::force) r += near_mean_;
     if (j == line_.far.node && line_.far.kind == EndKind::force) r += far_mean_;
   }
-  for (auto& h : held_)
-    if (j == h.node) {
-      h.rhs = r;
-      return h.value;
-    }
-  for (const auto& h : held_)
-    if (j == h.neighbour) r -= h.coupling * h.value;  // A_kj u_j^{n+1} known
-  return r;
+  return held_row(held_, j, r);
 }
 
 // One pass towards x = 0 forms the right-hand sides inside A's first sweep

@@ -51,14 +51,7 @@ double LineMoreauJean::special_row(std::size_t j) {
   double r = row<loaded>(j);
   if (j == line_.near.node && line_.near.kind == EndKind::force) r += near_impulse_;
   if (j == line_.far.node && line_.far.kind == EndKind::force) r += far_impulse_;
-  for (auto& h : held_)
-    if (j == h.node) {
-      h.rhs = r;
-      return h.value;
-    }
-  for (const auto& h : held_)
-    if (j == h.neighbour) r -= h.coupling * h.value;  // W_kj v_j^{n+1} known
-  return r;
+  return held_row(held_, j, r);
 }
 
 // One pass towards x = 0 forms P v + Q u + loads inside W's first sweep (the

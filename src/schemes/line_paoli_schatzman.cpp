@@ -48,14 +48,7 @@ double LinePaoliSchatzman::special_row(const double* um, const double* u, std::s
   double r = (load_zero_ ? 0.0 : load_[j]) + extra_[j];
   if (j + 1 < line_.nodes()) r += tension(j);
   if (j > 0) r -= tension(j - 1);
-  for (auto& h : held_)
-    if (j == h.node) {
-      h.rhs = r;
-      return h.value;
-    }
-  for (const auto& h : held_)
-    if (j == h.neighbour) r -= h.coupling * h.value;  // M_kj x_j known
-  return r;
+  return held_row(held_, j, r);
 }
 
 // The forces inside M's first sweep (the single bar's constant stencils in
@@ -169,10 +162,7 @@ void LinePaoliSchatzman::start() {
     if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
     book_link_damping(i, -line_.opening(i, cur_), rate, viscous, contact);
   }
-  work_half_ = 0.5 * dt_ * power;
-  dissipation_half_ = 0.5 * dt_ * viscous;
-  contact_half_ = 0.5 * dt_ * contact;
-  work_last_ = dissipation_last_ = contact_last_ = 0.0;
+  budget_.start(dt_, power, viscous, contact);
 }
 
 void LinePaoliSchatzman::advance() {
@@ -192,12 +182,7 @@ void LinePaoliSchatzman::advance() {
   n_ = m;
   double dw = 0.0, dd = 0.0, dc = 0.0;
   book_budget(prev_, cur_, next_, dw, dd, dc);
-  work_last_ = dw;
-  dissipation_last_ = dd;
-  contact_last_ = dc;
-  work_half_ += dw;
-  dissipation_half_ += dd;
-  contact_half_ += dc;
+  budget_.book(dw, dd, dc);
 }
 
 // Level m's increments, each force at t_m tested with (u^{m+1} - u^{m-1}) / 2.
@@ -250,16 +235,16 @@ Energies LinePaoliSchatzman::energies() const {
   }
   e.obstacle += 0.25 * (line_.bond_form(BondKind::spring, false, prev_, cur_) +
                         line_.bond_form(BondKind::spring, false, cur_, next_));
-  e.work = work_half_ - 0.5 * work_last_;
-  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
-  e.contact = contact_half_ - 0.5 * contact_last_ + link_hysteresis();
+  e.work = budget_.work();
+  e.dissipation = budget_.dissipation();
+  e.contact = budget_.contact() + link_hysteresis();
   return e;
 }
 
 bool LinePaoliSchatzman::finite() const {
   const std::size_t last = line_.nodes() - 1;
   return std::isfinite(cur_[0]) && std::isfinite(cur_[last]) && std::isfinite(next_[0]) && std::isfinite(next_[last]) &&
-         std::isfinite(work_half_) && std::isfinite(dissipation_half_);
+         std::isfinite(budget_.work_half) && std::isfinite(budget_.dissipation_half);
 }
 
 }  // namespace barimpact

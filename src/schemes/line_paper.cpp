@@ -478,14 +478,7 @@ double LinePaper::special_row(std::size_t j, double load) {
   double r = b1_.diag[j] * zc[j] + b0_.diag[j] * zo[j] + load + extra_[j];
   if (j > 0) r += b1_.off[j - 1] * zc[j - 1] + b0_.off[j - 1] * zo[j - 1];
   if (j + 1 < line_.nodes()) r += b1_.off[j] * zc[j + 1] + b0_.off[j] * zo[j + 1];
-  for (auto& h : held_)
-    if (j == h.node) {
-      h.rhs = r;
-      return h.value;
-    }
-  for (const auto& h : held_)
-    if (j == h.neighbour) r -= h.coupling * h.value;  // A_kj z_j^{m+1} known
-  return r;
+  return held_row(held_, j, r);
 }
 
 // z^{m+1} into prev_: the right-hand side B1 z^m + B0 z^{m-1} + F^{m,alpha} +

@@ -118,8 +118,7 @@ class LineCentralDifference final : public LineScheme {
   double* next_ = nullptr;
   bool viscous_ = false;
   double near_support_ = 0.0, far_support_ = 0.0;  // held ends' forces along +x at t_n
-  double work_half_ = 0, dissipation_half_ = 0, contact_half_ = 0;
-  double work_last_ = 0, dissipation_last_ = 0, contact_last_ = 0;
+  CentredBudget budget_;
 };
 
 }  // namespace barimpact

@@ -157,7 +157,7 @@ class LineCharacteristic final : public LineScheme {
   double* prev_ = nullptr;
   double* cur_ = nullptr;
   double* next_ = nullptr;
-  double work_half_ = 0, contact_half_ = 0, work_last_ = 0, contact_last_ = 0;
+  CentredBudget budget_;  // its dissipation stays 0: the scheme runs no viscosity
 };
 
 /// The step `characteristic` takes on `line`: the element transit time

@@ -83,8 +83,7 @@ class LinePaoliSchatzman final : public LineScheme {
   double* cur_ = nullptr;
   double* next_ = nullptr;
   bool viscous_ = false;
-  double work_half_ = 0, dissipation_half_ = 0, contact_half_ = 0;
-  double work_last_ = 0, dissipation_last_ = 0, contact_last_ = 0;
+  CentredBudget budget_;
 };
 
 }  // namespace barimpact

@@ -62,6 +62,21 @@ struct HeldRow {
   }
 };
 
+/// Row j's right-hand side `r` as a step with held rows solves it: a held
+/// row keeps r (the support's share is read from it) and gives its known
+/// value; its neighbour's row moves the held node's coupling A_kj x_j to the
+/// right-hand side.
+inline double held_row(std::vector<HeldRow>& held, std::size_t j, double r) {
+  for (auto& h : held)
+    if (j == h.node) {
+      h.rhs = r;
+      return h.value;
+    }
+  for (const auto& h : held)
+    if (j == h.neighbour) r -= h.coupling * h.value;
+  return r;
+}
+
 /// The held ends of `line`, their rows of `a` made the identity.
 [[nodiscard]] std::vector<HeldRow> hold_rows(const Line& line, Tridiagonal& a);
 /// Their nodes.

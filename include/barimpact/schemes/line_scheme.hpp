@@ -26,6 +26,35 @@
 
 namespace barimpact {
 
+/// A three-level scheme's budget (central differences, Paoli-Schatzman,
+/// characteristic): level m's increments of W_ext, D_visc and D_contact,
+/// each force at t_m tested with (u^{m+1} - u^{m-1}) / 2, summed from the
+/// first half step's share (dt/2 times the rates at t = 0); the row at t_n
+/// reports the sums to t_{n+1/2} less half of level n's.
+struct CentredBudget {
+  double work_half = 0.0, dissipation_half = 0.0, contact_half = 0.0;  // sums up to t_{n+1/2}
+  double work_last = 0.0, dissipation_last = 0.0, contact_last = 0.0;  // level n's
+  /// The first half step's share from the rates at t = 0.
+  void start(double dt, double power, double viscous, double contact) {
+    work_half = 0.5 * dt * power;
+    dissipation_half = 0.5 * dt * viscous;
+    contact_half = 0.5 * dt * contact;
+    work_last = dissipation_last = contact_last = 0.0;
+  }
+  /// Level n's increments.
+  void book(double dw, double dd, double dc) {
+    work_last = dw;
+    dissipation_last = dd;
+    contact_last = dc;
+    work_half += dw;
+    dissipation_half += dd;
+    contact_half += dc;
+  }
+  [[nodiscard]] double work() const { return work_half - 0.5 * work_last; }
+  [[nodiscard]] double dissipation() const { return dissipation_half - 0.5 * dissipation_last; }
+  [[nodiscard]] double contact() const { return contact_half - 0.5 * contact_last; }
+};
+
 class LineScheme : public Scheme {
  public:
   [[nodiscard]] long long step() const override { return n_; }
