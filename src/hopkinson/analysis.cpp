@@ -78,6 +78,19 @@ Line2 least_squares(const std::vector<double>& u, const std::vector<double>& v) 
   return {suv / suu, mv - suv / suu * mu};
 }
 
+// A given window ([incident] or [transmitted] start and end) lies inside its
+// record and holds two samples or more: else no row could be read from it.
+void check_given_window(const GaugeSignal& s, const ChannelSetup& ch) {
+  const auto& t = s.t;
+  if (*ch.start < t.front() || *ch.end > t.back())
+    refuse(s, fmt::format("{0}.start = {1}, {0}.end = {2}: the window is not inside the record (t = {3} to {4})",
+                          ch.section, *ch.start, *ch.end, t.front(), t.back()));
+  const auto inside = std::upper_bound(t.begin(), t.end(), *ch.end) - std::lower_bound(t.begin(), t.end(), *ch.start);
+  if (inside < 2)
+    refuse(s, fmt::format("{0}.start = {1}, {0}.end = {2}: the window holds {3} sample{4}, fewer than two", ch.section,
+                          *ch.start, *ch.end, inside, inside == 1 ? "" : "s"));
+}
+
 class Analysis {
  public:
   Analysis(const HopkinsonSetup& setup, GaugeSignal inc, GaugeSignal tr)
@@ -93,6 +106,7 @@ class Analysis {
     place_pulses();
     tabulate();
     measure_peaks();
+    check_results();
     measure_equilibrium();
     if (setup_.fit_elastic) fit();
     return std::move(r_);
@@ -147,15 +161,12 @@ class Analysis {
     const auto& ch = setup_.incident;
     const auto& t = inc_.t;
     a.method = "windows";
-    if (*ch.start < t.front() || *ch.end > t.back())
-      refuse(inc_, fmt::format("the window start = {}, end = {} is not inside the record (t = {} to {})", *ch.start,
-                               *ch.end, t.front(), t.back()));
+    check_given_window(inc_, ch);
     foot_ = samples_before(t, *ch.start);
     if (foot_ > 0 && *ch.start - t[foot_ - 1] < t[foot_] - *ch.start) --foot_;
     end_ = samples_before(t, *ch.end);
     if (end_ == t.size() || t[end_] > *ch.end) --end_;
     if (foot_ == 0) refuse(inc_, "incident.start is the record's first sample: a baseline needs samples before it");
-    if (end_ <= foot_) refuse(inc_, "the window holds fewer than two samples");
     a.baseline_incident = mean_rms(inc_.strain, foot_).first;
     compression(a.baseline_incident);
     a.incident_peak =
@@ -287,12 +298,26 @@ class Analysis {
     a.to_front_face = di / ci;
     a.reflected_shift = 2.0 * di / ci;
     a.transmitted_shift = di / ci + dt / ct;
-    if (setup_.transmitted.start) a.transmitted_shift = *setup_.transmitted.start - a.foot;
+    if (setup_.transmitted.start) {
+      check_given_window(tr_, setup_.transmitted);
+      a.transmitted_shift = *setup_.transmitted.start - a.foot;
+    }
     const double length = a.incident.end - a.incident.start;
     a.reflected = {a.incident.start + a.reflected_shift, a.incident.end + a.reflected_shift};
     a.transmitted = setup_.transmitted.start
                         ? PulseWindow{*setup_.transmitted.start, *setup_.transmitted.end}
                         : PulseWindow{a.foot + a.transmitted_shift, a.foot + a.transmitted_shift + length};
+    // A pulse whose window starts after its record ends gives no row at all.
+    if (a.reflected.start > inc_.t.back())
+      refuse(inc_, fmt::format("incident.gauge_to_specimen = {}: the reflected pulse reaches the gauge 2 "
+                               "gauge_to_specimen / c0 = {:.4g} after the incident foot, at t = {:.6g}, after the "
+                               "record ends (t = {:.6g})",
+                               di, a.reflected_shift, a.reflected.start, inc_.t.back()));
+    if (!setup_.transmitted.start && a.transmitted.start > tr_.t.back())
+      refuse(tr_, fmt::format("transmitted.gauge_to_specimen = {}: the transmitted pulse reaches its gauge "
+                              "incident.gauge_to_specimen / c_i + transmitted.gauge_to_specimen / c_t = {:.4g} after "
+                              "the incident foot, at t = {:.6g}, after the record ends (t = {:.6g})",
+                              dt, a.transmitted_shift, a.transmitted.start, tr_.t.back()));
     if (a.reflected.end > inc_.t.back())
       r_.warnings.push_back(
           fmt::format("the incident record ends at t = {:.6g}, before the reflected pulse's window "
@@ -310,6 +335,7 @@ class Analysis {
 
   void tabulate();
   void measure_peaks();
+  void check_results() const;
   void measure_equilibrium();
   void fit();
 
@@ -382,6 +408,23 @@ void Analysis::measure_peaks() {
   r_.peak_stress_3w = largest(r_.column("stress_3w"), t);
   r_.peak_strain_rate_1w = largest(r_.column("strain_rate_1w"), t);
   r_.peak_strain_rate_3w = largest(r_.column("strain_rate_3w"), t);
+}
+
+// A result that is not finite is never a success: every row nan (no reflected
+// or transmitted sample read) or a specimen never in compression is refused.
+void Analysis::check_results() const {
+  const double stress = r_.peak_stress_3w.value, rate = r_.peak_strain_rate_3w.value;
+  if (!std::isfinite(stress) || !std::isfinite(rate))
+    throw InputError(fmt::format(
+        "{}: no row has a finite 3-wave stress and strain rate: the reflected and transmitted pulses are not in "
+        "their records (check incident.gauge_to_specimen, transmitted.gauge_to_specimen, transmitted.start and "
+        "end, the bars' wave speed and the records' times)",
+        setup_.origin.string()));
+  if (!(stress > 0))
+    throw InputError(fmt::format(
+        "{}: the 3-wave stress is never compression (its peak is {:.4g}): the pulses are not where the setup places "
+        "them (check transmitted.start and end, each gauge_to_specimen and polarity)",
+        setup_.origin.string(), stress));
 }
 
 // equilibrium where both forces pass 5% of their peak; the time from which

@@ -450,6 +450,11 @@ cp "$work/measured.toml" "$work/m3.toml" && sed -i 's/gauge_to_specimen = 0.75/g
 expect_refused "pulses too close" hopkinson "$work/m3.toml" --out "$work/refused"
 cp "$work/measured.toml" "$work/m4.toml" && sed -i 's/^gain = 100/gain = 100\nfull_scale = 0.5/' "$work/m4.toml"
 expect_refused "clips" hopkinson "$work/m4.toml" --out "$work/refused"
+# A result that is not finite is refused: a gauge distance in mm, a transmitted window outside the record.
+sed '0,/gauge_to_specimen = 0.75/s//gauge_to_specimen = 750/' "$work/measured.toml" > "$work/m5.toml"
+expect_refused "incident.gauge_to_specimen = 750" hopkinson "$work/m5.toml" --out "$work/refused"
+{ cat "$work/measured.toml"; printf 'start = 1.0\nend = 2.0\n'; } > "$work/m6.toml"  # in [transmitted], the last section
+expect_refused "transmitted.start = 1, transmitted.end = 2" hopkinson "$work/m6.toml" --out "$work/refused"
 expect_refused "unknown key window.trigge" hopkinson <(printf '[window]\ntrigge = 0.1\n') --out "$work/refused"
 
 # barimpact check: validates without running or writing, prints what to know first.

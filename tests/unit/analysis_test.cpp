@@ -348,6 +348,47 @@ TEST_F(HopkinsonAnalysis, RefusesWhatCannotBeAnalysedInOneLine) {
   EXPECT_HAS(refusal(setup_text()), "polarity");
 }
 
+// Each of these once exited 0 with every result nan (or a peak stress of -0):
+// a result that is not finite is refused, naming the key that placed it.
+TEST_F(HopkinsonAnalysis, RefusesASetupWhoseResultsWouldNotBeFinite) {
+  write_records(records());
+  for (const char* d : {"750", "1e300"})
+    EXPECT_HAS(refusal(with(setup_text(), "gauge_to_specimen = 1.0", fmt::format("gauge_to_specimen = {}", d))),
+               "incident.gauge_to_specimen");
+  EXPECT_HAS(refusal(with(setup_text(), "gauge_to_specimen = 0.5", "gauge_to_specimen = 750")),
+             "transmitted.gauge_to_specimen");
+  // A transmitted window outside the record, as the incident's is refused.
+  const std::string outside = refusal(setup_text("", "", "start = 2e-3\nend = 3e-3"));
+  EXPECT_HAS(outside, "transmitted.start = 0.002, transmitted.end = 0.003");
+  EXPECT_HAS(outside, "not inside the record");
+  // A window between two samples (it read nothing: a peak stress of -0).
+  EXPECT_HAS(refusal(setup_text("", "", "start = 400.01e-6\nend = 400.05e-6")), "holds 0 samples, fewer than two");
+  EXPECT_HAS(refusal(setup_text("", "start = 100.01e-6\nend = 100.05e-6")), "incident.start");
+  // Times 1e-320 apart: the pulses' travel times lie far beyond the record.
+  std::string column = "strain\n", transmitted = "strain\n";
+  const auto rec = records();
+  for (std::size_t k = 0; k < samples; ++k) {
+    column += fmt::format("{}\n", rec.incident[k]);
+    transmitted += fmt::format("{}\n", rec.transmitted[k]);
+  }
+  write("i.csv", column);
+  write("t.csv", transmitted);
+  EXPECT_HAS(refusal(setup_text("", "signal = \"i.csv\"\nsample_interval = 1e-320",
+                                "signal = \"t.csv\"\nsample_interval = 1e-320")),
+             "after the record ends");
+  // A reflected pulse larger than the incident one and a transmitted one in
+  // tension: the specimen is never in compression.
+  Records tension;
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    tension.t.push_back(t);
+    tension.incident.push_back(eps_i(t - foot) - 1.5 * eps_i(t - foot - shift_r));
+    tension.transmitted.push_back(-eps_t(t - foot - shift_t));
+  }
+  write_records(tension);
+  EXPECT_HAS(refusal(setup_text()), "never compression");
+}
+
 TEST_F(HopkinsonAnalysis, RefusesABadSetupNamingTheKey) {
   write_records(records());
   EXPECT_HAS(refusal(setup_text("[window]\ntrigger = 0.01")), "window.trigger");
