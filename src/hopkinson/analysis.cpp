@@ -22,6 +22,12 @@ constexpr double equilibrium_force_fraction = 0.05;  // equilibrium is shown whe
 constexpr double equilibrium_tolerance = 0.05;
 constexpr double offset_strain = 0.002;  // the 0.2% offset yield
 constexpr int max_rounds = 50;           // of baseline and foot, and of the first pulse's peak
+// Noise above 1% of the peak could carry a baseline sample past the foot's
+// 2% level (at 2 rms) or the trigger's: the pulse is then found on a moving
+// average that brings the noise to 0.5% of the peak (an average of m samples
+// divides white noise's rms by sqrt(m)), of at most a twentieth of the record.
+constexpr double smoothing_noise = 0.01, smoothed_noise = 0.005;
+constexpr std::size_t min_baseline = 8;  // samples before the foot to measure the noise's rms on
 
 [[noreturn]] void refuse(const GaugeSignal& s, const std::string& rule) {
   throw InputError(fmt::format("{}: {}", s.label, rule));
@@ -34,6 +40,50 @@ std::pair<double, double> mean_rms(const std::vector<double>& v, std::size_t n) 
   double sq = 0.0;
   for (std::size_t k = 0; k < n; ++k) sq += (v[k] - mean) * (v[k] - mean);
   return {mean, std::sqrt(sq / static_cast<double>(n))};
+}
+
+double median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<long>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// The rms of Gaussian noise from the median absolute deviation (x 1.4826),
+// which the minority of samples in a pulse does not move.
+double robust_rms(std::vector<double> v) {
+  const double m = median(v);
+  for (auto& x : v) x = std::abs(x - m);
+  return 1.4826 * median(std::move(v));
+}
+
+// The noise's rms on a record: the larger of the spread of its first tenth
+// (slow noise, hum) and that of its successive differences over sqrt(2)
+// (fast noise, wherever the pulses are).
+double noise_estimate(const std::vector<double>& c) {
+  const std::vector<double> head(c.begin(), c.begin() + static_cast<long>(std::max<std::size_t>(c.size() / 10, 1)));
+  std::vector<double> steps(c.size() - 1);
+  for (std::size_t k = 0; k + 1 < c.size(); ++k) steps[k] = c[k + 1] - c[k];
+  return std::max(robust_rms(head), robust_rms(std::move(steps)) / std::sqrt(2.0));
+}
+
+// The moving average's width that finds the pulse under the record's noise (1: none).
+std::size_t smoothing_width(const std::vector<double>& c) {
+  const double peak = *std::max_element(c.begin(), c.end()), noise = noise_estimate(c);
+  if (!(peak > 0) || !(noise > smoothing_noise * peak)) return 1;
+  const double m = std::ceil(std::pow(noise / (smoothed_noise * peak), 2));
+  return static_cast<std::size_t>(std::min(m, static_cast<double>(std::max<std::size_t>(c.size() / 20, 1))));
+}
+
+// The centred moving average of m samples (fewer at the record's ends).
+std::vector<double> moving_average(const std::vector<double>& v, std::size_t m) {
+  std::vector<double> sum(v.size() + 1, 0.0), out(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) sum[k + 1] = sum[k] + v[k];
+  const std::size_t half = m / 2;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::size_t lo = k > half ? k - half : 0, hi = std::min(v.size(), k + half + 1);
+    out[k] = (sum[hi] - sum[lo]) / static_cast<double>(hi - lo);
+  }
+  return out;
 }
 
 std::size_t samples_before(const std::vector<double>& t, double time) {
@@ -113,10 +163,11 @@ class Analysis {
   }
 
  private:
-  // c = -(strain - baseline): compression positive.
+  // c = -(strain - baseline): compression positive (its moving average under noise).
   void compression(double baseline) {
     c_.resize(inc_.t.size());
     for (std::size_t k = 0; k < c_.size(); ++k) c_[k] = -(inc_.strain[k] - baseline);
+    if (smooth_ > 1) c_ = moving_average(c_, smooth_);
   }
 
   void find_incident_window() {
@@ -134,6 +185,8 @@ class Analysis {
                                inc_.strain.begin() + static_cast<long>(std::max<std::size_t>(n / 10, 1)));
       std::nth_element(head.begin(), head.begin() + static_cast<long>(head.size() / 2), head.end());
       a.baseline_incident = head[head.size() / 2];
+      compression(a.baseline_incident);
+      smooth_ = smoothing_width(c_);
       std::size_t last_foot = n;
       for (a.iterations = 1; a.iterations <= max_rounds; ++a.iterations) {
         compression(a.baseline_incident);
@@ -149,6 +202,10 @@ class Analysis {
             "the incident foot did not settle in {} rounds of baseline and foot: check the window", max_rounds));
       }
     }
+    if (foot_ < min_baseline)
+      refuse(inc_, fmt::format("only {} samples before the incident foot (t = {:.6g}): too few to measure the "
+                               "baseline noise ({} or more)",
+                               foot_, inc_.t[foot_], min_baseline));
     a.noise_incident = mean_rms(inc_.strain, foot_).second;
     a.trigger_level = setup_.trigger * a.incident_peak;
     a.foot = inc_.t[foot_];
@@ -230,6 +287,10 @@ class Analysis {
     if (before == 0)
       refuse(tr_, fmt::format("the record starts at t = {}, after the incident foot (t = {}): no baseline before it",
                               tr_.t.front(), a.foot));
+    if (before < min_baseline)
+      refuse(tr_, fmt::format("only {} samples before the incident foot (t = {:.6g}): too few to measure the "
+                              "baseline noise ({} or more)",
+                              before, a.foot, min_baseline));
     std::tie(a.baseline_transmitted, a.noise_transmitted) = mean_rms(tr_.strain, before);
     for (auto& v : tr_.strain) v -= a.baseline_transmitted;
   }
@@ -346,6 +407,7 @@ class Analysis {
   HopkinsonResult r_;
   std::vector<double> c_;
   std::size_t foot_ = 0, end_ = 0, rows_ = 0;
+  std::size_t smooth_ = 1;  // the moving average's width the pulse is found on
 };
 
 // The table: one row per incident sample from the foot to the window's end.

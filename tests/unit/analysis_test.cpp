@@ -348,6 +348,39 @@ TEST_F(HopkinsonAnalysis, RefusesWhatCannotBeAnalysedInOneLine) {
   EXPECT_HAS(refusal(setup_text()), "polarity");
 }
 
+// White noise on the incident record, of rms 2% and 8% of the incident peak
+// (1e-3): noise once took the foot to the record's first samples (a window of
+// 2 samples, a noise rms of 0, exit 0) or refused the pulse as starting
+// there. The pulse is found on a moving average, the noise measured before
+// the foot: 2% is analysed with the pulse's window, 8% refused (above half
+// the trigger level, 5%); a record without 8 samples before the foot cannot
+// measure it.
+TEST_F(HopkinsonAnalysis, FindsThePulseUnderNoiseAndRefusesNoiseAboveTheContract) {
+  for (const unsigned seed : {1u, 2u, 3u, 6u}) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const auto clean = records();
+    auto noisy = [&](double rms) {
+      auto r = clean;
+      for (auto& v : r.incident) v += rms * normal(rng);
+      return r;
+    };
+    write_records(noisy(8e-5));
+    EXPECT_HAS(refusal(setup_text()), "baseline noise: the rms");
+    write_records(noisy(2e-5));
+    const auto r = analyse(setup_text());
+    // The average (about 14 samples here) moves the foot up to half its
+    // width early, and the end as late: 1 us (10 samples) either way.
+    EXPECT_NEAR(r.alignment.foot, foot, 1e-6) << seed;
+    EXPECT_NEAR(r.alignment.incident.end, foot + 120.6e-6, 1e-6) << seed;
+    // The rms of 1000 samples: within 10% of the noise's.
+    EXPECT_NEAR(r.alignment.noise_incident, 2e-5, 2e-6) << seed;
+    EXPECT_NEAR(r.alignment.incident_peak, 1e-3, 2e-5) << seed;
+  }
+  write_records(records());
+  EXPECT_HAS(refusal(setup_text("", "start = 0.5e-6\nend = 150e-6")), "only 5 samples before the incident foot");
+}
+
 // Each of these once exited 0 with every result nan (or a peak stress of -0):
 // a result that is not finite is refused, naming the key that placed it.
 TEST_F(HopkinsonAnalysis, RefusesASetupWhoseResultsWouldNotBeFinite) {
