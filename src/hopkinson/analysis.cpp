@@ -9,10 +9,13 @@
 
 #include "barimpact/hopkinson/dispersion.hpp"
 #include "barimpact/model/input_error.hpp"
+#include "plausible.hpp"
 
 namespace barimpact {
 
 namespace {
+
+namespace hp = hopkinson_plausible;
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double foot_fraction = 0.02;               // the foot: at or below 2% of the incident peak
@@ -149,6 +152,8 @@ class Analysis {
   }
 
   HopkinsonResult run() {
+    check_clock(inc_, setup_.incident);
+    check_clock(tr_, setup_.transmitted);
     find_incident_window();
     subtract_baselines();
     check_pulses();
@@ -159,10 +164,23 @@ class Analysis {
     check_results();
     measure_equilibrium();
     if (setup_.fit_elastic) fit();
+    check_bounds();
     return std::move(r_);
   }
 
  private:
+  // In SI a record's times are seconds: its mean sample interval within
+  // hopkinson_plausible::sample_interval, else they are in another unit.
+  void check_clock(const GaugeSignal& s, const ChannelSetup& ch) const {
+    if (!setup_.si || s.t.size() < 2) return;
+    const double dt = (s.t.back() - s.t.front()) / static_cast<double>(s.t.size() - 1);
+    const auto& b = hp::sample_interval;
+    if (!b.holds(dt))
+      refuse(s, fmt::format("{}.time: the samples are {:.4g} apart on average: {}outside [{:g}, {:g}] s (the "
+                            "records' times are in seconds)",
+                            ch.section, dt, hp::meant(dt, b, hp::time_units), b.lo, b.hi));
+  }
+
   // c = -(strain - baseline): compression positive (its moving average under noise).
   void compression(double baseline) {
     c_.resize(inc_.t.size());
@@ -318,6 +336,10 @@ class Analysis {
                                noise, setup_.trigger, a.incident_peak, noise_limit));
     const double d = setup_.incident.gauge_to_specimen, c0 = setup_.incident_bar.wave_speed;
     const double length = a.incident.end - a.incident.start;
+    if (setup_.si && !hp::pulse_duration.holds(length))
+      refuse(inc_, fmt::format("incident.time: the incident pulse lasts {:.4g}: {}longer than any striker's, 2 "
+                               "L / c0 (at most {:g} s; the records' times are in seconds)",
+                               length, hp::meant(length, hp::pulse_duration, hp::time_units), hp::pulse_duration.hi));
     if (length > 2.0 * d / c0)
       refuse(inc_,
              fmt::format("pulses too close to separate: the incident window ({:.6g} to {:.6g}, {:.4g} long) is "
@@ -369,16 +391,22 @@ class Analysis {
                         ? PulseWindow{*setup_.transmitted.start, *setup_.transmitted.end}
                         : PulseWindow{a.foot + a.transmitted_shift, a.foot + a.transmitted_shift + length};
     // A pulse whose window starts after its record ends gives no row at all.
+    // (in mm: the distance that would place it in the record, in metres.)
+    const auto in_mm = [](double d, double farthest) {
+      return hp::meant(d, {0.0, farthest, 0.5 * farthest}, {{1e-3, "mm"}});
+    };
     if (a.reflected.start > inc_.t.back())
-      refuse(inc_, fmt::format("incident.gauge_to_specimen = {}: the reflected pulse reaches the gauge 2 "
+      refuse(inc_, fmt::format("incident.gauge_to_specimen = {}: {}the reflected pulse reaches the gauge 2 "
                                "gauge_to_specimen / c0 = {:.4g} after the incident foot, at t = {:.6g}, after the "
                                "record ends (t = {:.6g})",
-                               di, a.reflected_shift, a.reflected.start, inc_.t.back()));
+                               di, in_mm(di, 0.5 * (inc_.t.back() - a.foot) * ci), a.reflected_shift, a.reflected.start,
+                               inc_.t.back()));
     if (!setup_.transmitted.start && a.transmitted.start > tr_.t.back())
-      refuse(tr_, fmt::format("transmitted.gauge_to_specimen = {}: the transmitted pulse reaches its gauge "
+      refuse(tr_, fmt::format("transmitted.gauge_to_specimen = {}: {}the transmitted pulse reaches its gauge "
                               "incident.gauge_to_specimen / c_i + transmitted.gauge_to_specimen / c_t = {:.4g} after "
                               "the incident foot, at t = {:.6g}, after the record ends (t = {:.6g})",
-                              dt, a.transmitted_shift, a.transmitted.start, tr_.t.back()));
+                              dt, in_mm(dt, (tr_.t.back() - a.foot - di / ci) * ct), a.transmitted_shift,
+                              a.transmitted.start, tr_.t.back()));
     if (a.reflected.end > inc_.t.back())
       r_.warnings.push_back(
           fmt::format("the incident record ends at t = {:.6g}, before the reflected pulse's window "
@@ -397,6 +425,7 @@ class Analysis {
   void tabulate();
   void measure_peaks();
   void check_results() const;
+  void check_bounds();
   void measure_equilibrium();
   void fit();
 
@@ -487,6 +516,23 @@ void Analysis::check_results() const {
         "{}: the 3-wave stress is never compression (its peak is {:.4g}): the pulses are not where the setup places "
         "them (check transmitted.start and end, each gauge_to_specimen and polarity)",
         setup_.origin.string(), stress));
+}
+
+// In SI, results beyond what any bar test reaches (hopkinson_plausible) warn:
+// a unit slip the setup's checks let through.
+void Analysis::check_bounds() {
+  if (!setup_.si) return;
+  const auto warn = [&](std::string_view what, double value, double bound) {
+    r_.warnings.push_back(fmt::format(
+        "implausible-result: the {} {:.4g} is beyond {:g}, more than a bar test reaches: check the setup's units (m, "
+        "s, Pa, kg/m^3)",
+        what, value, bound));
+  };
+  if (r_.peak_strain_rate_3w.value > hp::highest_strain_rate)
+    warn("3-wave peak strain rate", r_.peak_strain_rate_3w.value, hp::highest_strain_rate);
+  if (r_.peak_stress_3w.value > hp::highest_stress)
+    warn("3-wave peak stress", r_.peak_stress_3w.value, hp::highest_stress);
+  if (r_.fit.modulus > hp::highest_modulus) warn("fitted modulus", r_.fit.modulus, hp::highest_modulus);
 }
 
 // equilibrium where both forces pass 5% of their peak; the time from which

@@ -455,6 +455,15 @@ sed '0,/gauge_to_specimen = 0.75/s//gauge_to_specimen = 750/' "$work/measured.to
 expect_refused "incident.gauge_to_specimen = 750" hopkinson "$work/m5.toml" --out "$work/refused"
 { cat "$work/measured.toml"; printf 'start = 1.0\nend = 2.0\n'; } > "$work/m6.toml"  # in [transmitted], the last section
 expect_refused "transmitted.start = 1, transmitted.end = 2" hopkinson "$work/m6.toml" --out "$work/refused"
+# A unit slip names the key and the unit it was probably meant in: GPa, mm, a time column in us.
+sed 's/modulus = 200e9/modulus = 200/' "$work/measured.toml" > "$work/m7.toml"
+expect_refused "bar.modulus = 200: GPa?" hopkinson "$work/m7.toml" --out "$work/refused"
+sed 's/length = 0.006/length = 6/' "$work/measured.toml" > "$work/m8.toml"
+expect_refused "specimen.length = 6: mm?" hopkinson "$work/m8.toml" --out "$work/refused"
+awk -F, '{ print $1 * 1e6 "," $2 }' "$work/inc.csv" > "$work/inc-us.csv"
+sed 's/"inc.csv"/"inc-us.csv"/' "$work/measured.toml" > "$work/m9.toml"
+expect_refused "incident.time: the samples are" hopkinson "$work/m9.toml" --out "$work/refused"
+grep -q "us?" "$work/err" && ok || bad "no us? in: $(cat "$work/err")"
 expect_refused "unknown key window.trigge" hopkinson <(printf '[window]\ntrigge = 0.1\n') --out "$work/refused"
 
 # barimpact check: validates without running or writing, prints what to know first.

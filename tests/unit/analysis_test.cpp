@@ -408,7 +408,7 @@ TEST_F(HopkinsonAnalysis, RefusesASetupWhoseResultsWouldNotBeFinite) {
   write("t.csv", transmitted);
   EXPECT_HAS(refusal(setup_text("", "signal = \"i.csv\"\nsample_interval = 1e-320",
                                 "signal = \"t.csv\"\nsample_interval = 1e-320")),
-             "after the record ends");
+             "incident.sample_interval = 1e-320: outside");
   // A reflected pulse larger than the incident one and a transmitted one in
   // tension: the specimen is never in compression.
   Records tension;
@@ -420,6 +420,42 @@ TEST_F(HopkinsonAnalysis, RefusesASetupWhoseResultsWouldNotBeFinite) {
   }
   write_records(tension);
   EXPECT_HAS(refusal(setup_text()), "never compression");
+}
+
+// A number given in another unit than SI's gave nan, or garbage with no
+// word (a specimen 6 m long: a modulus of 6.6e13 Pa): refused, naming the key
+// and the unit it was probably meant in.
+TEST_F(HopkinsonAnalysis, RefusesAUnitSlipNamingTheKeyAndTheUnit) {
+  write_records(records());
+  const auto slip = [&](const std::string& from, const std::string& to) {
+    return refusal(with(setup_text(), from, to));
+  };
+  EXPECT_HAS(slip("modulus = 200e9", "modulus = 200"), "bar.modulus = 200: GPa?");
+  EXPECT_HAS(slip("modulus = 200e9", "modulus = 200000"), "bar.modulus = 200000: MPa?");
+  EXPECT_HAS(slip("density = 8000.0", "density = 8.0"), "bar.density = 8: g/cm^3?");
+  EXPECT_HAS(slip("density = 8000.0", "density = 8000.0\nwave_speed = 5"), "bar.wave_speed = 5: km/s?");
+  EXPECT_HAS(slip("modulus = 200e9", "modulus = 2e8"), "c0 = sqrt(modulus / density) = 158.1 m/s");
+  EXPECT_HAS(slip("area = 3e-4", "diameter = 20"), "bar.diameter = 20: mm?");
+  EXPECT_HAS(slip("gauge_to_specimen = 1.0", "gauge_to_specimen = 750"), "incident.gauge_to_specimen = 750: mm?");
+  // In the range of a bar, but placing the reflected pulse beyond the record.
+  EXPECT_HAS(slip("gauge_to_specimen = 1.0", "gauge_to_specimen = 50"), "incident.gauge_to_specimen = 50: mm?");
+  EXPECT_HAS(slip("length = 0.005", "length = 5"), "specimen.length = 5: mm? 443 diameters long");
+  EXPECT_HAS(slip("area = 1e-4", "area = 100"), "specimen.area = 100: mm^2? the specimen");
+  EXPECT_HAS(slip("area = 1e-4", "diameter = 11"), "specimen.diameter = 11: mm? the specimen");
+  // A scope's time column in us (0.1 apart), or in ms (the pulse 0.12 long).
+  for (const auto& [unit, factor, want] :
+       {std::tuple{"us", 1e6, "incident.time: the samples are 0.1 apart on average: us?"},
+        std::tuple{"ms", 1e3, "incident.time: the incident pulse lasts 0.1206: ms?"}}) {
+    auto r = records();
+    for (auto& t : r.t) t *= factor;
+    write_records(r);
+    EXPECT_HAS(refusal(setup_text()), want) << unit;
+  }
+  // A specimen 0.11 mm across: a stress of 2.6e12 Pa, beyond any bar test's.
+  write_records(records());
+  const auto r = analyse(with(with(setup_text(), "area = 1e-4", "area = 1e-8"), "length = 0.005", "length = 5e-4"));
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_EQ(r.warnings.back().rfind("implausible-result: the 3-wave peak stress 2.61e+12", 0), 0u) << r.warnings.back();
 }
 
 TEST_F(HopkinsonAnalysis, RefusesABadSetupNamingTheKey) {
