@@ -374,6 +374,11 @@ grep -q '^end = 0.05$' "$work/bearing-set/runs/0001/case.toml" && ok || bad "bea
 expect_refused "--set time.nope=1" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:2 --set time.nope=1
 expect_refused "--toe-share must be in [0, 1]" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share -0.5
 expect_refused "--jobs: must be 1 .. 1024" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --jobs -1
+# A pile's numbers in another unit: a modulus in MPa refused, a capacity in kN warned (exit 4 under --strict).
+expect_refused "body.pile.modulus = 210000: MPa?" run "$pipe" --out "$work/refused" --set body.pile.modulus=210000
+"$bin" run "$pipe" --out "$work/pipe-kn" --strict --set near_end.ultimate=900 --set time.end=0.002 --set "output.fields_at=[]" > /dev/null 2> "$work/err"
+[ $? -eq 4 ] && grep -qF "pile-capacity: near_end.ultimate = 900: kN?" "$work/err" && ok || bad "capacity in kN: $(cat "$work/err")"
+grep -qF "pile-capacity: near_end.ultimate = 900: kN?" "$work/pipe-kn/summary.json" && ok || bad "capacity warning not in summary.json"
 expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
 expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5
