@@ -772,6 +772,41 @@ void read_gauges(Reader& r, Case& c) {
   }
 }
 
+// A pile's material in SI (Smith's soil is; a blow without soil is checked
+// under [units] system = "SI" only): a modulus or density no pile has is a
+// unit slip, refused with the unit it was probably meant in. Piles are timber (about 10 GPa, 400 to 900 kg/m^3),
+// concrete (25 to 45 GPa, 2400), steel (210 GPa, 7850), or plastic and
+// composite (1 to 40 GPa, 900 to 2000): the bounds below are wide of them.
+void check_pile(const Reader& r, const Case& c) {
+  const BodyData* pile = c.pile();
+  if (pile == nullptr || !(c.smith_soil() || c.units == "SI")) return;
+  const std::string s = "body." + pile->name;
+  struct Check {
+    const char* key;
+    double value, lo, hi;
+    std::vector<std::pair<double, const char*>> units;
+    const char* unit;
+  };
+  for (const auto& k : {Check{"modulus",
+                              pile->modulus,
+                              1e8,
+                              1e12,
+                              {{1e9, "GPa"}, {1e6, "MPa"}},
+                              "Pa for a pile (steel 210e9, concrete 35e9, timber 10e9)"},
+                        Check{"density",
+                              pile->density,
+                              300.0,
+                              25000.0,
+                              {{1e3, "t/m^3"}},
+                              "kg/m^3 for a pile (steel 7850, concrete 2400, timber 600)"}}) {
+    if (k.value >= k.lo && k.value <= k.hi) continue;
+    std::string meant;
+    for (const auto& [factor, name] : k.units)
+      if (meant.empty() && k.value * factor >= k.lo && k.value * factor <= k.hi) meant = fmt::format("{}? ", name);
+    r.fail(s, k.key, fmt::format("= {}: {}outside [{:g}, {:g}] {}", k.value, meant, k.lo, k.hi, k.unit));
+  }
+}
+
 // [blow]: the gauge, ram and pile a blow's results read, each named in the line.
 void read_blow(const Reader& r, Case& c) {
   BlowData& b = c.blow;
@@ -911,6 +946,7 @@ Case read_case(Reader& r) {
         std::pair{"output", "fields_at"}, std::pair{"output", "every"}})
     c.sites[fmt::format("{}.{}", section, key)] = r.where(section, key);
   if (c.time.step_given) c.check_steps();  // else the scheme sets the step: fit_scheme checks them
+  check_pile(r, c);
   if (one && !line)
     check_bar_expressions(r, c, *one);
   else
@@ -1155,6 +1191,18 @@ std::string_view to_string(ObstacleKind kind) {
 std::optional<OneBar> Case::one_bar() const {
   if (bodies.size() == 1 && bodies.front().material.kind != MaterialKind::elastic) return std::nullopt;
   return bar_view(*this);
+}
+
+bool Case::smith_soil() const {
+  return near_end.law == JointLaw::smith ||
+         std::any_of(bodies.begin(), bodies.end(), [](const BodyData& b) { return b.shaft.has_value(); });
+}
+
+const BodyData* Case::pile() const {
+  if (!smith_soil() && blow.gauge.empty() && blow.ram.empty() && blow.pile.empty()) return nullptr;
+  for (const auto& b : bodies)
+    if (blow.pile.empty() ? b.kind == BodyKind::bar : b.name == blow.pile) return &b;
+  return nullptr;
 }
 
 double Case::bar_length() const {

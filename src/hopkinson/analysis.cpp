@@ -9,10 +9,13 @@
 
 #include "barimpact/hopkinson/dispersion.hpp"
 #include "barimpact/model/input_error.hpp"
+#include "plausible.hpp"
 
 namespace barimpact {
 
 namespace {
+
+namespace hp = hopkinson_plausible;
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double foot_fraction = 0.02;               // the foot: at or below 2% of the incident peak
@@ -22,6 +25,12 @@ constexpr double equilibrium_force_fraction = 0.05;  // equilibrium is shown whe
 constexpr double equilibrium_tolerance = 0.05;
 constexpr double offset_strain = 0.002;  // the 0.2% offset yield
 constexpr int max_rounds = 50;           // of baseline and foot, and of the first pulse's peak
+// Noise above 1% of the peak could carry a baseline sample past the foot's
+// 2% level (at 2 rms) or the trigger's: the pulse is then found on a moving
+// average that brings the noise to 0.5% of the peak (an average of m samples
+// divides white noise's rms by sqrt(m)), of at most a twentieth of the record.
+constexpr double smoothing_noise = 0.01, smoothed_noise = 0.005;
+constexpr std::size_t min_baseline = 8;  // samples before the foot to measure the noise's rms on
 
 [[noreturn]] void refuse(const GaugeSignal& s, const std::string& rule) {
   throw InputError(fmt::format("{}: {}", s.label, rule));
@@ -34,6 +43,50 @@ std::pair<double, double> mean_rms(const std::vector<double>& v, std::size_t n) 
   double sq = 0.0;
   for (std::size_t k = 0; k < n; ++k) sq += (v[k] - mean) * (v[k] - mean);
   return {mean, std::sqrt(sq / static_cast<double>(n))};
+}
+
+double median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<long>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// The rms of Gaussian noise from the median absolute deviation (x 1.4826),
+// which the minority of samples in a pulse does not move.
+double robust_rms(std::vector<double> v) {
+  const double m = median(v);
+  for (auto& x : v) x = std::abs(x - m);
+  return 1.4826 * median(std::move(v));
+}
+
+// The noise's rms on a record: the larger of the spread of its first tenth
+// (slow noise, hum) and that of its successive differences over sqrt(2)
+// (fast noise, wherever the pulses are).
+double noise_estimate(const std::vector<double>& c) {
+  const std::vector<double> head(c.begin(), c.begin() + static_cast<long>(std::max<std::size_t>(c.size() / 10, 1)));
+  std::vector<double> steps(c.size() - 1);
+  for (std::size_t k = 0; k + 1 < c.size(); ++k) steps[k] = c[k + 1] - c[k];
+  return std::max(robust_rms(head), robust_rms(std::move(steps)) / std::sqrt(2.0));
+}
+
+// The moving average's width that finds the pulse under the record's noise (1: none).
+std::size_t smoothing_width(const std::vector<double>& c) {
+  const double peak = *std::max_element(c.begin(), c.end()), noise = noise_estimate(c);
+  if (!(peak > 0) || !(noise > smoothing_noise * peak)) return 1;
+  const double m = std::ceil(std::pow(noise / (smoothed_noise * peak), 2));
+  return static_cast<std::size_t>(std::min(m, static_cast<double>(std::max<std::size_t>(c.size() / 20, 1))));
+}
+
+// The centred moving average of m samples (fewer at the record's ends).
+std::vector<double> moving_average(const std::vector<double>& v, std::size_t m) {
+  std::vector<double> sum(v.size() + 1, 0.0), out(v.size());
+  for (std::size_t k = 0; k < v.size(); ++k) sum[k + 1] = sum[k] + v[k];
+  const std::size_t half = m / 2;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const std::size_t lo = k > half ? k - half : 0, hi = std::min(v.size(), k + half + 1);
+    out[k] = (sum[hi] - sum[lo]) / static_cast<double>(hi - lo);
+  }
+  return out;
 }
 
 std::size_t samples_before(const std::vector<double>& t, double time) {
@@ -78,6 +131,19 @@ Line2 least_squares(const std::vector<double>& u, const std::vector<double>& v) 
   return {suv / suu, mv - suv / suu * mu};
 }
 
+// A given window ([incident] or [transmitted] start and end) lies inside its
+// record and holds two samples or more: else no row could be read from it.
+void check_given_window(const GaugeSignal& s, const ChannelSetup& ch) {
+  const auto& t = s.t;
+  if (*ch.start < t.front() || *ch.end > t.back())
+    refuse(s, fmt::format("{0}.start = {1}, {0}.end = {2}: the window is not inside the record (t = {3} to {4})",
+                          ch.section, *ch.start, *ch.end, t.front(), t.back()));
+  const auto inside = std::upper_bound(t.begin(), t.end(), *ch.end) - std::lower_bound(t.begin(), t.end(), *ch.start);
+  if (inside < 2)
+    refuse(s, fmt::format("{0}.start = {1}, {0}.end = {2}: the window holds {3} sample{4}, fewer than two", ch.section,
+                          *ch.start, *ch.end, inside, inside == 1 ? "" : "s"));
+}
+
 class Analysis {
  public:
   Analysis(const HopkinsonSetup& setup, GaugeSignal inc, GaugeSignal tr)
@@ -86,6 +152,8 @@ class Analysis {
   }
 
   HopkinsonResult run() {
+    check_clock(inc_, setup_.incident);
+    check_clock(tr_, setup_.transmitted);
     find_incident_window();
     subtract_baselines();
     check_pulses();
@@ -93,16 +161,31 @@ class Analysis {
     place_pulses();
     tabulate();
     measure_peaks();
+    check_results();
     measure_equilibrium();
     if (setup_.fit_elastic) fit();
+    check_bounds();
     return std::move(r_);
   }
 
  private:
-  // c = -(strain - baseline): compression positive.
+  // In SI a record's times are seconds: its mean sample interval within
+  // hopkinson_plausible::sample_interval, else they are in another unit.
+  void check_clock(const GaugeSignal& s, const ChannelSetup& ch) const {
+    if (!setup_.si || s.t.size() < 2) return;
+    const double dt = (s.t.back() - s.t.front()) / static_cast<double>(s.t.size() - 1);
+    const auto& b = hp::sample_interval;
+    if (!b.holds(dt))
+      refuse(s, fmt::format("{}.time: the samples are {:.4g} apart on average: {}outside [{:g}, {:g}] s (the "
+                            "records' times are in seconds)",
+                            ch.section, dt, hp::meant(dt, b, hp::time_units), b.lo, b.hi));
+  }
+
+  // c = -(strain - baseline): compression positive (its moving average under noise).
   void compression(double baseline) {
     c_.resize(inc_.t.size());
     for (std::size_t k = 0; k < c_.size(); ++k) c_[k] = -(inc_.strain[k] - baseline);
+    if (smooth_ > 1) c_ = moving_average(c_, smooth_);
   }
 
   void find_incident_window() {
@@ -120,6 +203,8 @@ class Analysis {
                                inc_.strain.begin() + static_cast<long>(std::max<std::size_t>(n / 10, 1)));
       std::nth_element(head.begin(), head.begin() + static_cast<long>(head.size() / 2), head.end());
       a.baseline_incident = head[head.size() / 2];
+      compression(a.baseline_incident);
+      smooth_ = smoothing_width(c_);
       std::size_t last_foot = n;
       for (a.iterations = 1; a.iterations <= max_rounds; ++a.iterations) {
         compression(a.baseline_incident);
@@ -135,6 +220,10 @@ class Analysis {
             "the incident foot did not settle in {} rounds of baseline and foot: check the window", max_rounds));
       }
     }
+    if (foot_ < min_baseline)
+      refuse(inc_, fmt::format("only {} samples before the incident foot (t = {:.6g}): too few to measure the "
+                               "baseline noise ({} or more)",
+                               foot_, inc_.t[foot_], min_baseline));
     a.noise_incident = mean_rms(inc_.strain, foot_).second;
     a.trigger_level = setup_.trigger * a.incident_peak;
     a.foot = inc_.t[foot_];
@@ -147,15 +236,12 @@ class Analysis {
     const auto& ch = setup_.incident;
     const auto& t = inc_.t;
     a.method = "windows";
-    if (*ch.start < t.front() || *ch.end > t.back())
-      refuse(inc_, fmt::format("the window start = {}, end = {} is not inside the record (t = {} to {})", *ch.start,
-                               *ch.end, t.front(), t.back()));
+    check_given_window(inc_, ch);
     foot_ = samples_before(t, *ch.start);
     if (foot_ > 0 && *ch.start - t[foot_ - 1] < t[foot_] - *ch.start) --foot_;
     end_ = samples_before(t, *ch.end);
     if (end_ == t.size() || t[end_] > *ch.end) --end_;
     if (foot_ == 0) refuse(inc_, "incident.start is the record's first sample: a baseline needs samples before it");
-    if (end_ <= foot_) refuse(inc_, "the window holds fewer than two samples");
     a.baseline_incident = mean_rms(inc_.strain, foot_).first;
     compression(a.baseline_incident);
     a.incident_peak =
@@ -219,6 +305,10 @@ class Analysis {
     if (before == 0)
       refuse(tr_, fmt::format("the record starts at t = {}, after the incident foot (t = {}): no baseline before it",
                               tr_.t.front(), a.foot));
+    if (before < min_baseline)
+      refuse(tr_, fmt::format("only {} samples before the incident foot (t = {:.6g}): too few to measure the "
+                              "baseline noise ({} or more)",
+                              before, a.foot, min_baseline));
     std::tie(a.baseline_transmitted, a.noise_transmitted) = mean_rms(tr_.strain, before);
     for (auto& v : tr_.strain) v -= a.baseline_transmitted;
   }
@@ -246,6 +336,10 @@ class Analysis {
                                noise, setup_.trigger, a.incident_peak, noise_limit));
     const double d = setup_.incident.gauge_to_specimen, c0 = setup_.incident_bar.wave_speed;
     const double length = a.incident.end - a.incident.start;
+    if (setup_.si && !hp::pulse_duration.holds(length))
+      refuse(inc_, fmt::format("incident.time: the incident pulse lasts {:.4g}: {}longer than any striker's, 2 "
+                               "L / c0 (at most {:g} s; the records' times are in seconds)",
+                               length, hp::meant(length, hp::pulse_duration, hp::time_units), hp::pulse_duration.hi));
     if (length > 2.0 * d / c0)
       refuse(inc_,
              fmt::format("pulses too close to separate: the incident window ({:.6g} to {:.6g}, {:.4g} long) is "
@@ -287,12 +381,32 @@ class Analysis {
     a.to_front_face = di / ci;
     a.reflected_shift = 2.0 * di / ci;
     a.transmitted_shift = di / ci + dt / ct;
-    if (setup_.transmitted.start) a.transmitted_shift = *setup_.transmitted.start - a.foot;
+    if (setup_.transmitted.start) {
+      check_given_window(tr_, setup_.transmitted);
+      a.transmitted_shift = *setup_.transmitted.start - a.foot;
+    }
     const double length = a.incident.end - a.incident.start;
     a.reflected = {a.incident.start + a.reflected_shift, a.incident.end + a.reflected_shift};
     a.transmitted = setup_.transmitted.start
                         ? PulseWindow{*setup_.transmitted.start, *setup_.transmitted.end}
                         : PulseWindow{a.foot + a.transmitted_shift, a.foot + a.transmitted_shift + length};
+    // A pulse whose window starts after its record ends gives no row at all.
+    // (in mm: the distance that would place it in the record, in metres.)
+    const auto in_mm = [](double d, double farthest) {
+      return hp::meant(d, {0.0, farthest, 0.5 * farthest}, {{1e-3, "mm"}});
+    };
+    if (a.reflected.start > inc_.t.back())
+      refuse(inc_, fmt::format("incident.gauge_to_specimen = {}: {}the reflected pulse reaches the gauge 2 "
+                               "gauge_to_specimen / c0 = {:.4g} after the incident foot, at t = {:.6g}, after the "
+                               "record ends (t = {:.6g})",
+                               di, in_mm(di, 0.5 * (inc_.t.back() - a.foot) * ci), a.reflected_shift, a.reflected.start,
+                               inc_.t.back()));
+    if (!setup_.transmitted.start && a.transmitted.start > tr_.t.back())
+      refuse(tr_, fmt::format("transmitted.gauge_to_specimen = {}: {}the transmitted pulse reaches its gauge "
+                              "incident.gauge_to_specimen / c_i + transmitted.gauge_to_specimen / c_t = {:.4g} after "
+                              "the incident foot, at t = {:.6g}, after the record ends (t = {:.6g})",
+                              dt, in_mm(dt, (tr_.t.back() - a.foot - di / ci) * ct), a.transmitted_shift,
+                              a.transmitted.start, tr_.t.back()));
     if (a.reflected.end > inc_.t.back())
       r_.warnings.push_back(
           fmt::format("the incident record ends at t = {:.6g}, before the reflected pulse's window "
@@ -310,6 +424,8 @@ class Analysis {
 
   void tabulate();
   void measure_peaks();
+  void check_results() const;
+  void check_bounds();
   void measure_equilibrium();
   void fit();
 
@@ -320,6 +436,7 @@ class Analysis {
   HopkinsonResult r_;
   std::vector<double> c_;
   std::size_t foot_ = 0, end_ = 0, rows_ = 0;
+  std::size_t smooth_ = 1;  // the moving average's width the pulse is found on
 };
 
 // The table: one row per incident sample from the foot to the window's end.
@@ -382,6 +499,40 @@ void Analysis::measure_peaks() {
   r_.peak_stress_3w = largest(r_.column("stress_3w"), t);
   r_.peak_strain_rate_1w = largest(r_.column("strain_rate_1w"), t);
   r_.peak_strain_rate_3w = largest(r_.column("strain_rate_3w"), t);
+}
+
+// A result that is not finite is never a success: every row nan (no reflected
+// or transmitted sample read) or a specimen never in compression is refused.
+void Analysis::check_results() const {
+  const double stress = r_.peak_stress_3w.value, rate = r_.peak_strain_rate_3w.value;
+  if (!std::isfinite(stress) || !std::isfinite(rate))
+    throw InputError(fmt::format(
+        "{}: no row has a finite 3-wave stress and strain rate: the reflected and transmitted pulses are not in "
+        "their records (check incident.gauge_to_specimen, transmitted.gauge_to_specimen, transmitted.start and "
+        "end, the bars' wave speed and the records' times)",
+        setup_.origin.string()));
+  if (!(stress > 0))
+    throw InputError(fmt::format(
+        "{}: the 3-wave stress is never compression (its peak is {:.4g}): the pulses are not where the setup places "
+        "them (check transmitted.start and end, each gauge_to_specimen and polarity)",
+        setup_.origin.string(), stress));
+}
+
+// In SI, results beyond what any bar test reaches (hopkinson_plausible) warn:
+// a unit slip the setup's checks let through.
+void Analysis::check_bounds() {
+  if (!setup_.si) return;
+  const auto warn = [&](std::string_view what, double value, double bound) {
+    r_.warnings.push_back(fmt::format(
+        "implausible-result: the {} {:.4g} is beyond {:g}, more than a bar test reaches: check the setup's units (m, "
+        "s, Pa, kg/m^3)",
+        what, value, bound));
+  };
+  if (r_.peak_strain_rate_3w.value > hp::highest_strain_rate)
+    warn("3-wave peak strain rate", r_.peak_strain_rate_3w.value, hp::highest_strain_rate);
+  if (r_.peak_stress_3w.value > hp::highest_stress)
+    warn("3-wave peak stress", r_.peak_stress_3w.value, hp::highest_stress);
+  if (r_.fit.modulus > hp::highest_modulus) warn("fitted modulus", r_.fit.modulus, hp::highest_modulus);
 }
 
 // equilibrium where both forces pass 5% of their peak; the time from which

@@ -11,6 +11,7 @@
 #include "barimpact/case/case.hpp"
 #include "barimpact/model/input_error.hpp"
 #include "barimpact/run/output.hpp"
+#include "plausible.hpp"
 
 namespace barimpact {
 
@@ -188,6 +189,7 @@ struct RunGauge {
   HopkinsonBar bar;
   double gauge_to_specimen = 0.0;
   double specimen_length = 0.0, specimen_area = 0.0;
+  bool si = true;  ///< the run's case says [units] system = "SI"
 };
 
 // Sets the channel's file: the run's history.csv, or its results.h5.
@@ -246,6 +248,7 @@ RunGauge read_run_gauge(const SetupReader& r, ChannelSetup& ch, const std::strin
   out.gauge_to_specimen = gb == sp + 1 ? g->at : b.length - g->at;
   out.specimen_length = spec.length;
   out.specimen_area = spec.area;
+  out.si = c.units == "SI";
   return out;
 }
 
@@ -392,6 +395,85 @@ HopkinsonBar read_bar(const SetupReader& r, const std::optional<RunGauge>& from_
   return b;
 }
 
+// The bounds of plausible_setup, in SI, wide on purpose:
+//   - bar modulus 1e8 to 1.5e12 Pa: polymer bars (0.2 to 5 GPa) to tungsten
+//     carbide (about 700 GPa; diamond's is 1.2 TPa);
+//   - bar density 500 to 25000 kg/m^3: polymers (about 900) to tungsten (19300);
+//   - wave speed 300 to 20000 m/s: low-density polyethylene (about 500),
+//     polymers 1400 to 2300, steel 5000, aluminium 5100, beryllium 12900;
+//   - bar diameter 1 mm to 1 m: miniature bars (3 mm) to the largest (0.3 m);
+//   - gauge_to_specimen up to 100 m: bars are a few metres long;
+//   - the specimen no wider than the bars (10% of area for rounding): wider,
+//     it overhangs the faces, which load only their own area;
+//   - the specimen's length 0.02 to 10 diameters: thin discs of soft
+//     materials to long rods (usual: 0.5 to 2); longer, it cannot reach
+//     equilibrium within a pulse.
+namespace hp = hopkinson_plausible;
+constexpr hp::Bounds bar_modulus{1e8, 1.5e12, 200e9}, bar_density{500.0, 25000.0, 7850.0},
+    bar_wave_speed{300.0, 20000.0, 5000.0}, bar_diameter{1e-3, 1.0, 0.02}, gauge_distance{0.0, 100.0, 1.0},
+    specimen_aspect{0.02, 10.0, 0.5};
+constexpr double specimen_overhang = 1.1;
+
+// section.key = v, refused outside the bounds with the unit it was probably meant in.
+void plausible(const SetupReader& r, std::string_view section, std::string_view key, double v, const hp::Bounds& b,
+               std::string_view unit, std::initializer_list<hp::Unit> units) {
+  if (!b.holds(v))
+    r.fail(section, key, fmt::format("= {}: {}outside [{:g}, {:g}] {}", v, hp::meant(v, b, units), b.lo, b.hi, unit));
+}
+
+// A bar's or the specimen's size key, "diameter" or "area", with its value:
+// checked as a diameter, so that an area in mm^2 is found as a diameter in mm.
+std::string_view size_key(const SetupReader& r, std::string_view section) {
+  return r.has(section, "area") ? "area" : "diameter";
+}
+
+void plausible_bar(const SetupReader& r, const HopkinsonBar& b) {
+  plausible(r, "bar", "modulus", b.modulus, bar_modulus, "Pa (steel 200e9)", {{1e9, "GPa"}, {1e6, "MPa"}});
+  plausible(r, "bar", "density", b.density, bar_density, "kg/m^3 (steel 7850)", {{1e3, "g/cm^3"}});
+  const auto size = size_key(r, "bar");
+  if (!bar_diameter.holds(b.diameter))
+    r.fail("bar", size,
+           fmt::format("= {}: {}a diameter of {:g} m, outside [{:g}, {:g}] m", size == "area" ? b.area : b.diameter,
+                       hp::meant(b.diameter, bar_diameter, {{1e-3, size == "area" ? "mm^2" : "mm"}}), b.diameter,
+                       bar_diameter.lo, bar_diameter.hi));
+  if (r.has("bar", "wave_speed"))
+    plausible(r, "bar", "wave_speed", b.wave_speed, bar_wave_speed, "m/s (steel 5000)", {{1e3, "km/s"}});
+  else if (!bar_wave_speed.holds(b.wave_speed))
+    r.fail("bar", "modulus",
+           fmt::format("= {} and bar.density = {} give c0 = sqrt(modulus / density) = {:.4g} m/s, outside [{:g}, "
+                       "{:g}] m/s: check their units (Pa, kg/m^3)",
+                       b.modulus, b.density, b.wave_speed, bar_wave_speed.lo, bar_wave_speed.hi));
+}
+
+void plausible_setup(const SetupReader& r, const HopkinsonSetup& s) {
+  plausible_bar(r, s.incident_bar);
+  plausible_bar(r, s.transmitter_bar);
+  for (const ChannelSetup* ch : {&s.incident, &s.transmitted}) {
+    plausible(r, ch->section, "gauge_to_specimen", ch->gauge_to_specimen, gauge_distance, "m", {{1e-3, "mm"}});
+    if (ch->sample_interval > 0)
+      plausible(r, ch->section, "sample_interval", ch->sample_interval, hp::sample_interval, "s", hp::time_units);
+  }
+  const auto& sp = s.specimen;
+  const double bar_area = std::min(s.incident_bar.area, s.transmitter_bar.area);
+  const double diameter = std::sqrt(4.0 * sp.area / std::numbers::pi);
+  const double widest = std::sqrt(4.0 * specimen_overhang * bar_area / std::numbers::pi);
+  const auto size = size_key(r, "specimen");
+  if (diameter > widest)
+    r.fail("specimen", size,
+           fmt::format("= {}: {}the specimen (area {:.4g} m^2) is wider than the bars (area {:.4g} m^2), whose "
+                       "faces load only their own area",
+                       size == "area" ? sp.area : diameter,
+                       hp::meant(diameter, {0.0, widest, 0.5 * widest}, {{1e-3, size == "area" ? "mm^2" : "mm"}}),
+                       sp.area, bar_area));
+  const double aspect = sp.length / diameter;
+  if (!specimen_aspect.holds(aspect))
+    r.fail("specimen", "length",
+           fmt::format("= {}: {}{:.3g} diameters long (diameter {:.4g} m), outside [{:g}, {:g}]: a Hopkinson "
+                       "specimen is a disc or a short cylinder",
+                       sp.length, hp::meant(aspect, specimen_aspect, {{1e-3, "mm"}}), aspect, diameter,
+                       specimen_aspect.lo, specimen_aspect.hi));
+}
+
 }  // namespace
 
 HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::filesystem::path& base,
@@ -431,6 +513,8 @@ HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::f
   s.fit_plastic = r.range("fit", "plastic");
   if (s.fit_plastic && !s.fit_elastic)
     r.fail("fit", "plastic", "needs fit.elastic: the yield, where the plastic range starts, comes from the modulus");
+  s.si = !(run_i && !run_i->si) && !(run_t && !run_t->si);
+  if (s.si) plausible_setup(r, s);
   return s;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <numeric>
 
@@ -182,6 +183,38 @@ void check_chatter(const Case& c, const Summary& s, std::vector<std::string>& ou
   }
 }
 
+// A pile case's numbers that are possible but unlikely in SI, each a
+// warning naming the key and the unit it was probably meant in:
+//   - a static capacity (toe or shaft) below the pile's own weight rho A L g:
+//     a pile that light a soil could not hold up is a capacity in kN;
+//   - a ram moving away from the pile (the line runs up from the toe, +x
+//     upwards): it strikes only if it comes back down.
+void check_pile(const Case& c, std::vector<std::string>& out) {
+  const BodyData* pile = c.pile();
+  if (pile == nullptr) return;
+  constexpr double g = 9.80665;
+  const double weight = pile->density * pile->area * pile->length * g;
+  std::vector<std::pair<std::string, double>> capacities;
+  if (c.near_end.law == JointLaw::smith) capacities.emplace_back("near_end.ultimate", c.near_end.soil.ultimate);
+  for (const auto& b : c.bodies)
+    if (b.shaft) capacities.emplace_back(fmt::format("body.{}.shaft.ultimate", b.name), b.shaft->soil.ultimate);
+  for (const auto& [key, capacity] : capacities)
+    if (capacity > 0.0 && capacity < weight)
+      out.push_back(fmt::format(
+          "pile-capacity: {} = {:g}: {}below the pile's own weight ({:.4g} N): capacities are in N ({:g} kN is "
+          "{:g})",
+          key, capacity, capacity * 1e3 >= weight ? "kN? " : "", weight, capacity, capacity * 1e3));
+  const BodyData& ram = c.blow.ram.empty() ? c.bodies.back()
+                                           : *std::find_if(c.bodies.begin(), c.bodies.end(),
+                                                           [&](const BodyData& b) { return b.name == c.blow.ram; });
+  char* end = nullptr;
+  const double v = std::strtod(ram.velocity.c_str(), &end);
+  if (&ram != pile && end != ram.velocity.c_str() && *end == '\0' && v > 0.0)
+    out.push_back(fmt::format(
+        "ram-velocity: body.{}.velocity = {:g} moves the ram away from the pile (+x runs up from the toe): {:g}?",
+        ram.name, v, -v));
+}
+
 }  // namespace
 
 std::string join_warnings(const std::vector<std::string>& warnings) {
@@ -198,6 +231,7 @@ std::vector<std::string> check_health(const Case& c, const Line& line, const Sum
   check_penalty(c, line, out);
   check_stability(c, out);
   check_chatter(c, s, out);
+  check_pile(c, out);
   return out;
 }
 

@@ -374,6 +374,11 @@ grep -q '^end = 0.05$' "$work/bearing-set/runs/0001/case.toml" && ok || bad "bea
 expect_refused "--set time.nope=1" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:2 --set time.nope=1
 expect_refused "--toe-share must be in [0, 1]" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share -0.5
 expect_refused "--jobs: must be 1 .. 1024" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --jobs -1
+# A pile's numbers in another unit: a modulus in MPa refused, a capacity in kN warned (exit 4 under --strict).
+expect_refused "body.pile.modulus = 210000: MPa?" run "$pipe" --out "$work/refused" --set body.pile.modulus=210000
+"$bin" run "$pipe" --out "$work/pipe-kn" --strict --set near_end.ultimate=900 --set time.end=0.002 --set "output.fields_at=[]" > /dev/null 2> "$work/err"
+[ $? -eq 4 ] && grep -qF "pile-capacity: near_end.ultimate = 900: kN?" "$work/err" && ok || bad "capacity in kN: $(cat "$work/err")"
+grep -qF "pile-capacity: near_end.ultimate = 900: kN?" "$work/pipe-kn/summary.json" && ok || bad "capacity warning not in summary.json"
 expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1e6:2e6:3
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
 expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5
@@ -450,6 +455,20 @@ cp "$work/measured.toml" "$work/m3.toml" && sed -i 's/gauge_to_specimen = 0.75/g
 expect_refused "pulses too close" hopkinson "$work/m3.toml" --out "$work/refused"
 cp "$work/measured.toml" "$work/m4.toml" && sed -i 's/^gain = 100/gain = 100\nfull_scale = 0.5/' "$work/m4.toml"
 expect_refused "clips" hopkinson "$work/m4.toml" --out "$work/refused"
+# A result that is not finite is refused: a gauge distance in mm, a transmitted window outside the record.
+sed '0,/gauge_to_specimen = 0.75/s//gauge_to_specimen = 750/' "$work/measured.toml" > "$work/m5.toml"
+expect_refused "incident.gauge_to_specimen = 750" hopkinson "$work/m5.toml" --out "$work/refused"
+{ cat "$work/measured.toml"; printf 'start = 1.0\nend = 2.0\n'; } > "$work/m6.toml"  # in [transmitted], the last section
+expect_refused "transmitted.start = 1, transmitted.end = 2" hopkinson "$work/m6.toml" --out "$work/refused"
+# A unit slip names the key and the unit it was probably meant in: GPa, mm, a time column in us.
+sed 's/modulus = 200e9/modulus = 200/' "$work/measured.toml" > "$work/m7.toml"
+expect_refused "bar.modulus = 200: GPa?" hopkinson "$work/m7.toml" --out "$work/refused"
+sed 's/length = 0.006/length = 6/' "$work/measured.toml" > "$work/m8.toml"
+expect_refused "specimen.length = 6: mm?" hopkinson "$work/m8.toml" --out "$work/refused"
+awk -F, '{ print $1 * 1e6 "," $2 }' "$work/inc.csv" > "$work/inc-us.csv"
+sed 's/"inc.csv"/"inc-us.csv"/' "$work/measured.toml" > "$work/m9.toml"
+expect_refused "incident.time: the samples are" hopkinson "$work/m9.toml" --out "$work/refused"
+grep -q "us?" "$work/err" && ok || bad "no us? in: $(cat "$work/err")"
 expect_refused "unknown key window.trigge" hopkinson <(printf '[window]\ntrigge = 0.1\n') --out "$work/refused"
 
 # barimpact check: validates without running or writing, prints what to know first.

@@ -348,6 +348,116 @@ TEST_F(HopkinsonAnalysis, RefusesWhatCannotBeAnalysedInOneLine) {
   EXPECT_HAS(refusal(setup_text()), "polarity");
 }
 
+// White noise on the incident record, of rms 2% and 8% of the incident peak
+// (1e-3): noise once took the foot to the record's first samples (a window of
+// 2 samples, a noise rms of 0, exit 0) or refused the pulse as starting
+// there. The pulse is found on a moving average, the noise measured before
+// the foot: 2% is analysed with the pulse's window, 8% refused (above half
+// the trigger level, 5%); a record without 8 samples before the foot cannot
+// measure it.
+TEST_F(HopkinsonAnalysis, FindsThePulseUnderNoiseAndRefusesNoiseAboveTheContract) {
+  for (const unsigned seed : {1u, 2u, 3u, 6u}) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const auto clean = records();
+    auto noisy = [&](double rms) {
+      auto r = clean;
+      for (auto& v : r.incident) v += rms * normal(rng);
+      return r;
+    };
+    write_records(noisy(8e-5));
+    EXPECT_HAS(refusal(setup_text()), "baseline noise: the rms");
+    write_records(noisy(2e-5));
+    const auto r = analyse(setup_text());
+    // The average (about 14 samples here) moves the foot up to half its
+    // width early, and the end as late: 1 us (10 samples) either way.
+    EXPECT_NEAR(r.alignment.foot, foot, 1e-6) << seed;
+    EXPECT_NEAR(r.alignment.incident.end, foot + 120.6e-6, 1e-6) << seed;
+    // The rms of 1000 samples: within 10% of the noise's.
+    EXPECT_NEAR(r.alignment.noise_incident, 2e-5, 2e-6) << seed;
+    EXPECT_NEAR(r.alignment.incident_peak, 1e-3, 2e-5) << seed;
+  }
+  write_records(records());
+  EXPECT_HAS(refusal(setup_text("", "start = 0.5e-6\nend = 150e-6")), "only 5 samples before the incident foot");
+}
+
+// Each of these once exited 0 with every result nan (or a peak stress of -0):
+// a result that is not finite is refused, naming the key that placed it.
+TEST_F(HopkinsonAnalysis, RefusesASetupWhoseResultsWouldNotBeFinite) {
+  write_records(records());
+  for (const char* d : {"750", "1e300"})
+    EXPECT_HAS(refusal(with(setup_text(), "gauge_to_specimen = 1.0", fmt::format("gauge_to_specimen = {}", d))),
+               "incident.gauge_to_specimen");
+  EXPECT_HAS(refusal(with(setup_text(), "gauge_to_specimen = 0.5", "gauge_to_specimen = 750")),
+             "transmitted.gauge_to_specimen");
+  // A transmitted window outside the record, as the incident's is refused.
+  const std::string outside = refusal(setup_text("", "", "start = 2e-3\nend = 3e-3"));
+  EXPECT_HAS(outside, "transmitted.start = 0.002, transmitted.end = 0.003");
+  EXPECT_HAS(outside, "not inside the record");
+  // A window between two samples (it read nothing: a peak stress of -0).
+  EXPECT_HAS(refusal(setup_text("", "", "start = 400.01e-6\nend = 400.05e-6")), "holds 0 samples, fewer than two");
+  EXPECT_HAS(refusal(setup_text("", "start = 100.01e-6\nend = 100.05e-6")), "incident.start");
+  // Times 1e-320 apart: the pulses' travel times lie far beyond the record.
+  std::string column = "strain\n", transmitted = "strain\n";
+  const auto rec = records();
+  for (std::size_t k = 0; k < samples; ++k) {
+    column += fmt::format("{}\n", rec.incident[k]);
+    transmitted += fmt::format("{}\n", rec.transmitted[k]);
+  }
+  write("i.csv", column);
+  write("t.csv", transmitted);
+  EXPECT_HAS(refusal(setup_text("", "signal = \"i.csv\"\nsample_interval = 1e-320",
+                                "signal = \"t.csv\"\nsample_interval = 1e-320")),
+             "incident.sample_interval = 1e-320: outside");
+  // A reflected pulse larger than the incident one and a transmitted one in
+  // tension: the specimen is never in compression.
+  Records tension;
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double t = static_cast<double>(k) * dt;
+    tension.t.push_back(t);
+    tension.incident.push_back(eps_i(t - foot) - 1.5 * eps_i(t - foot - shift_r));
+    tension.transmitted.push_back(-eps_t(t - foot - shift_t));
+  }
+  write_records(tension);
+  EXPECT_HAS(refusal(setup_text()), "never compression");
+}
+
+// A number given in another unit than SI's gave nan, or garbage with no
+// word (a specimen 6 m long: a modulus of 6.6e13 Pa): refused, naming the key
+// and the unit it was probably meant in.
+TEST_F(HopkinsonAnalysis, RefusesAUnitSlipNamingTheKeyAndTheUnit) {
+  write_records(records());
+  const auto slip = [&](const std::string& from, const std::string& to) {
+    return refusal(with(setup_text(), from, to));
+  };
+  EXPECT_HAS(slip("modulus = 200e9", "modulus = 200"), "bar.modulus = 200: GPa?");
+  EXPECT_HAS(slip("modulus = 200e9", "modulus = 200000"), "bar.modulus = 200000: MPa?");
+  EXPECT_HAS(slip("density = 8000.0", "density = 8.0"), "bar.density = 8: g/cm^3?");
+  EXPECT_HAS(slip("density = 8000.0", "density = 8000.0\nwave_speed = 5"), "bar.wave_speed = 5: km/s?");
+  EXPECT_HAS(slip("modulus = 200e9", "modulus = 2e8"), "c0 = sqrt(modulus / density) = 158.1 m/s");
+  EXPECT_HAS(slip("area = 3e-4", "diameter = 20"), "bar.diameter = 20: mm?");
+  EXPECT_HAS(slip("gauge_to_specimen = 1.0", "gauge_to_specimen = 750"), "incident.gauge_to_specimen = 750: mm?");
+  // In the range of a bar, but placing the reflected pulse beyond the record.
+  EXPECT_HAS(slip("gauge_to_specimen = 1.0", "gauge_to_specimen = 50"), "incident.gauge_to_specimen = 50: mm?");
+  EXPECT_HAS(slip("length = 0.005", "length = 5"), "specimen.length = 5: mm? 443 diameters long");
+  EXPECT_HAS(slip("area = 1e-4", "area = 100"), "specimen.area = 100: mm^2? the specimen");
+  EXPECT_HAS(slip("area = 1e-4", "diameter = 11"), "specimen.diameter = 11: mm? the specimen");
+  // A scope's time column in us (0.1 apart), or in ms (the pulse 0.12 long).
+  for (const auto& [unit, factor, want] :
+       {std::tuple{"us", 1e6, "incident.time: the samples are 0.1 apart on average: us?"},
+        std::tuple{"ms", 1e3, "incident.time: the incident pulse lasts 0.1206: ms?"}}) {
+    auto r = records();
+    for (auto& t : r.t) t *= factor;
+    write_records(r);
+    EXPECT_HAS(refusal(setup_text()), want) << unit;
+  }
+  // A specimen 0.11 mm across: a stress of 2.6e12 Pa, beyond any bar test's.
+  write_records(records());
+  const auto r = analyse(with(with(setup_text(), "area = 1e-4", "area = 1e-8"), "length = 0.005", "length = 5e-4"));
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_EQ(r.warnings.back().rfind("implausible-result: the 3-wave peak stress 2.61e+12", 0), 0u) << r.warnings.back();
+}
+
 TEST_F(HopkinsonAnalysis, RefusesABadSetupNamingTheKey) {
   write_records(records());
   EXPECT_HAS(refusal(setup_text("[window]\ntrigger = 0.01")), "window.trigger");

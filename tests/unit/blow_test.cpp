@@ -172,8 +172,32 @@ TEST(SmithBlow, ARamMovingAwayIsNoImpact) {
   const std::string text = summary_text(c, r.summary);
   EXPECT_NE(text.find("no impact"), std::string::npos) << text;
   for (const char* word : {"refusal", "inf", "nan"}) EXPECT_EQ(text.find(word), std::string::npos) << word << text;
-  ASSERT_EQ(r.summary.warnings.size(), 1u);
-  EXPECT_EQ(r.summary.warnings[0].rfind("blow-no-impact:", 0), 0u) << r.summary.warnings[0];
+  // The ram's velocity is named before the run's outcome.
+  ASSERT_EQ(r.summary.warnings.size(), 2u);
+  EXPECT_EQ(
+      r.summary.warnings[0],
+      "ram-velocity: body.ram.velocity = 4.43 moves the ram away from the pile (+x runs up from the toe): -4.43?");
+  EXPECT_EQ(r.summary.warnings[1].rfind("blow-no-impact:", 0), 0u) << r.summary.warnings[1];
+}
+
+// Capacities in kN (900 for 900e3 N), below the steel pipe's own weight of
+// 16.2 kN, warn naming each key; the example's own capacities do not.
+TEST(SmithBlow, ACapacityBelowThePilesWeightWarnsOfKilonewtons) {
+  // The capacities' warnings of a short run (which also warns blow-unfinished).
+  auto capacity_warnings = [](std::vector<std::string> sets) {
+    sets.insert(sets.end(), {"time.end=0.002", "output.fields_at=[]"});
+    std::vector<std::string> out;
+    for (const auto& w : run(testing::example("pile/steel-pipe-sand.toml", sets)).summary.warnings)
+      if (w.rfind("pile-capacity:", 0) == 0) out.push_back(w);
+    return out;
+  };
+  EXPECT_TRUE(capacity_warnings({}).empty());
+  const auto warnings = capacity_warnings({"near_end.ultimate=900", "body.pile.shaft.ultimate=600"});
+  ASSERT_EQ(warnings.size(), 2u);
+  EXPECT_EQ(
+      warnings[0].rfind("pile-capacity: near_end.ultimate = 900: kN? below the pile's own weight (1.617e+04 N)", 0), 0u)
+      << warnings[0];
+  EXPECT_EQ(warnings[1].rfind("pile-capacity: body.pile.shaft.ultimate = 600: kN?", 0), 0u) << warnings[1];
 }
 
 // A rigid ram of mass M at v0 welded onto a long elastic pile (impedance Z,

@@ -315,6 +315,21 @@ TEST(Case, ChecksAConstantExpressionOnceNotAtEveryNode) {
   EXPECT_REFUSED("[bar]\nelements = 100000000\n[initial]\nvelocity = \"0/0\"", "initial.velocity", "finite");
 }
 
+// A pile's modulus in MPa or GPa, its density in t/m^3: no pile has such a
+// material in SI (before, the run went on with a wave of 5 m/s).
+TEST(SmithCase, RefusesAPileMaterialInAnotherUnitNamingIt) {
+  auto with = [](const std::string& from, const std::string& to) {
+    std::string s = pile_toml;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  EXPECT_REFUSED(with("modulus = 210e9", "modulus = 210000"), "body.pile.modulus = 210000: MPa? outside");
+  EXPECT_REFUSED(with("modulus = 210e9", "modulus = 210"), "body.pile.modulus = 210: GPa?");
+  EXPECT_REFUSED(with("density = 7850.0", "density = 7.85"), "body.pile.density = 7.85: t/m^3?");
+  // The same numbers in a case without soil or a blow are not a pile's.
+  EXPECT_NO_THROW(case_from("[[body]]\nname = \"rod\"\nmodulus = 210000\ndensity = 7.85\n"));
+}
+
 TEST(SmithCase, RefusesWhatItCannotRun) {
   EXPECT_REFUSED(std::string(pile_toml) + "[far_end]\nlaw = \"smith\"\nultimate = 1.0\n", "far_end.law",
                  "near-end law only");

@@ -202,6 +202,11 @@ struct Case {
   /// elastic bar, no joints, gravity or shaft, its near end free or an
   /// elastic, viscoelastic or rigid obstacle, its far end free or clamped.
   [[nodiscard]] std::optional<OneBar> one_bar() const;
+  /// Smith's soil at the toe (near_end.law = "smith") or along a shaft.
+  [[nodiscard]] bool smith_soil() const;
+  /// A pile case's pile (Smith's soil, or a [blow]): [blow] pile, else the
+  /// bar nearest x = 0; nothing for another case.
+  [[nodiscard]] const BodyData* pile() const;
   /// The bars' total length and number of elements (every bar of the line).
   [[nodiscard]] double bar_length() const;
   [[nodiscard]] long long bar_elements() const;

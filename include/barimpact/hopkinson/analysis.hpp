@@ -20,7 +20,8 @@
 // Alignment: each signal loses its mean over the record before the incident
 // pulse's foot; the foot is the last sample before the trigger crossing
 // (trigger x the incident peak) at or below 2% of the peak, found again on
-// the new baseline until it stays. t = 0 when the foot reaches the front
+// the new baseline until it stays (on a moving average when the record is
+// noisy, so that noise passes for neither the pulse nor its foot). t = 0 when the foot reaches the front
 // face. The reflected and transmitted pulses are placed by the travel times
 // 2 d_i / c0 and (d_i + d_t) / c0 alone, and read between samples by linear
 // interpolation.

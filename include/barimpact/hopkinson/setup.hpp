@@ -71,6 +71,10 @@ struct HopkinsonSetup {
   double trigger = 0.1;  ///< [window] trigger: the fraction of the incident peak that finds the pulse
   std::optional<std::pair<double, double>> fit_elastic;  ///< [fit] elastic: a stress range
   std::optional<std::pair<double, double>> fit_plastic;  ///< [fit] plastic: a strain range
+  /// In SI (m, s, Pa, kg/m^3): the numbers are checked against what a
+  /// laboratory's bars, specimens and records can be (false for a run whose
+  /// case says `[units] system = "none"`).
+  bool si = true;
 
   /// Reads and validates a setup file; relative paths in it are relative to
   /// its directory (or, when nothing is there but something is in the
