@@ -16,47 +16,77 @@
 
 namespace barimpact {
 
+namespace {
+
+// One scheme as the loop's only lane.
+class OneLane final : public LaneStepper {
+ public:
+  explicit OneLane(Scheme& s) : s_(s) {}
+  [[nodiscard]] std::size_t lanes() const override { return 1; }
+  [[nodiscard]] Scheme& lane(std::size_t /*i*/) override { return s_; }
+  void start() override { s_.start(); }
+  void advance() override { s_.advance(); }
+
+ private:
+  Scheme& s_;
+};
+
+// Whether a lane goes on after its step `n` (0: the start): its state
+// finite and every observer content. Else its result says why.
+bool observe(Scheme& s, long long n, std::span<Observer* const> observers, LoopResult& result) {
+  if (!s.finite()) {
+    result.status = RunStatus::non_finite;
+    const std::string why = s.failure();
+    result.message = n == 0        ? std::string("the initial state is not finite")
+                     : why.empty() ? fmt::format("the state became non-finite at step {} (t = {})", n, s.time())
+                                   : fmt::format("{} at step {} (t = {})", why, n, s.time());
+    return false;
+  }
+  result.steps_done = n;
+  bool go_on = true;
+  for (auto* o : observers) go_on = o->observe(s) && go_on;
+  if (!go_on) {
+    result.status = RunStatus::stopped;
+    if (n > 0) result.message = fmt::format("stopped by an observer at step {} (t = {})", n, s.time());
+  }
+  return go_on;
+}
+
+}  // namespace
+
+std::vector<LoopResult> simulate(LaneStepper& lanes, long long steps, std::span<const std::vector<Observer*>> observers,
+                                 const std::atomic<bool>* interrupt) {
+  const std::size_t count = lanes.lanes();
+  std::vector<LoopResult> results(count);
+  std::vector<char> live(count, 1);
+  std::size_t left = count;
+  for (std::size_t l = 0; l < count; ++l)
+    for (auto* o : observers[l]) o->begin(lanes.lane(l), steps);
+  lanes.start();
+  for (long long n = 0; n <= steps && left > 0; ++n) {
+    if (n > 0) lanes.advance();
+    for (std::size_t l = 0; l < count; ++l)
+      if (live[l] && !observe(lanes.lane(l), n, observers[l], results[l])) {
+        live[l] = 0;
+        --left;
+      }
+    if (interrupt != nullptr && interrupt->load(std::memory_order_relaxed) && n > 0 && n < steps) {
+      for (std::size_t l = 0; l < count; ++l)
+        if (live[l]) {
+          results[l].status = RunStatus::interrupted;
+          results[l].message = fmt::format("interrupted at step {} (t = {})", n, lanes.lane(l).time());
+        }
+      break;
+    }
+  }
+  return results;
+}
+
 LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers,
                     const std::atomic<bool>* interrupt) {
-  LoopResult result;
-  for (auto* o : observers) o->begin(scheme, steps);
-  scheme.start();
-  auto notify = [&] {
-    bool go_on = true;
-    for (auto* o : observers) go_on = o->observe(scheme) && go_on;
-    return go_on;
-  };
-  if (!scheme.finite()) {
-    result.status = RunStatus::non_finite;
-    result.message = "the initial state is not finite";
-    return result;
-  }
-  if (!notify()) {
-    result.status = RunStatus::stopped;
-    return result;
-  }
-  for (long long n = 1; n <= steps; ++n) {
-    scheme.advance();
-    if (!scheme.finite()) {
-      result.status = RunStatus::non_finite;
-      const std::string why = scheme.failure();
-      result.message = why.empty() ? fmt::format("the state became non-finite at step {} (t = {})", n, scheme.time())
-                                   : fmt::format("{} at step {} (t = {})", why, n, scheme.time());
-      return result;
-    }
-    result.steps_done = n;
-    if (!notify()) {
-      result.status = RunStatus::stopped;
-      result.message = fmt::format("stopped by an observer at step {} (t = {})", n, scheme.time());
-      return result;
-    }
-    if (interrupt != nullptr && interrupt->load(std::memory_order_relaxed) && n < steps) {
-      result.status = RunStatus::interrupted;
-      result.message = fmt::format("interrupted at step {} (t = {})", n, scheme.time());
-      return result;
-    }
-  }
-  return result;
+  OneLane one(scheme);
+  const std::vector<std::vector<Observer*>> lane{{observers.begin(), observers.end()}};
+  return simulate(one, steps, lane, interrupt).front();
 }
 
 RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)

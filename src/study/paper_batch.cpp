@@ -111,42 +111,14 @@ std::vector<RunResult> run_batch(const std::vector<const Case*>& cases, const st
   PaperBatch batch(cases);
   const long long steps = cases.front()->step_count();
   std::vector<std::unique_ptr<RunRecorder>> rec;
-  std::vector<LoopResult> loops(cases.size());
-  std::vector<bool> live(cases.size(), true);
+  std::vector<std::vector<Observer*>> observers;
   for (std::size_t l = 0; l < cases.size(); ++l) {
     rec.push_back(std::make_unique<RunRecorder>(*cases[l], batch.lane(l)));
-    for (auto* o : rec[l]->observers()) o->begin(batch.lane(l), steps);
+    observers.push_back(rec[l]->observers());
   }
-  batch.start();
-  // The loop of simulate(), lane by lane: a lane that turns non-finite stops
-  // being observed (its numbers keep being computed, and are ignored).
-  auto observe = [&](std::size_t l) {
-    Scheme& s = batch.lane(l);
-    if (!s.finite()) {
-      live[l] = false;
-      loops[l].status = RunStatus::non_finite;
-      loops[l].message = s.step() == 0
-                             ? std::string("the initial state is not finite")
-                             : fmt::format("the state became non-finite at step {} (t = {})", s.step(), s.time());
-      return;
-    }
-    loops[l].steps_done = s.step();
-    for (auto* o : rec[l]->observers()) o->observe(s);
-  };
-  for (std::size_t l = 0; l < cases.size(); ++l) observe(l);
-  for (long long n = 1; n <= steps && std::find(live.begin(), live.end(), true) != live.end(); ++n) {
-    batch.advance();
-    for (std::size_t l = 0; l < cases.size(); ++l)
-      if (live[l]) observe(l);
-    if (interrupt != nullptr && interrupt->load(std::memory_order_relaxed) && n < steps) {
-      for (std::size_t l = 0; l < cases.size(); ++l)
-        if (live[l]) {
-          loops[l].status = RunStatus::interrupted;
-          loops[l].message = fmt::format("interrupted at step {} (t = {})", n, batch.lane(l).time());
-        }
-      break;
-    }
-  }
+  // The one time loop, its lanes the batch's: a lane that turns non-finite
+  // stops being observed (its numbers are computed on, and ignored).
+  const std::vector<LoopResult> loops = simulate(batch, steps, observers, interrupt);
   std::vector<RunResult> out;
   for (std::size_t l = 0; l < cases.size(); ++l) {
     out.push_back(rec[l]->finish(loops[l], steps, started));

@@ -27,10 +27,28 @@ struct LoopResult {
   std::string message;       ///< why it did not complete
 };
 
-/// Starts `scheme`, then advances it `steps` times; every observer sees steps
-/// 0..steps. Stops early, with the observers' data so far, when the state
-/// turns non-finite, an observer returns false, or `interrupt` (set from a
-/// signal handler, say) becomes true: the step under way ends first.
+/// What the time loop steps: lanes advanced together, each a Scheme seen by
+/// its own observers. One scheme is one lane; the SIMD batch of the paper's
+/// scheme (study/paper_batch.hpp) steps several cases at once.
+class LaneStepper {
+ public:
+  virtual ~LaneStepper() = default;
+  [[nodiscard]] virtual std::size_t lanes() const = 0;
+  [[nodiscard]] virtual Scheme& lane(std::size_t i) = 0;
+  virtual void start() = 0;
+  virtual void advance() = 0;
+};
+
+/// The time loop: starts the lanes, then advances them `steps` times; every
+/// lane's observers see its steps 0..steps. A lane stops early, with its
+/// observers' data so far, when its state turns non-finite or an observer
+/// returns false (its numbers are computed on with the others, and
+/// ignored); every lane stops when `interrupt` (set from a signal handler,
+/// say) becomes true: the step under way ends first. The loop ends when no
+/// lane is left. `observers[i]` are lane i's.
+std::vector<LoopResult> simulate(LaneStepper& lanes, long long steps, std::span<const std::vector<Observer*>> observers,
+                                 const std::atomic<bool>* interrupt = nullptr);
+/// The same for one scheme.
 LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> observers,
                     const std::atomic<bool>* interrupt = nullptr);
 

@@ -24,7 +24,7 @@ namespace barimpact {
 /// chains in one register make them several times cheaper per case.
 /// Each lane stays a PaperScheme: observers see it through the Scheme
 /// interface.
-class PaperBatch {
+class PaperBatch final : public LaneStepper {
  public:
   /// Cases per register: 4 doubles, one AVX2 register (two SSE2 ones; the
   /// path is chosen at run time, simd.hpp). (Eight, one AVX-512
@@ -50,10 +50,11 @@ class PaperBatch {
 
   /// 1 to `width` cases, pairwise batchable. Throws InputError otherwise.
   explicit PaperBatch(const std::vector<const Case*>& cases);
-  void start();
-  void advance();
+  void start() override;
+  void advance() override;
   [[nodiscard]] std::size_t size() const { return lanes_.size(); }
-  [[nodiscard]] PaperScheme& lane(std::size_t i) { return *lanes_[i]; }
+  [[nodiscard]] std::size_t lanes() const override { return lanes_.size(); }
+  [[nodiscard]] PaperScheme& lane(std::size_t i) override { return *lanes_[i]; }
 
  private:
   std::vector<std::unique_ptr<PaperScheme>> lanes_;
