@@ -217,6 +217,59 @@ TEST(CaseLines, RefusesDuplicateNames) {
                  "gauge.g.name", "repeats the gauge name");
 }
 
+// A long line (issue 36: 32,000 masses took 114 s to check): joints listed
+// from the far end come out in line order, each found by its bodies' names,
+// and a name repeated at the far end of it is still refused. Its speed is
+// bench/read_benchmark.cpp's (10^5 bodies), never a timed test.
+std::string long_line(int bodies, bool reversed_joints) {
+  std::string text;
+  text += "[[body]]\nname = \"m1\"\nelements = 2\n";  // a bar, for the gauge
+  for (int i = 2; i <= bodies; ++i)
+    text += fmt::format("[[body]]\nname = \"m{}\"\nkind = \"mass\"\nvelocity = {}\n", i, i % 7);
+  for (int k = 1; k < bodies; ++k) {
+    const int i = reversed_joints ? bodies - k : k;
+    text += fmt::format("[[joint]]\nbetween = [\"m{}\", \"m{}\"]\nlaw = \"{}\"\nstiffness = {}\n", i, i + 1,
+                        i % 2 == 0 ? "spring" : "elastic", i);
+  }
+  return text + "[[gauge]]\nname = \"g\"\nbody = \"m1\"\nat = 0\n";
+}
+
+TEST(CaseLines, ALongLineReadsInLineOrder) {
+  constexpr int n = 3000;
+  const Case c = case_from(long_line(n, true));
+  ASSERT_EQ(c.bodies.size(), static_cast<std::size_t>(n));
+  ASSERT_EQ(c.joints.size(), static_cast<std::size_t>(n - 1));
+  for (int i = 1; i < n; ++i) {
+    const JointData& j = c.joints[static_cast<std::size_t>(i - 1)];
+    ASSERT_EQ(j.lower, fmt::format("m{}", i));
+    ASSERT_EQ(j.upper, fmt::format("m{}", i + 1));
+    ASSERT_EQ(j.law.stiffness, i);
+  }
+  EXPECT_EQ(c.bodies.back().velocity, fmt::format("{}", n % 7));
+  EXPECT_EQ(case_from(c.to_toml()).to_toml(), c.to_toml());
+  const Case forward = case_from(long_line(n, false));
+  EXPECT_EQ(forward.to_toml(), c.to_toml());
+}
+
+TEST(CaseLines, ALongLineStillRefusesRepeatedNames) {
+  constexpr int n = 2000;
+  EXPECT_REFUSED(long_line(n, false) + "[[body]]\nname = \"m1\"\nkind = \"mass\"\n", "body.m1.name",
+                 "repeats the body name");
+  EXPECT_REFUSED(long_line(n, false) + "[[joint]]\nname = \"m1-m2\"\nbetween = [\"m3\", \"m4\"]\n", "joint.m1-m2.name",
+                 "repeats the joint name");
+  EXPECT_REFUSED(long_line(n, false) + "[[joint]]\nname = \"again\"\nbetween = [\"m1999\", \"m2000\"]\n",
+                 "joint.again.between", "second joint on m1999 and m2000");
+  EXPECT_REFUSED(long_line(n, false) + "[[gauge]]\nname = \"g\"\nbody = \"m5\"\nat = 0\n", "gauge.g.name",
+                 "repeats the gauge name");
+}
+
+TEST(CaseLines, AMassRefusesANumberItCannotHold) {
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\nvelocity = \"1e999\"\n", "body.body1.velocity");
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\nvelocity = \"inf\"\n", "body.body1.velocity");
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\nvelocity = \"1e\"\n", "body.body1.velocity");
+  EXPECT_EQ(case_from("[[body]]\nkind = \"mass\"\nvelocity = -0.25\n").bodies[0].velocity, "-0.25");
+}
+
 // ---- Joints.
 
 TEST(CaseLines, RefusesTwoJointsOnOnePair) {
