@@ -86,6 +86,20 @@ check "the figures beside them" test -s "$work/plot-theirs/energy.svg"
 check "the user's files kept by plot --force" user_dir_intact "$work/plot-theirs"
 fi
 check "a run directory with figures/ is replaced" "$bin" run "$ex1" --out "$work/bad-plot" "${fast[@]}" > /dev/null
+# A directory holding only empty directories is the user's, not empty (issue 36).
+mkdir -p "$work/empties/a" "$work/empties/b/c"
+expect_refusal "did not write" "$(listing "$work/empties")" "$work/empties" run "$ex1" --out "$work/empties"
+# --force beside a directory named as one of barimpact's files (issue 36: a
+# study wrote three files before it failed): refused before anything is written.
+for entry in "summary.json run $ex1" "convergence.md converge $ex1 --levels 2" \
+  "sweep.csv sweep $examples/sweeps/penalty-to-rigid.toml"; do
+  set -- $entry
+  rm -rf "$work/named" && make_user_dir "$work/named" && mkdir "$work/named/$1"
+  name=$1
+  shift
+  expect_refusal "holds a directory $name where barimpact writes a file" "$(listing "$work/named")" "$work/named" \
+    "$@" --out "$work/named" --force
+done
 # --force writes beside the user's files and deletes none of them.
 check "--force beside a user's files" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
 check "user's files kept under --force" user_dir_intact "$work/theirs"
