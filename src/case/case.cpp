@@ -598,6 +598,10 @@ SoilSpring read_soil(const Reader& r, const std::string& section, SoilSpring soi
   soil.damping = r.number(section, "damping", soil.damping);
   if (!(soil.ultimate >= 0)) r.fail(section, "ultimate", fmt::format("must be >= 0 (got {})", soil.ultimate));
   if (!(soil.quake > 0)) r.fail(section, "quake", fmt::format("must be > 0 (got {})", soil.quake));
+  if (!std::isfinite(soil.ultimate / soil.quake))
+    r.fail(section, "quake",
+           fmt::format("= {} is too small: the soil's stiffness ultimate / quake = {} / {} is not finite", soil.quake,
+                       soil.ultimate, soil.quake));
   if (!(soil.damping >= 0)) r.fail(section, "damping", fmt::format("must be >= 0 (got {})", soil.damping));
   const std::string law = r.word(section, "damping_law", "smith");
   if (law != "smith" && law != "viscous")

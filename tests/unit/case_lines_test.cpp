@@ -270,6 +270,23 @@ TEST(CaseLines, AMassRefusesANumberItCannotHold) {
   EXPECT_EQ(case_from("[[body]]\nkind = \"mass\"\nvelocity = -0.25\n").bodies[0].velocity, "-0.25");
 }
 
+// Issue 36: a very stiff soil was refused as "nothing stiff in it".
+TEST(CaseLines, AnAutomaticStepRefusalSaysWhatIsWrong) {
+  const std::string auto_step = "[time]\nstep = \"auto\"\nscheme = \"central-difference\"\nend = 0.01\n";
+  // A quake so small that the soil's stiffness is infinite: refused where it is given.
+  EXPECT_REFUSED("[[body]]\nname = \"pile\"\n[near_end]\nlaw = \"smith\"\nultimate = 1e6\nquake = 1e-320\n" + auto_step,
+                 "near_end.quake", "too small", "ultimate / quake");
+  // Springs far too stiff for their masses: no step is stable.
+  const std::string stiff = refusal(
+      "[[body]]\nkind = \"mass\"\nmass = 1e-300\n[[body]]\nkind = \"mass\"\nmass = 1e-300\n[[joint]]\n"
+      "between = [\"body1\", \"body2\"]\nlaw = \"spring\"\nstiffness = 1e300\n" +
+      auto_step);
+  EXPECT_NE(stiff.find("time.step"), std::string::npos) << stiff;
+  EXPECT_NE(stiff.find("stable limit is 0 (a stiffness too large"), std::string::npos) << stiff;
+  // Nothing stiff at all: a free mass.
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\n" + auto_step, "time.step", "unbounded (nothing stiff in it)");
+}
+
 // ---- Joints.
 
 TEST(CaseLines, RefusesTwoJointsOnOnePair) {
