@@ -49,6 +49,22 @@ std::optional<double> plain_number(std::string_view text) {
   return v;
 }
 
+// True when `text` holds an assignment (x = 5, t += 1), which muparser
+// accepts, and which would set the variable rather than compare it: an "="
+// that is not part of ==, !=, <= or >=.
+bool assigns(std::string_view text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '=') continue;
+    if (i + 1 < text.size() && text[i + 1] == '=') {
+      ++i;  // ==
+      continue;
+    }
+    if (i > 0 && (text[i - 1] == '!' || text[i - 1] == '<' || text[i - 1] == '>')) continue;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 Expression::Expression(const std::string& text) {
@@ -62,6 +78,7 @@ Expression::Expression(const std::string& text) {
   if (text.find_first_not_of(" \t\r\n") == std::string::npos) throw InputError("the expression is empty");
   // muparser stops reading at a NUL: the rest would be silently ignored.
   if (text.find('\0') != std::string::npos) throw InputError("the expression holds a NUL character");
+  if (assigns(text)) throw InputError("\"=\" assigns a variable: give a formula in x and t (to compare, write ==)");
   impl_ = std::make_unique<Impl>();
   try {
     impl_->parser.DefineVar("x", &impl_->x);

@@ -64,6 +64,15 @@ TEST(Expression, APlainNumberIsTheDoubleMuparserReads) {
   for (const char* v : {"1e", "1e5x", "inf", "nan", "0x10", "+", "-"}) EXPECT_FALSE(refusal(v).empty()) << v;
 }
 
+// Issue 36: muparser accepts assignments (x=5 evaluates to 5 and sets x);
+// they are refused, comparisons kept.
+TEST(Expression, RefusesAnAssignment) {
+  for (const char* text : {"x=5", "x = 5", "t+=1", "x-=1", "x*=2", "x/=2", "(x=2)*x", "1+(t=3)"})
+    EXPECT_NE(refusal(text).find("assigns"), std::string::npos) << text << ": " << refusal(text);
+  for (const char* text : {"x==5", "x<=1", "x>=0?1:0", "x!=1", "(x==0)*t"}) EXPECT_NO_THROW(Expression{text}) << text;
+  EXPECT_EQ(Expression("x<=1")(0.5, 0.0), 1.0);
+}
+
 TEST(Expression, IsZeroOnlyForAConstantZero) {
   EXPECT_TRUE(Expression("0").is_zero());
   EXPECT_TRUE(Expression("1 - 1").is_zero());
