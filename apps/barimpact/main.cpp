@@ -585,8 +585,7 @@ int check_command(const std::string& case_path, const std::vector<std::string>& 
 
 // The figures are drawn by the Python package (matplotlib): hand over to it.
 int plot_command(const std::string& run_dir, const std::string& figures, bool force) {
-  // The figures' directory follows the output rule too, and is marked as
-  // barimpact's before the Python package fills it.
+  // The figures' directory follows the output rule too.
   const std::filesystem::path target =
       figures.empty() ? std::filesystem::path(run_dir) / "figures" : std::filesystem::path(figures);
   const auto holds = [&](std::string_view name) {
@@ -598,21 +597,15 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
         fmt::format("plot: {} holds no history.csv, results.h5 or sweep.csv (give a directory written by barimpact "
                     "run or sweep)",
                     run_dir));
-  std::vector<std::string> names;
-  for (const auto figure : barimpact::run_figure_names)
-    for (const char* format : {"png", "svg"}) names.push_back(fmt::format("{}.{}", figure, format));
-  // DIR/figures belongs to the run directory it is in, drawn or not; asked
-  // before figures/ is there (a folder the marker does not list makes the
-  // directory someone else's).
-  const bool ours = figures.empty() && barimpact::written_by_barimpact(run_dir);
+  // The rule first, then what plotting needs. The Python package makes the
+  // figures' directory, and lists DIR/figures in the run's marker, once it
+  // has read the results: results it cannot read leave nothing behind.
   const barimpact::CommandInputs reads{{}, {run_dir}};
-  (void)barimpact::check_output_directory(target, force, "--out", reads);  // the rule first, then what plotting needs
+  (void)barimpact::check_output_directory(target, force, "--out", reads);
   if (python_package_dir().empty())
     throw barimpact::InputError(
         "plot: the Python package barimpact is not installed beside this command (python/ in a build tree, " +
         std::string(BARIMPACT_PYTHON_FROM_BIN) + " from its bin/)");
-  barimpact::prepare_output_directory(target, "plot", names, force, "--out", reads);
-  if (ours) barimpact::write_output_marker(run_dir, barimpact::output_command(run_dir), {"figures"});
   setenv("PYTHONPATH", python_path().c_str(), 1);
   std::vector<std::string> args{python_interpreter(), "-m", "barimpact", "plot", run_dir};
   if (!figures.empty()) {

@@ -48,13 +48,14 @@ from . import convergence as _convergence_figures
 from . import hopkinson as _hopkinson_figures
 from . import plot as _figures
 from . import _core
-from ._core import Case, InputError, OutputError, Result
+from ._core import Case, InputError, OutOfMemoryError, OutputError, Result
 
 InputError.__module__ = "barimpact"  # tracebacks say barimpact.InputError, where users catch it
 OutputError.__module__ = "barimpact"
+OutOfMemoryError.__module__ = "barimpact"
 from .plot import RunData, load
 
-__all__ = ["Case", "Result", "InputError", "OutputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+__all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
            "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
            "read_table", "exact_example1"]
 

@@ -8,10 +8,11 @@ import numpy.typing as npt
 
 from ._core import Case as Case
 from ._core import InputError as InputError
+from ._core import OutOfMemoryError as OutOfMemoryError
 from ._core import OutputError as OutputError
 from ._core import Result as Result
 
-__all__ = ["Case", "Result", "InputError", "OutputError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+__all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
            "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
            "read_table", "exact_example1"]
 

@@ -21,6 +21,9 @@ class OutputError(InputError, OSError):
     """What the file system refused while results were written (a full disk):
     the path and the system's reason in one line; nothing half-written is left."""
 
+class OutOfMemoryError(InputError, MemoryError):
+    """A case too large for the memory there is: bad input, and a MemoryError."""
+
 class Case:
     """A validated case from a TOML file path, TOML text, a dict or a Case; `set` overrides keys."""
 

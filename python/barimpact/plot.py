@@ -223,8 +223,17 @@ def _h5py(path):
 
 def _read_results_h5(path, with_fields):
     """results.h5 as (history, (x, field_t, {column: (snapshots, nodes) array}, body)): what
-    history.csv and fields.csv give, the same doubles (the file's layout: barimpact/run/results_h5.hpp)."""
-    with _h5py(path).File(path, "r") as f:
+    history.csv and fields.csv give, the same doubles (the file's layout: barimpact/run/results_h5.hpp).
+    barimpact.InputError naming the file when it is not one barimpact wrote (damaged, truncated, another file)."""
+    h5py = _h5py(path)
+    try:
+        return _results_h5_contents(h5py, path, with_fields)
+    except (OSError, KeyError, ValueError, TypeError, IndexError) as e:
+        raise _core.InputError(f"{os.fspath(path)}: cannot be read as a run's results.h5 ({e})") from None
+
+
+def _results_h5_contents(h5py, path, with_fields):
+    with h5py.File(path, "r") as f:
         g = f["history"]
         history = {str(name): g[str(name)][()] for name in g.attrs["columns"]}
         if not with_fields or "fields" not in f or not f["fields/t"].size:
@@ -830,10 +839,15 @@ def plot(source, out=None, formats=("png", "svg"), force=False):
     output rule (prepare_figures; `force` as --force). Returns the paths written."""
     names = _core._figure_names
     if _is_directory(source):
+        # The rule first, then the run read whole: results it cannot read are
+        # refused before figures/ is made or listed in the run's marker.
+        _core._check_output_directory(Path(source) / "figures" if out is None else out, bool(force),
+                                     [os.fspath(source)])
+        data = _data_of(source)
         out = figures_directory(source, out, names, formats, force)
     else:
+        data = _data_of(source)
         out = prepare_figures("figures" if out is None else out, names, formats, force)
-    data = _data_of(source)
     written = []
     refs, exact = references(data)
     _displacement_figure(data, refs, out, formats, written)

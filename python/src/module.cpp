@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 #include <algorithm>
 #include <atomic>
@@ -12,6 +13,7 @@
 #include <exception>
 #include <filesystem>
 #include <future>
+#include <new>
 #include <optional>
 #include <sstream>
 
@@ -40,15 +42,27 @@ struct PyResult {
   std::string command = "run";  // what wrote it: "run" or "exact" (the directory's marker says so)
 };
 
+// A Python int as TOML's 64-bit integer; InputError naming `where` beyond it.
+long long integer_of(const py::handle& value, const std::string& where) {
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0 || (v == -1 && PyErr_Occurred() != nullptr)) {
+    PyErr_Clear();
+    throw InputError(
+        fmt::format("dict: {} = {} is beyond a 64-bit integer", where, py::str(value).cast<std::string>()));
+  }
+  return v;
+}
+
 // One table's keys: numbers, strings, booleans, lists of them.
-toml::table keys_table(const py::dict& keys) {
+toml::table keys_table(const py::dict& keys, const std::string& name) {
   toml::table t;
   for (auto [key, value] : keys) {
     const auto k = py::str(key).cast<std::string>();
     if (py::isinstance<py::bool_>(value)) {
       t.insert(k, value.cast<bool>());
     } else if (py::isinstance<py::int_>(value)) {
-      t.insert(k, value.cast<long long>());
+      t.insert(k, integer_of(value, name + "." + k));
     } else if (py::isinstance<py::float_>(value)) {
       t.insert(k, value.cast<double>());
     } else if (py::isinstance<py::str>(value)) {
@@ -58,7 +72,7 @@ toml::table keys_table(const py::dict& keys) {
       toml::array a;
       for (auto item : value) {
         if (py::isinstance<py::int_>(item))
-          a.push_back(item.cast<long long>());
+          a.push_back(integer_of(item, name + "." + k));
         else if (py::isinstance<py::float_>(item) || py::hasattr(item, "__float__"))
           a.push_back(item.cast<double>());
         else
@@ -86,7 +100,7 @@ toml::table table_from_dict(const py::dict& d) {
       toml::array tables;
       for (auto item : keys) {
         if (!py::isinstance<py::dict>(item)) throw InputError("dict: [[" + name + "]] must be a list of dicts");
-        tables.push_back(keys_table(item.cast<py::dict>()));
+        tables.push_back(keys_table(item.cast<py::dict>(), name));
       }
       root.insert(name, std::move(tables));
       continue;
@@ -94,7 +108,7 @@ toml::table table_from_dict(const py::dict& d) {
     if (!py::isinstance<py::dict>(keys))
       throw InputError("dict: [" + name + "] must be a dict of keys, or a list of dicts for [[" + name + "]] (got " +
                        py::str(keys.get_type().attr("__name__")).cast<std::string>() + ")");
-    root.insert(name, keys_table(keys.cast<py::dict>()));
+    root.insert(name, keys_table(keys.cast<py::dict>(), name));
   }
   return root;
 }
@@ -115,6 +129,12 @@ std::vector<Case::Override> overrides_from(const py::object& set) {
     }
     return out;
   }
+  if (py::isinstance<py::str>(set)) return {{set.cast<std::string>()}};  // one "section.key=value"
+  if (!py::isinstance<py::iterable>(set))
+    throw InputError(
+        fmt::format("set: must be a dict {{\"section.key\": value}} or a list of \"section.key=value\" "
+                    "(got {})",
+                    py::str(set.get_type().attr("__name__")).cast<std::string>()));
   for (auto item : set) out.push_back({py::str(item).cast<std::string>()});
   return out;
 }
@@ -710,6 +730,19 @@ PYBIND11_MODULE(_core, m) {
   // What the file system refused (a full disk): caught as either kind.
   py::register_exception<OutputError>(m, "OutputError",
                                       py::make_tuple(m.attr("InputError"), py::handle(PyExc_OSError)));
+  // A case too large for the memory there is: bad input as any other (the
+  // command line's words), and still a MemoryError to code that catches one.
+  static py::exception<std::bad_alloc> out_of_memory(
+      m, "OutOfMemoryError", py::make_tuple(m.attr("InputError"), py::handle(PyExc_MemoryError)));
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const std::bad_alloc&) {
+      PyErr_SetString(out_of_memory.ptr(),
+                      "out of memory: the case needs more than there is (reduce its elements or bodies, or raise "
+                      "output.every)");
+    }
+  });
   bind_case(m);
   bind_result(m);
   bind_run(m);

@@ -1,4 +1,5 @@
 import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
@@ -229,3 +230,29 @@ def test_bearing_from_python_matches_the_command_line(tmp_path):
     assert cols["set"][0] > 0 and cols["blows_per_250mm"][-1] == float("inf")
     summary = barimpact.run(pipe).summary["blow"]
     assert summary["set"] > 0 and summary["max_compression"]["body"] == "pile"
+
+
+def test_bad_input_is_input_error_everywhere(tmp_path):
+    """Issue 36: integers beyond 64 bits in a dict (RuntimeError), a `set` that is
+    neither a dict nor a list (TypeError) and a case too large for the memory
+    (MemoryError: std::bad_alloc, from check) were other Python errors."""
+    with pytest.raises(barimpact.InputError, match=r"bar\.elements = 1000000000000000000000000000000 is beyond"):
+        barimpact.Case({"bar": {"elements": 10**30}})
+    with pytest.raises(barimpact.InputError, match=r"output\.fields_at = .* is beyond"):
+        barimpact.Case({"output": {"fields_at": [-10**30]}})
+    with pytest.raises(barimpact.InputError, match=r"body\.elements"):
+        barimpact.Case({"body": [{"elements": 2**64}]})
+    with pytest.raises(barimpact.InputError, match="set: must be a dict"):
+        barimpact.Case(EXAMPLES / "paper-example1.toml", set=5)
+    one = barimpact.Case(EXAMPLES / "paper-example1.toml", set="bar.elements=7")  # one override as text
+    assert "elements = 7" in one.to_toml()
+    # Out of memory: bad input too, and still a MemoryError (under a 1 GiB address-space limit).
+    script = (
+        "import resource, barimpact\n"
+        "resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))\n"
+        "try:\n"
+        f"    barimpact.check({str(EXAMPLES / 'paper-example1.toml')!r}, set={{'bar.elements': 100000000}})\n"
+        "except barimpact.InputError as e:\n"
+        "    print(type(e).__name__, isinstance(e, MemoryError), e)\n")
+    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
+    assert out.stdout.startswith("OutOfMemoryError True out of memory:"), out.stdout + out.stderr

@@ -115,3 +115,18 @@ def test_a_sweeps_and_a_studys_figures_follow_the_rule(tmp_path):
     with pytest.raises(barimpact.InputError, match="converge"):
         plot_study(mine)
     assert not (mine / "convergence.png").exists()
+
+
+def test_results_it_cannot_read_are_refused_with_nothing_made(tmp_path):
+    """Issue 36: plot on an unreadable results.h5 left a marked, empty figures/."""
+    pytest.importorskip("h5py")
+    run_dir = tmp_path / "run"
+    barimpact.run(EXAMPLES / "paper-example1.toml", out=run_dir, set={**SHORT, "output.format": "hdf5"})
+    (run_dir / "results.h5").write_bytes(b"not HDF5")
+    marker = (run_dir / ".barimpact").read_text()
+    with pytest.raises(barimpact.InputError, match="results.h5: cannot be read"):
+        barimpact.plot(run_dir, formats=PNG)
+    assert not (run_dir / "figures").exists()
+    assert (run_dir / ".barimpact").read_text() == marker
+    with pytest.raises(barimpact.InputError, match="results.h5: cannot be read"):
+        barimpact.load(run_dir)

@@ -10,6 +10,8 @@
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <unordered_map>
+#include <unordered_set>
 
 #include <memory>
 #include "barimpact/model/expression.hpp"
@@ -85,6 +87,12 @@ bool has_key(const SectionKeys& s, std::string_view key) {
   return false;
 }
 
+// A string's hash that also takes a string_view, for look-ups without a copy.
+struct TextHash {
+  using is_transparent = void;
+  std::size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
+};
+
 // Reads the table, remembering where each key came from so that every error
 // names the file and line, or the --set option, that set it.
 class Reader {
@@ -103,7 +111,7 @@ class Reader {
     const std::string dotted = fmt::format("{}.{}", section, key);
     if (auto it = overridden_.find(dotted); it != overridden_.end()) return it->second;
     if (const auto* n = node(section, key)) return located(*n);
-    if (auto it = views_.find(std::string(section)); it != views_.end()) return located(*it->second);
+    if (const auto* t = viewed(section)) return located(*t);
     if (const auto* t = root_.get(section)) return located(*t);
     return origin_;
   }
@@ -158,12 +166,25 @@ class Reader {
 
   /// Lets `label` ("body.pile") name a table of an array, for node() and messages.
   void view(const std::string& label, const toml::table* table) { views_[label] = table; }
+  /// The same for as long as this table is read, until the next glance:
+  /// for the names a table goes by only while it is read ("joint[3]",
+  /// "joint.a-b"), with no entry kept for each of 10^5 tables.
+  void glance(std::string label, const toml::table* table) { glanced_ = {std::move(label), table}; }
+  /// Room for a view of every [[body]], made once.
+  void reserve_views() {
+    if (const auto* bodies = root_.get_as<toml::array>("body")) views_.reserve(bodies->size());
+  }
   [[nodiscard]] const toml::table& root() const { return root_; }
 
   const toml::node* node(std::string_view section, std::string_view key) const {
-    if (auto it = views_.find(std::string(section)); it != views_.end()) return it->second->get(key);
-    const auto* t = root_.get_as<toml::table>(section);
+    const auto* t = table(section);
     return t ? t->get(key) : nullptr;
+  }
+
+  /// The table `section` names (a view, or a section of the file), or null.
+  const toml::table* table(std::string_view section) const {
+    if (const auto* t = viewed(section)) return t;
+    return root_.get_as<toml::table>(section);
   }
 
   double number(std::string_view section, std::string_view key, double fallback) const {
@@ -232,7 +253,14 @@ class Reader {
   std::string origin_;
   std::map<std::string, std::string> overridden_;
   bool cite_lines_;
-  std::map<std::string, const toml::table*> views_;
+  std::unordered_map<std::string, const toml::table*, TextHash, std::equal_to<>> views_;  // found by a string_view
+  std::pair<std::string, const toml::table*> glanced_{"", nullptr};
+
+  const toml::table* viewed(std::string_view label) const {
+    if (glanced_.second != nullptr && glanced_.first == label) return glanced_.second;
+    const auto it = views_.find(label);
+    return it == views_.end() ? nullptr : it->second;
+  }
 };
 
 // The name an element of [[body]], [[joint]] or [[gauge]] goes by: its
@@ -564,6 +592,10 @@ SoilSpring read_soil(const Reader& r, const std::string& section, SoilSpring soi
   soil.damping = r.number(section, "damping", soil.damping);
   if (!(soil.ultimate >= 0)) r.fail(section, "ultimate", fmt::format("must be >= 0 (got {})", soil.ultimate));
   if (!(soil.quake > 0)) r.fail(section, "quake", fmt::format("must be > 0 (got {})", soil.quake));
+  if (!std::isfinite(soil.ultimate / soil.quake))
+    r.fail(section, "quake",
+           fmt::format("= {} is too small: the soil's stiffness ultimate / quake = {} / {} is not finite", soil.quake,
+                       soil.ultimate, soil.quake));
   if (!(soil.damping >= 0)) r.fail(section, "damping", fmt::format("must be >= 0 (got {})", soil.damping));
   const std::string law = r.word(section, "damping_law", "smith");
   if (law != "smith" && law != "viscous")
@@ -612,13 +644,18 @@ LawData read_law(const Reader& r, const std::string& section, bool end) {
   for (const auto& [name, value] : law_names())
     if (name == law) d.law = value;
   const auto keys = law_keys(d.law);
-  for (std::string_view key :
-       {"stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"})
-    if (r.node(section, key) != nullptr && std::find(keys.begin(), keys.end(), key) == keys.end())
-      r.fail(section, key,
-             fmt::format("is not used by law \"{}\" ({})", law,
-                         keys.empty() ? std::string("it takes no other key")
-                                      : fmt::format("it uses {}", fmt::join(keys, ", "))));
+  constexpr std::array<std::string_view, 9> law_only{"stiffness", "viscosity", "restitution", "gap",        "value",
+                                                     "ultimate",  "quake",     "damping",     "damping_law"};
+  if (const auto* table = r.table(section))
+    for (auto&& [name, v] : *table) {  // the keys given, not every key there is
+      const std::string_view key = name.str();
+      if (std::find(law_only.begin(), law_only.end(), key) != law_only.end() &&
+          std::find(keys.begin(), keys.end(), key) == keys.end())
+        r.fail(section, key,
+               fmt::format("is not used by law \"{}\" ({})", law,
+                           keys.empty() ? std::string("it takes no other key")
+                                        : fmt::format("it uses {}", fmt::join(keys, ", "))));
+    }
   d.stiffness = r.number(section, "stiffness", d.stiffness);
   d.viscosity = r.number(section, "viscosity", d.viscosity);
   d.gap = r.number(section, "gap", d.gap);
@@ -653,7 +690,7 @@ std::string constant(const Reader& r, const std::string& section, std::string_vi
 
 BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   const std::string first = fmt::format("body[{}]", index + 1);
-  r.view(first, &t);
+  r.glance(first, &t);
   BodyData b;
   b.name = r.word(first, "name", fmt::format("body{}", index + 1));
   if (!valid_name(b.name)) r.fail(first, "name", fmt::format("must be letters, digits, _ and - (got \"{}\")", b.name));
@@ -665,8 +702,10 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   const std::vector<std::string_view> bar_only{
       "length",       "elements",          "area",      "modulus", "density", "viscosity", "material",
       "yield_stress", "hardening_modulus", "hardening", "shaft"};
-  for (std::string_view key : b.kind == BodyKind::mass ? bar_only : std::vector<std::string_view>{"mass"})
-    if (r.node(s, key) != nullptr)
+  const std::vector<std::string_view> unused =
+      b.kind == BodyKind::mass ? bar_only : std::vector<std::string_view>{"mass"};
+  for (auto&& [name, v] : t)  // the keys given, not every key there is
+    if (const std::string_view key = name.str(); std::find(unused.begin(), unused.end(), key) != unused.end())
       r.fail(s, key,
              b.kind == BodyKind::mass ? "is not used by a mass (it uses mass, displacement, velocity)"
                                       : "is not used by a bar (a mass's key)");
@@ -697,16 +736,10 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   return b;
 }
 
-std::size_t body_index(const Case& c, const std::string& name) {
-  for (std::size_t i = 0; i < c.bodies.size(); ++i)
-    if (c.bodies[i].name == name) return i;
-  return c.bodies.size();
-}
-
-JointData read_joint(Reader& r, const Case& c, const toml::table& t, std::size_t index) {
+JointData read_joint(Reader& r, const Case& c, const BodyIndex& body_index, const toml::table& t, std::size_t index) {
   JointData j;
   const std::string first = fmt::format("joint[{}]", index + 1);
-  r.view(first, &t);
+  r.glance(first, &t);
   const auto* between = t.get_as<toml::array>("between");
   if (between == nullptr || between->size() != 2 || !(*between)[0].is_string() || !(*between)[1].is_string())
     r.fail(first, "between", "must list two body names, the lower (nearer x = 0) first: between = [\"a\", \"b\"]");
@@ -715,8 +748,8 @@ JointData read_joint(Reader& r, const Case& c, const toml::table& t, std::size_t
   j.name = r.word(first, "name", j.lower + "-" + j.upper);
   if (!valid_name(j.name)) r.fail(first, "name", fmt::format("must be letters, digits, _ and - (got \"{}\")", j.name));
   const std::string s = "joint." + j.name;
-  r.view(s, &t);
-  const std::size_t lower = body_index(c, j.lower), upper = body_index(c, j.upper);
+  r.glance(s, &t);
+  const std::size_t lower = body_index(j.lower), upper = body_index(j.upper);
   if (lower == c.bodies.size() || upper == c.bodies.size())
     r.fail(s, "between",
            fmt::format("names a body that does not exist (\"{}\")", lower == c.bodies.size() ? j.lower : j.upper));
@@ -728,40 +761,44 @@ JointData read_joint(Reader& r, const Case& c, const toml::table& t, std::size_t
   return j;
 }
 
-void read_joints(Reader& r, Case& c) {
+void read_joints(Reader& r, Case& c, const BodyIndex& body_index) {
   const auto* joints = r.root().get_as<toml::array>("joint");
+  std::unordered_set<std::string> names;
+  std::vector<std::pair<std::size_t, JointData>> placed;  // by its lower body's index
+  std::vector<bool> joined(c.bodies.size(), false);       // a joint above this body already
   for (std::size_t i = 0; joints != nullptr && i < joints->size(); ++i) {
-    JointData j = read_joint(r, c, *(*joints)[i].as_table(), i);
+    JointData j = read_joint(r, c, body_index, *(*joints)[i].as_table(), i);
     const std::string s = "joint." + j.name;
-    for (const auto& other : c.joints) {
-      if (other.name == j.name) r.fail(s, "name", fmt::format("repeats the joint name \"{}\"", j.name));
-      if (other.lower == j.lower) r.fail(s, "between", fmt::format("is a second joint on {} and {}", j.lower, j.upper));
-    }
-    c.joints.push_back(j);
+    if (!names.insert(j.name).second) r.fail(s, "name", fmt::format("repeats the joint name \"{}\"", j.name));
+    const std::size_t lower = body_index(j.lower);
+    if (joined[lower]) r.fail(s, "between", fmt::format("is a second joint on {} and {}", j.lower, j.upper));
+    joined[lower] = true;
+    placed.emplace_back(lower, std::move(j));
   }
   // In line order (history.csv lists the joints so), whatever the file's order.
   // std::sort, not stable_sort: lower bodies are distinct (one joint a pair), and stable_sort's buffer
   // pairs operator new(nothrow) with the tests' replaced delete.
-  std::sort(c.joints.begin(), c.joints.end(),
-            [&](const JointData& x, const JointData& y) { return body_index(c, x.lower) < body_index(c, y.lower); });
+  std::sort(placed.begin(), placed.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  c.joints.reserve(placed.size());
+  for (auto& [lower, j] : placed) c.joints.push_back(std::move(j));
 }
 
-void read_gauges(Reader& r, Case& c) {
+void read_gauges(Reader& r, Case& c, const BodyIndex& body_index) {
   const auto* gauges = r.root().get_as<toml::array>("gauge");
+  std::unordered_set<std::string> names;
   for (std::size_t i = 0; gauges != nullptr && i < gauges->size(); ++i) {
     const toml::table& t = *(*gauges)[i].as_table();
     const std::string first = fmt::format("gauge[{}]", i + 1);
-    r.view(first, &t);
+    r.glance(first, &t);
     GaugeData g;
     g.name = r.word(first, "name", fmt::format("gauge{}", i + 1));
     if (!valid_name(g.name))
       r.fail(first, "name", fmt::format("must be letters, digits, _ and - (got \"{}\")", g.name));
     const std::string s = "gauge." + g.name;
-    r.view(s, &t);
-    for (const auto& other : c.gauges)
-      if (other.name == g.name) r.fail(s, "name", fmt::format("repeats the gauge name \"{}\"", g.name));
+    r.glance(s, &t);
+    if (!names.insert(g.name).second) r.fail(s, "name", fmt::format("repeats the gauge name \"{}\"", g.name));
     g.body = r.word(s, "body", c.bodies.size() == 1 ? c.bodies.front().name : "");
-    const std::size_t b = body_index(c, g.body);
+    const std::size_t b = body_index(g.body);
     if (b == c.bodies.size()) r.fail(s, "body", fmt::format("names no body of the line (got \"{}\")", g.body));
     if (c.bodies[b].kind != BodyKind::bar) r.fail(s, "body", fmt::format("must be a bar (\"{}\" is a mass)", g.body));
     if (r.node(s, "at") == nullptr) r.fail(s, "at", "is required: the distance from the body's near end");
@@ -808,7 +845,7 @@ void check_pile(const Reader& r, const Case& c) {
 }
 
 // [blow]: the gauge, ram and pile a blow's results read, each named in the line.
-void read_blow(const Reader& r, Case& c) {
+void read_blow(const Reader& r, Case& c, const BodyIndex& body_index) {
   BlowData& b = c.blow;
   b.gauge = r.word("blow", "gauge", "");
   b.ram = r.word("blow", "ram", "");
@@ -817,21 +854,21 @@ void read_blow(const Reader& r, Case& c) {
       std::none_of(c.gauges.begin(), c.gauges.end(), [&](const GaugeData& g) { return g.name == b.gauge; }))
     r.fail("blow", "gauge", fmt::format("names no [[gauge]] of the case (got \"{}\")", b.gauge));
   for (const auto& [key, name] : {std::pair{"ram", b.ram}, std::pair{"pile", b.pile}})
-    if (!name.empty() && body_index(c, name) == c.bodies.size())
+    if (!name.empty() && body_index(name) == c.bodies.size())
       r.fail("blow", key, fmt::format("names no body of the line (got \"{}\")", name));
-  if (!b.pile.empty() && c.bodies[body_index(c, b.pile)].kind != BodyKind::bar)
+  if (!b.pile.empty() && c.bodies[body_index(b.pile)].kind != BodyKind::bar)
     r.fail("blow", "pile", fmt::format("must be a bar (\"{}\" is a mass)", b.pile));
   if (!b.pile.empty() && !b.ram.empty() && b.pile == b.ram)
     r.fail("blow", "ram", fmt::format("must differ from blow.pile (both \"{}\")", b.pile));
 }
 
-void read_line(Reader& r, Case& c) {
+BodyIndex read_line(Reader& r, Case& c) {
   const auto* bodies = r.root().get_as<toml::array>("body");
+  BodyIndex body_index(c.bodies);
   for (std::size_t i = 0; i < bodies->size(); ++i) {
     BodyData b = read_body(r, *(*bodies)[i].as_table(), i);
-    if (body_index(c, b.name) != c.bodies.size())
-      r.fail("body." + b.name, "name", fmt::format("repeats the body name \"{}\"", b.name));
-    c.bodies.push_back(b);
+    if (!body_index.add(b.name)) r.fail("body." + b.name, "name", fmt::format("repeats the body name \"{}\"", b.name));
+    c.bodies.push_back(std::move(b));
   }
   if (c.bodies.empty()) throw InputError(fmt::format("{}: [[body]] lists no body", r.where("body", "")));
   long long elements = 0;
@@ -841,10 +878,11 @@ void read_line(Reader& r, Case& c) {
       r.fail("body." + b.name, "elements",
              fmt::format("brings the line's elements to {}; at most {} in all", elements, max_elements));
   }
-  read_joints(r, c);
+  read_joints(r, c, body_index);
   c.near_end = read_law(r, "near_end", true);
   c.far_end = read_law(r, "far_end", true);
-  read_gauges(r, c);
+  read_gauges(r, c, body_index);
+  return body_index;
 }
 
 // Today's [bar]/[initial]/[obstacle] as a line of one bar named "bar".
@@ -873,15 +911,15 @@ void bar_as_line(const OneBar& v, Case& c) {
 
 // The bodies' u0, v0 and the body force at their nodes (x along the line),
 // the ends' histories at t = 0 and the end; held ends start at rest at 0.
-void check_line_expressions(const Reader& r, const Case& c) {
+void check_line_expressions(const Reader& r, const Case& c, const BodyIndex& body_index) {
   const double t_last = last_time(c);
+  std::vector<double> gap_below(c.bodies.size(), 0.0);  // the gap of the joint below each body
+  for (const auto& j : c.joints) gap_below[body_index(j.upper)] += j.law.gap;
   double x = 0.0;
   for (std::size_t i = 0; i < c.bodies.size(); ++i) {
     const BodyData& b = c.bodies[i];
     const std::string s = "body." + b.name;
-    if (i > 0)
-      for (const auto& j : c.joints)
-        if (j.upper == b.name) x += j.law.gap;
+    x += gap_below[i];
     if (b.kind == BodyKind::bar) {
       check_expression(r, s, "displacement", b.displacement, x, b.length, b.elements, {0.0});
       check_expression(r, s, "velocity", b.velocity, x, b.length, b.elements, {0.0});
@@ -906,31 +944,35 @@ void check_line_expressions(const Reader& r, const Case& c) {
   }
 }
 
+// Refuses the first of `sections` that the file has, saying `rule`.
+void refuse_sections(const Reader& r, std::initializer_list<const char*> sections, std::string_view rule) {
+  for (const char* section : sections)
+    if (r.root().contains(section)) throw InputError(fmt::format("{}: [{}] {}", r.where(section, ""), section, rule));
+}
+
+// Today's [bar]/[initial]/[obstacle] and [[gauge]]: a line of one bar.
+BodyIndex read_one_bar(Reader& r, Case& c) {
+  refuse_sections(r, {"near_end", "far_end", "joint"},
+                  "needs the bodies listed as [[body]] (with [bar], use [obstacle] and bar.far_end)");
+  OneBar bar;
+  read_bar(r, bar);
+  bar_as_line(bar, c);
+  BodyIndex body_index(c.bodies);
+  read_gauges(r, c, body_index);
+  return body_index;
+}
+
 Case read_case(Reader& r) {
   r.check_layout();
+  r.reserve_views();
   Case c;
   const bool line = r.root().contains("body");
-  if (line) {
-    for (const char* legacy : {"bar", "initial", "obstacle"})
-      if (r.root().contains(legacy))
-        throw InputError(
-            fmt::format("{}: [{}] cannot be combined with [[body]]: use either [bar]/[initial]/[obstacle] "
-                        "or [[body]] with [near_end]/[far_end]",
-                        r.where(legacy, ""), legacy));
-    read_line(r, c);
-  } else {
-    for (const char* line_only : {"near_end", "far_end", "joint"})
-      if (r.root().contains(line_only))
-        throw InputError(
-            fmt::format("{}: [{}] needs the bodies listed as [[body]] (with [bar], use [obstacle] and "
-                        "bar.far_end)",
-                        r.where(line_only, ""), line_only));
-    OneBar bar;
-    read_bar(r, bar);
-    bar_as_line(bar, c);
-    read_gauges(r, c);
-  }
-  read_blow(r, c);
+  if (line)
+    refuse_sections(r, {"bar", "initial", "obstacle"},
+                    "cannot be combined with [[body]]: use either [bar]/[initial]/[obstacle] or [[body]] with "
+                    "[near_end]/[far_end]");
+  const BodyIndex body_index = line ? read_line(r, c) : read_one_bar(r, c);
+  read_blow(r, c, body_index);
   c.load.body_force = r.expression("load", "body_force", c.load.body_force);
   c.load.gravity = r.number("load", "gravity", 0.0);
   read_time(r, c);
@@ -950,7 +992,7 @@ Case read_case(Reader& r) {
   if (one && !line)
     check_bar_expressions(r, c, *one);
   else
-    check_line_expressions(r, c);
+    check_line_expressions(r, c, body_index);
   return c;
 }
 
@@ -1015,6 +1057,22 @@ void Case::check_steps() const {
   if (step_count() / output.every > 100'000'000)
     refuse("output.every",
            fmt::format("gives {} history rows; at most 1e8 (raise output.every)", step_count() / output.every));
+}
+
+BodyIndex::BodyIndex(const std::vector<BodyData>& bodies) {
+  index_.reserve(bodies.size());
+  for (const auto& b : bodies) (void)add(b.name);
+}
+
+bool BodyIndex::add(const std::string& name) {
+  if (!index_.emplace(name, size_).second) return false;
+  ++size_;
+  return true;
+}
+
+std::size_t BodyIndex::operator()(const std::string& name) const {
+  const auto it = index_.find(name);
+  return it == index_.end() ? size_ : it->second;
 }
 
 long long Case::step_count() const {

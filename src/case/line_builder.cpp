@@ -46,10 +46,14 @@ ContactLaw contact_law(const Case& c, const LawData& d) {
   return l;
 }
 
-const JointData* joint_between(const Case& c, const std::string& lower, const std::string& upper) {
-  for (const auto& j : c.joints)
-    if (j.lower == lower && j.upper == upper) return &j;
-  return nullptr;
+// The joint below each body (null for the first, and where the line is welded without one).
+std::vector<const JointData*> joints_below(const Case& c, const BodyIndex& index) {
+  std::vector<const JointData*> below(c.bodies.size(), nullptr);
+  for (const auto& j : c.joints) {
+    const std::size_t lower = index(j.lower), upper = index(j.upper);
+    if (upper < below.size() && lower + 1 == upper && below[upper] == nullptr) below[upper] = &j;
+  }
+  return below;
 }
 
 End end_of(const LawData& d, std::size_t node) {
@@ -134,9 +138,8 @@ void add_shaft(Line& line, const BodyRange& r, const ShaftData& d) {
   }
 }
 
-GaugePoint gauge_point(const Line& line, const Case& c, const GaugeData& g) {
-  std::size_t i = 0;
-  while (c.bodies[i].name != g.body) ++i;
+GaugePoint gauge_point(const Line& line, const Case& c, const BodyIndex& index, const GaugeData& g) {
+  const std::size_t i = index(g.body);
   const BodyData& b = c.bodies[i];
   const BodyRange& r = line.bodies[i];
   const double s = g.at / (b.length / b.elements);  // in elements
@@ -179,9 +182,11 @@ Line build(const Case& c) {
   line.bonds.reserve(nodes);
   line.point_mass.reserve(nodes);
   double x = 0.0;
+  const BodyIndex index(c.bodies);
+  const auto below = joints_below(c, index);
   for (std::size_t i = 0; i < c.bodies.size(); ++i) {
     const BodyData& b = c.bodies[i];
-    const JointData* j = i > 0 ? joint_between(c, c.bodies[i - 1].name, b.name) : nullptr;
+    const JointData* j = below[i];
     const bool welded = i > 0 && (j == nullptr || j->law.law == JointLaw::welded);
     Bond join{BondKind::open, 0.0, 0.0, 0.0, 0.0, 1.0, i, 0.0, 0.0};
     if (j != nullptr && j->law.law == JointLaw::spring) {
@@ -206,7 +211,7 @@ Line build(const Case& c) {
     line.links.push_back({"far_end", contact_law(c, c.far_end), last, Link::ground, c.far_end.gap, true});
   line.near = end_of(c.near_end, 0);
   line.far = end_of(c.far_end, last);
-  for (const auto& g : c.gauges) line.gauges.push_back(gauge_point(line, c, g));
+  for (const auto& g : c.gauges) line.gauges.push_back(gauge_point(line, c, index, g));
   if (!line.shaft.ultimate.empty())
     for (auto* v :
          {&line.shaft.ultimate, &line.shaft.stiffness, &line.shaft.quake, &line.shaft.smith, &line.shaft.viscous})

@@ -66,6 +66,8 @@ class ColumnReader {
     bool have_layout = false;
     while (std::getline(in, line)) {
       ++number;
+      // A UTF-8 byte order mark (spreadsheets write one) is not text of the first line.
+      if (number == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);
       if (number <= ch_.skip_rows) continue;
       if (!have_layout) {
         if (blank(line)) continue;

@@ -209,12 +209,9 @@ void RunDirectory::spare_inputs() {
 // written first: when the disk refuses it, nothing has moved yet.
 void RunDirectory::move_beside() {
   const auto names = directory_entries(staging_);
-  for (const auto& name : names) {
-    std::error_code ec;
-    if (name != output_marker && fs::is_directory(target_ / name, ec))
-      throw InputError(fmt::format("--out {}: holds a directory {} where barimpact writes a file of that name",
-                                   shown_.string(), name));
-  }
+  std::vector<std::string> moved = names;
+  moved.erase(std::remove(moved.begin(), moved.end(), std::string(output_marker)), moved.end());
+  refuse_entries_of_another_kind(shown_, moved);
   // A run's results in the other format, left here by an earlier run, would
   // pass for this one's: removed when barimpact's marker lists them (as a
   // replaced directory would lose them). So would a resolved case of an

@@ -119,6 +119,8 @@ std::vector<std::string> foreign_entries(const fs::path& dir) {
     if (!is_dir && staged_entry(name, ours)) continue;                  // a listed file being replaced
     if (!listed.empty() && !ours.count(name)) {
       foreign.push_back(name);
+    } else if (is_dir && listed.empty() && marker_entries(dir / name).empty()) {
+      foreign.push_back(name);  // in a directory without a marker, only barimpact's own directories are ours
     } else if (is_dir) {
       for (const auto& inner : foreign_entries(dir / name)) foreign.push_back(name + "/" + inner);
     } else if (listed.empty()) {
@@ -330,10 +332,28 @@ void MadeParents::remove_made() {
   made_.clear();
 }
 
+void refuse_entries_of_another_kind(const fs::path& dir, const std::vector<std::string>& names,
+                                    std::string_view option) {
+  for (const auto& name : names) {
+    std::error_code ec;
+    const bool directory = written_as_directory(name);
+    // A file replaces a link of its name; a directory is written through one.
+    const auto type = (directory ? fs::status(dir / name, ec) : fs::symlink_status(dir / name, ec)).type();
+    if (type == fs::file_type::not_found || type == fs::file_type::none) continue;
+    if ((type == fs::file_type::directory) != directory)
+      throw InputError(fmt::format(
+          "{} {}: holds {} {} where barimpact writes {} of that name; nothing was written (rename or move it, "
+          "or choose another directory)",
+          option, dir.string(), type == fs::file_type::directory ? "a directory" : "a file", name,
+          directory ? "a directory" : "a file"));
+  }
+}
+
 void prepare_output_directory(const fs::path& target, std::string_view command, const std::vector<std::string>& entries,
                               bool force, std::string_view option, const CommandInputs& inputs) {
   (void)check_output_directory(target, force, option, inputs);
   refuse_names_over_inputs(target, entries, inputs, option);
+  refuse_entries_of_another_kind(target, entries, option);
   std::error_code ec;
   fs::create_directories(target, ec);
   if (ec)

@@ -2,19 +2,20 @@
 
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace barimpact {
 
 namespace {
-std::size_t link_named(const Line& line, const std::string& name) {
-  for (std::size_t i = 0; i < line.links.size(); ++i)
-    if (line.links[i].name == name) return i;
-  return Link::ground;
+// Each link's index by its name (one look-up a joint: a line of 10^5 joints is not O(n^2)).
+std::unordered_map<std::string, std::size_t> links_by_name(const Line& line) {
+  std::unordered_map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < line.links.size(); ++i) index.emplace(line.links[i].name, i);
+  return index;
 }
-std::size_t body_index(const Case& c, const std::string& name) {
-  for (std::size_t i = 0; i < c.bodies.size(); ++i)
-    if (c.bodies[i].name == name) return i;
-  return 0;
+std::size_t link_named(const std::unordered_map<std::string, std::size_t>& links, const std::string& name) {
+  const auto it = links.find(name);
+  return it == links.end() ? Link::ground : it->second;
 }
 }  // namespace
 
@@ -23,17 +24,19 @@ Probes::Probes(const Case& c, const Line& line) : line_(&line) {
     names_.push_back(std::move(name));
     columns_.push_back({kind, index});
   };
+  const auto links = links_by_name(line);
+  const BodyIndex body_index(c.bodies);
   for (const auto& j : c.joints) {
     const std::string stem = "joint." + j.name;
-    if (const std::size_t i = link_named(line, stem); i != Link::ground) {
+    if (const std::size_t i = link_named(links, stem); i != Link::ground) {
       add(stem + ".force", Kind::link_force, i);
       add(stem + ".opening", Kind::link_opening, i);
       continue;
     }
     // A spring or welded joint: the bond (or, welded, the first element of
     // the upper body, else the last of the lower) that carries its force.
-    const BodyRange& upper = line.bodies[body_index(c, j.upper)];
-    const BodyRange& lower = line.bodies[body_index(c, j.lower)];
+    const BodyRange& upper = line.bodies[body_index(j.upper)];
+    const BodyRange& lower = line.bodies[body_index(j.lower)];
     const bool welded = j.law.law == JointLaw::welded;
     std::size_t bond = upper.first - 1;
     if (welded)
@@ -42,8 +45,8 @@ Probes::Probes(const Case& c, const Line& line) : line_(&line) {
     add(stem + ".opening", welded ? Kind::link_opening : Kind::bond_opening, welded ? Link::ground : bond);
   }
   if (c.far_end.law != JointLaw::free) {
-    add("far_end.force", Kind::far_force, link_named(line, "far_end"));
-    add("far_end.opening", Kind::far_opening, link_named(line, "far_end"));
+    add("far_end.force", Kind::far_force, link_named(links, "far_end"));
+    add("far_end.opening", Kind::far_opening, link_named(links, "far_end"));
   }
   for (const auto& b : line.bodies)
     if (b.is_mass) {

@@ -158,7 +158,10 @@ std::optional<SchemeMisfit> choose_step(const SchemeInfo& s, Case& c, const Line
   }
   c.time.step = auto_step_fraction * line_stable_step(line, s.mass == MassMatrix::consistent);
   if (!(c.time.step > 0) || !std::isfinite(c.time.step))
-    return SchemeMisfit{"step", "= \"auto\" finds no stable limit for this line (nothing stiff in it): give a number"};
+    return SchemeMisfit{"step",
+                        "= \"auto\" finds no stable step for this line: its stable limit is 0 (a stiffness too large "
+                        "for any step against its masses: a soil's ultimate / quake, a joint's or an end's stiffness) "
+                        "or unbounded (nothing stiff in it): give a number"};
   return std::nullopt;
 }
 

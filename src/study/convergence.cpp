@@ -18,6 +18,7 @@
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/registry.hpp"
 #include "barimpact/study/executor.hpp"
+#include "range_point.hpp"
 
 namespace barimpact {
 
@@ -165,7 +166,7 @@ Variation Variation::parse(const std::string& text) {
     if (log && (a <= 0 || b <= 0)) throw InputError(fmt::format("{}: a logarithmic range needs a, b > 0", where));
     for (int i = 0; i < static_cast<int>(n); ++i) {
       const double s = i / (n - 1.0);
-      const double x = log ? a * std::pow(b / a, s) : a + (b - a) * s;
+      const double x = detail::range_point(a, b, s, log);
       v.values.push_back(fmt::format("{}", x));
     }
   } else {

@@ -1,6 +1,7 @@
 #include "barimpact/study/sweep.hpp"
 
 #include "csv_cells.hpp"
+#include "range_point.hpp"
 
 #include <fmt/format.h>
 
@@ -128,7 +129,7 @@ std::vector<std::string> range_values(const toml::table& t, const std::string& a
   std::vector<std::string> values;
   for (int64_t i = 0; i < count; ++i) {
     const double s = static_cast<double>(i) / static_cast<double>(count - 1);
-    const double x = scale == "log" ? from * std::pow(to / from, s) : from + (to - from) * s;
+    const double x = detail::range_point(from, to, s, scale == "log");
     values.push_back(fmt::format("{}", x));
   }
   return values;

@@ -69,16 +69,21 @@ expect_refusal "did not write" "$before" "$work/theirs" sweep "$examples/sweeps/
 "$bin" run "$ex1" --out "$work/for-plot" "${fast[@]}" > /dev/null || bad "run for plot"
 expect_refusal "did not write" "$before" "$work/theirs" plot "$work/for-plot" --out "$work/theirs"
 if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then  # a build with the Python package (figures)
-# plot DIR lists figures/ in the run directory's marker as it makes the folder,
-# not after drawing: a run directory whose figures failed stays barimpact's,
-# and a rerun replaces it.
+# plot DIR reads the run first, then makes figures/ and lists it in the run
+# directory's marker (before drawing: a run directory whose figures failed
+# stays barimpact's, and a rerun replaces it). Results it cannot read are
+# refused with nothing made (issue 36: an unreadable results.h5 left a
+# marked, empty figures/).
 "$bin" plot "$work/for-plot" > /dev/null 2>&1 || bad "plot"
 check "the marker lists figures after plot" grep -q '"figures"' "$work/for-plot/.barimpact"
 "$bin" run "$ex1" --out "$work/bad-plot" "${fast[@]}" > /dev/null || bad "run for a failing plot"
 echo "not,numbers" >> "$work/bad-plot/history.csv"
 "$bin" plot "$work/bad-plot" > /dev/null 2>&1 && bad "plot of a broken history.csv succeeded"
-check "figures/ made" test -d "$work/bad-plot/figures"
-check "the marker lists figures after a failed plot" grep -q '"figures"' "$work/bad-plot/.barimpact"
+check "no figures/ for a broken history.csv" test ! -e "$work/bad-plot/figures"
+"$bin" run "$ex1" --out "$work/bad-h5" "${fast[@]}" --set output.fields_at=[] --set output.format=hdf5 > /dev/null ||
+  bad "run for an unreadable results.h5"
+echo "not HDF5" > "$work/bad-h5/results.h5"
+expect_refusal "bad-h5/results.h5: cannot be read" "$(listing "$work/bad-h5")" "$work/bad-h5" plot "$work/bad-h5"
 # --force reaches the figures: drawn beside the user's files, which stay.
 make_user_dir "$work/plot-theirs"
 check "plot --force beside a user's files" "$bin" plot "$work/for-plot" --out "$work/plot-theirs" --force > /dev/null
@@ -86,6 +91,20 @@ check "the figures beside them" test -s "$work/plot-theirs/energy.svg"
 check "the user's files kept by plot --force" user_dir_intact "$work/plot-theirs"
 fi
 check "a run directory with figures/ is replaced" "$bin" run "$ex1" --out "$work/bad-plot" "${fast[@]}" > /dev/null
+# A directory holding only empty directories is the user's, not empty (issue 36).
+mkdir -p "$work/empties/a" "$work/empties/b/c"
+expect_refusal "did not write" "$(listing "$work/empties")" "$work/empties" run "$ex1" --out "$work/empties"
+# --force beside a directory named as one of barimpact's files (issue 36: a
+# study wrote three files before it failed): refused before anything is written.
+for entry in "summary.json run $ex1" "convergence.md converge $ex1 --levels 2" \
+  "sweep.csv sweep $examples/sweeps/penalty-to-rigid.toml"; do
+  set -- $entry
+  rm -rf "$work/named" && make_user_dir "$work/named" && mkdir "$work/named/$1"
+  name=$1
+  shift
+  expect_refusal "holds a directory $name where barimpact writes a file" "$(listing "$work/named")" "$work/named" \
+    "$@" --out "$work/named" --force
+done
 # --force writes beside the user's files and deletes none of them.
 check "--force beside a user's files" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
 check "user's files kept under --force" user_dir_intact "$work/theirs"

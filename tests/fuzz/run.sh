@@ -4,6 +4,9 @@
 # finding (crash, sanitizer report, leak, timeout, out of memory). New inputs
 # go to a scratch directory, never into the tracked corpus.
 #
+# Inputs may be as long as 512 KiB: the corpus's long line (4096 bodies,
+# edge-long-line.*, 300 KB) must be read whole, not cut to libFuzzer's size.
+#
 # Usage: run.sh BUILD_DIR SECONDS_PER_TARGET TARGET...   (e.g. run.sh build/fuzz 55 case overrides sweep)
 set -euo pipefail
 build=$1
@@ -19,7 +22,7 @@ for target in "$@"; do
   mkdir -p "$scratch/$target/new" "$scratch/$target/findings"
   echo "== fuzz $target: ${seconds} s"
   # stdin from /dev/null: a sweep input may name /dev/stdin as its case file.
-  if ! "$fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=4096 \
+  if ! "$fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=524288 \
       -dict="$here/barimpact.dict" -artifact_prefix="$scratch/$target/findings/" -print_final_stats=1 \
       "$scratch/$target/new" "$here/corpus/$target" "$here/regressions/$target" \
       < /dev/null > "$scratch/$target/log" 2>&1; then

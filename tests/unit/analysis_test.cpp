@@ -312,6 +312,24 @@ TEST_F(HopkinsonAnalysis, AveragesAGaugePairInOneFileOrOnTwoChannels) {
     EXPECT_NEAR(r.column("stress_3w")[i], reference.column("stress_3w")[i], 1e-3) << i;  // of 1e8: round-off
 }
 
+// Issue 36: a spreadsheet's CSV starting with a UTF-8 byte order mark was
+// refused with "no column \"t\" (columns: t, strain)": the mark is not text.
+TEST_F(HopkinsonAnalysis, ReadsACsvFileStartingWithAByteOrderMark) {
+  const auto rec = records();
+  write_records(rec);
+  const auto reference = analyse(setup_text());
+  write_csv("incident.csv", rec.t, rec.incident, "\xEF\xBB\xBFt,strain\n");
+  write_csv("transmitted.csv", rec.t, rec.transmitted, "\xEF\xBB\xBF\"t\",\"strain\"\n");
+  const auto r = analyse(setup_text());
+  EXPECT_EQ(r.column("stress_3w"), reference.column("stress_3w"));
+  // Without a header the mark goes too: the first sample is a number.
+  write_csv("incident.csv", rec.t, rec.incident, "\xEF\xBB\xBF");
+  write_csv("transmitted.csv", rec.t, rec.transmitted, "\xEF\xBB\xBF");
+  const auto bare = analyse(
+      setup_text("", "header = false\ntime = \"1\"\nstrain = \"2\"", "header = false\ntime = \"1\"\nstrain = \"2\""));
+  EXPECT_EQ(bare.column("stress_3w"), reference.column("stress_3w"));
+}
+
 // `text` with its first `from` replaced by `to`.
 std::string with(std::string text, const std::string& from, const std::string& to) {
   return text.replace(text.find(from), from.size(), to);

@@ -217,6 +217,76 @@ TEST(CaseLines, RefusesDuplicateNames) {
                  "gauge.g.name", "repeats the gauge name");
 }
 
+// A long line (issue 36: 32,000 masses took 114 s to check): joints listed
+// from the far end come out in line order, each found by its bodies' names,
+// and a name repeated at the far end of it is still refused. Its speed is
+// bench/read_benchmark.cpp's (10^5 bodies), never a timed test.
+std::string long_line(int bodies, bool reversed_joints) {
+  std::string text;
+  text += "[[body]]\nname = \"m1\"\nelements = 2\n";  // a bar, for the gauge
+  for (int i = 2; i <= bodies; ++i)
+    text += fmt::format("[[body]]\nname = \"m{}\"\nkind = \"mass\"\nvelocity = {}\n", i, i % 7);
+  for (int k = 1; k < bodies; ++k) {
+    const int i = reversed_joints ? bodies - k : k;
+    text += fmt::format("[[joint]]\nbetween = [\"m{}\", \"m{}\"]\nlaw = \"{}\"\nstiffness = {}\n", i, i + 1,
+                        i % 2 == 0 ? "spring" : "elastic", i);
+  }
+  return text + "[[gauge]]\nname = \"g\"\nbody = \"m1\"\nat = 0\n";
+}
+
+TEST(CaseLines, ALongLineReadsInLineOrder) {
+  constexpr int n = 3000;
+  const Case c = case_from(long_line(n, true));
+  ASSERT_EQ(c.bodies.size(), static_cast<std::size_t>(n));
+  ASSERT_EQ(c.joints.size(), static_cast<std::size_t>(n - 1));
+  for (int i = 1; i < n; ++i) {
+    const JointData& j = c.joints[static_cast<std::size_t>(i - 1)];
+    ASSERT_EQ(j.lower, fmt::format("m{}", i));
+    ASSERT_EQ(j.upper, fmt::format("m{}", i + 1));
+    ASSERT_EQ(j.law.stiffness, i);
+  }
+  EXPECT_EQ(c.bodies.back().velocity, fmt::format("{}", n % 7));
+  EXPECT_EQ(case_from(c.to_toml()).to_toml(), c.to_toml());
+  const Case forward = case_from(long_line(n, false));
+  EXPECT_EQ(forward.to_toml(), c.to_toml());
+}
+
+TEST(CaseLines, ALongLineStillRefusesRepeatedNames) {
+  constexpr int n = 2000;
+  EXPECT_REFUSED(long_line(n, false) + "[[body]]\nname = \"m1\"\nkind = \"mass\"\n", "body.m1.name",
+                 "repeats the body name");
+  EXPECT_REFUSED(long_line(n, false) + "[[joint]]\nname = \"m1-m2\"\nbetween = [\"m3\", \"m4\"]\n", "joint.m1-m2.name",
+                 "repeats the joint name");
+  EXPECT_REFUSED(long_line(n, false) + "[[joint]]\nname = \"again\"\nbetween = [\"m1999\", \"m2000\"]\n",
+                 "joint.again.between", "second joint on m1999 and m2000");
+  EXPECT_REFUSED(long_line(n, false) + "[[gauge]]\nname = \"g\"\nbody = \"m5\"\nat = 0\n", "gauge.g.name",
+                 "repeats the gauge name");
+}
+
+TEST(CaseLines, AMassRefusesANumberItCannotHold) {
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\nvelocity = \"1e999\"\n", "body.body1.velocity");
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\nvelocity = \"inf\"\n", "body.body1.velocity");
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\nvelocity = \"1e\"\n", "body.body1.velocity");
+  EXPECT_EQ(case_from("[[body]]\nkind = \"mass\"\nvelocity = -0.25\n").bodies[0].velocity, "-0.25");
+}
+
+// Issue 36: a very stiff soil was refused as "nothing stiff in it".
+TEST(CaseLines, AnAutomaticStepRefusalSaysWhatIsWrong) {
+  const std::string auto_step = "[time]\nstep = \"auto\"\nscheme = \"central-difference\"\nend = 0.01\n";
+  // A quake so small that the soil's stiffness is infinite: refused where it is given.
+  EXPECT_REFUSED("[[body]]\nname = \"pile\"\n[near_end]\nlaw = \"smith\"\nultimate = 1e6\nquake = 1e-320\n" + auto_step,
+                 "near_end.quake", "too small", "ultimate / quake");
+  // Springs far too stiff for their masses: no step is stable.
+  const std::string stiff = refusal(
+      "[[body]]\nkind = \"mass\"\nmass = 1e-300\n[[body]]\nkind = \"mass\"\nmass = 1e-300\n[[joint]]\n"
+      "between = [\"body1\", \"body2\"]\nlaw = \"spring\"\nstiffness = 1e300\n" +
+      auto_step);
+  EXPECT_NE(stiff.find("time.step"), std::string::npos) << stiff;
+  EXPECT_NE(stiff.find("stable limit is 0 (a stiffness too large"), std::string::npos) << stiff;
+  // Nothing stiff at all: a free mass.
+  EXPECT_REFUSED("[[body]]\nkind = \"mass\"\n" + auto_step, "time.step", "unbounded (nothing stiff in it)");
+}
+
 // ---- Joints.
 
 TEST(CaseLines, RefusesTwoJointsOnOnePair) {

@@ -31,6 +31,13 @@ TEST(Variation, ParsesListsAndRanges) {
   const auto log = Variation::parse("obstacle.stiffness=log:1e2:1e4:3");
   ASSERT_EQ(log.values.size(), 3u);
   EXPECT_NEAR(std::stod(log.values[1]), 1e3, 1e-9);
+  // Issue 36: ends whose difference or ratio overflows still give finite points between them.
+  for (const char* range : {"obstacle.gap=-1.7e308:1.7e308:4", "obstacle.stiffness=log:1e-300:1e300:4",
+                            "obstacle.stiffness=log:1e300:1e-300:4"}) {
+    const auto v = Variation::parse(range);
+    ASSERT_EQ(v.values.size(), 4u) << range;
+    for (const auto& x : v.values) EXPECT_TRUE(std::isfinite(std::stod(x))) << range << ": " << x;
+  }
   for (const char* bad : {"stiffness=1,2", "obstacle.stiffness", "obstacle.stiffness=1", "obstacle.stiffness=log:0:1:3",
                           "obstacle.stiffness=1:2:1", "obstacle.stiffness=1,,2", "obstacle.stiffness=a:b:3"})
     EXPECT_THROW((void)Variation::parse(bad), InputError) << bad;

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <string>
 #include <utility>
 
@@ -46,6 +48,31 @@ TEST(Expression, EvaluatesInXAndT) {
 }
 
 // The constant zero, however written; a formula that may be zero is not.
+TEST(Expression, APlainNumberIsTheDoubleMuparserReads) {
+  // A plain number skips the parser (a line of 10^5 masses has two a body):
+  // the same bits as muparser gives it in parentheses, which it parses.
+  for (const char* v : {"0", "-0", "3", "-1.5", "0.1", ".5", "5.", "1e-3", "-2.5E+2", "12345678901234567890",
+                        "1.7976931348623157e308", "4.9e-324", "2.5e-1", "-.5e1", "0.30000000000000004"}) {
+    const Expression plain(v);
+    const Expression parsed(std::string("(") + v + ")");
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(plain(0.3, 0.7)), std::bit_cast<std::uint64_t>(parsed(0.3, 0.7))) << v;
+    EXPECT_FALSE(plain.depends_on_x() || plain.depends_on_t()) << v;
+  }
+  EXPECT_TRUE(Expression("0").is_zero());
+  EXPECT_TRUE(Expression("-0").is_zero());
+  // Not plain: parsed, refused as before.
+  for (const char* v : {"1e", "1e5x", "inf", "nan", "0x10", "+", "-"}) EXPECT_FALSE(refusal(v).empty()) << v;
+}
+
+// Issue 36: muparser accepts assignments (x=5 evaluates to 5 and sets x);
+// they are refused, comparisons kept.
+TEST(Expression, RefusesAnAssignment) {
+  for (const char* text : {"x=5", "x = 5", "t+=1", "x-=1", "x*=2", "x/=2", "(x=2)*x", "1+(t=3)"})
+    EXPECT_NE(refusal(text).find("assigns"), std::string::npos) << text << ": " << refusal(text);
+  for (const char* text : {"x==5", "x<=1", "x>=0?1:0", "x!=1", "(x==0)*t"}) EXPECT_NO_THROW(Expression{text}) << text;
+  EXPECT_EQ(Expression("x<=1")(0.5, 0.0), 1.0);
+}
+
 TEST(Expression, IsZeroOnlyForAConstantZero) {
   EXPECT_TRUE(Expression("0").is_zero());
   EXPECT_TRUE(Expression("1 - 1").is_zero());

@@ -145,6 +145,51 @@ TEST_F(OutputDirectory, ForceWritesBesideAndDeletesNothing) {
   EXPECT_FALSE(written_by_barimpact(d));  // still the user's directory
 }
 
+// Issue 36: a directory holding only empty directories was taken for an
+// empty one, and written into without --force.
+TEST_F(OutputDirectory, EmptyDirectoriesOfTheUsersAreTheirs) {
+  const fs::path d = root_ / "theirs";
+  fs::create_directories(d / "a");
+  fs::create_directories(d / "b" / "c");
+  EXPECT_THROW((void)check_output_directory(d, false), InputError);
+  EXPECT_EQ(check_output_directory(d, true), OutputMode::beside);
+  // Inside a study's runs/ (listed, no marker of its own) only runs with a marker are barimpact's.
+  const fs::path study = root_ / "study";
+  fs::create_directories(study / "runs" / "r1");
+  touch(study / "runs" / "r1" / "history.csv");
+  write_output_marker(study / "runs" / "r1", "sweep", {"history.csv"});
+  write_output_marker(study, "sweep", {"runs"});
+  EXPECT_TRUE(written_by_barimpact(study));
+  fs::create_directory(study / "runs" / "mine");
+  EXPECT_FALSE(written_by_barimpact(study));
+  EXPECT_THROW((void)check_output_directory(study, false), InputError);
+}
+
+// Issue 36: --force beside a directory named as a file barimpact writes (a
+// study's convergence.md/) wrote three files before it failed.
+TEST_F(OutputDirectory, AnEntryOfAnotherKindIsRefusedBeforeAnythingIsWritten) {
+  const fs::path d = root_ / "theirs";
+  fs::create_directories(d / "convergence.md");
+  touch(d / "notes.txt");
+  const std::vector<std::string> entries{"runs", "convergence.csv", "convergence.md"};
+  try {
+    prepare_output_directory(d, "converge", entries, true);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds a directory convergence.md where barimpact writes a file"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(directory_entries(d), (std::vector<std::string>{"convergence.md", "notes.txt"}));
+  fs::remove(d / "convergence.md");
+  touch(d / "runs");
+  EXPECT_THROW(prepare_output_directory(d, "converge", entries, true), InputError);
+  EXPECT_EQ(directory_entries(d), (std::vector<std::string>{"notes.txt", "runs"}));
+  fs::remove(d / "runs");
+  fs::create_directory(d / "runs");  // a directory where one is written: fine
+  EXPECT_NO_THROW(prepare_output_directory(d, "converge", entries, true));
+}
+
 // What the command reads: never written over, --force or not.
 TEST_F(OutputDirectory, ADirectoryTheCommandReadsAndItsParentsAreRefusedEvenWithForce) {
   const fs::path run = root_ / "outer" / "run";

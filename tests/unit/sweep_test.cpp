@@ -12,6 +12,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -49,6 +50,35 @@ std::string value_at(const SweepPoint& p, const std::string& key) {
     if (k == key) return v;
   ADD_FAILURE() << "no " << key;
   return "";
+}
+
+// Issue 36: ranges whose points overflow (to - from, or to / from, beyond
+// the largest double) gave inf and nan from finite ends. Every point is now
+// finite, between the ends, the ends themselves exact.
+TEST(SweepPlan, ARangeOfFiniteEndsHasFinitePointsBetweenThem) {
+  for (const auto& [from, to, scale] :
+       {std::tuple{"-1.7e308", "1.7e308", "linear"}, std::tuple{"1.7e308", "-1.7e308", "linear"},
+        std::tuple{"1e-300", "1e300", "log"}, std::tuple{"1e300", "1e-300", "log"},
+        std::tuple{"4.9e-324", "1.7e308", "log"}}) {
+    const auto plan = SweepPlan::from_string(
+        fmt::format("case = \"paper-example1.toml\"\n[[axis]]\nkey = \"obstacle.gap\"\nfrom = {}\nto = {}\n"
+                    "count = 5\nscale = \"{}\"\n",
+                    from, to, scale),
+        "sweep.toml", BARIMPACT_EXAMPLES_DIR);
+    ASSERT_EQ(plan.points().size(), 5u);
+    const auto number = [](const std::string& text) { return std::strtod(text.c_str(), nullptr); };  // subnormals too
+    const double a = number(from), b = number(to);
+    std::vector<double> points;
+    for (const auto& p : plan.points()) points.push_back(number(value_at(p, "obstacle.gap")));
+    for (const double x : points) {
+      EXPECT_TRUE(std::isfinite(x)) << from << " .. " << to << ": " << x;
+      EXPECT_GE(x, std::min(a, b)) << from << " .. " << to;
+      EXPECT_LE(x, std::max(a, b)) << from << " .. " << to;
+    }
+    EXPECT_TRUE(std::is_sorted(points.begin(), points.end()) || std::is_sorted(points.rbegin(), points.rend()));
+    EXPECT_EQ(points.front(), a);
+    EXPECT_EQ(points.back(), b);
+  }
 }
 
 // Two axes make their product: a list of 2 and a log range of 3 from 0.01

@@ -15,6 +15,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "barimpact/model/contact_law.hpp"
@@ -239,6 +240,21 @@ struct Case {
   /// ...), with only the keys each law uses, every default filled in:
   /// running it reproduces this case exactly.
   [[nodiscard]] std::string to_toml() const;
+};
+
+/// Each body of a line by its name: its index in `bodies`, or the number of
+/// bodies for a name none has. One hash look-up a name, so that a line of
+/// 10^5 bodies is read and built in O(n log n), not O(n^2).
+class BodyIndex {
+ public:
+  explicit BodyIndex(const std::vector<BodyData>& bodies);
+  /// Adds the next body; false (and nothing added) when its name is taken.
+  bool add(const std::string& name);
+  [[nodiscard]] std::size_t operator()(const std::string& name) const;
+
+ private:
+  std::unordered_map<std::string, std::size_t> index_;
+  std::size_t size_ = 0;
 };
 
 /// The whole of an input file (`what`: "case file", "sweep file"); empty is

@@ -30,7 +30,8 @@ class Expression {
 
  private:
   struct Impl;
-  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl> impl_;  // none for a plain number, which is constant_
+  double constant_ = 0.0;
   bool uses_x_ = false;
   bool uses_t_ = false;
 };

@@ -60,6 +60,18 @@ struct CommandInputs {
 void refuse_names_over_inputs(const std::filesystem::path& dir, const std::vector<std::string>& names,
                               const CommandInputs& inputs, std::string_view option = "--out");
 
+/// True for the entries barimpact writes as directories (a study's runs/,
+/// figures/); every other entry it writes is a file.
+[[nodiscard]] inline bool written_as_directory(std::string_view name) {
+  return name == "runs" || name == "figures";
+}
+
+/// Throws InputError naming `option` when one of `names` is in `dir` as
+/// another kind of entry than barimpact writes (a directory summary.json/,
+/// a file runs): checked before anything is written, --force or not.
+void refuse_entries_of_another_kind(const std::filesystem::path& dir, const std::vector<std::string>& names,
+                                    std::string_view option = "--out");
+
 /// True when `dir` holds barimpact's marker and nothing the marker does not
 /// list, and each listed directory is barimpact's in turn (a directory with
 /// no marker, such as a study's runs/, holds only directories that are).
@@ -110,8 +122,9 @@ class MadeParents {
 };
 
 /// For a command that fills its directory bit by bit and resumes (sweep,
-/// converge): checks `target` (check_output_directory, and that none of
-/// `entries`, the names it will write, is or holds one of `inputs`), creates
+/// converge): checks `target` (check_output_directory, that none of
+/// `entries`, the names it will write, is or holds one of `inputs`, and
+/// refuse_entries_of_another_kind), creates
 /// it if need be and marks it as the command's, listing `entries`. Throws
 /// InputError naming `option`.
 void prepare_output_directory(const std::filesystem::path& target, std::string_view command,
