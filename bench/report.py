@@ -319,6 +319,24 @@ sizes in MB. Targets: `barimpact plot` under 15 s and under 5 MB.
 """
 
 
+def reading_section(reading):
+    """Reading a long line's case text, and building its line (bench/read_benchmark.cpp)."""
+    sizes = sorted({b for n, b in reading if n == "BM_ReadLine"})
+    rows = [f"| {b:>7,} | {statistics.median(reading[('BM_ReadLine', b)]):.3f} | "
+            f"{statistics.median(reading[('BM_BuildLine', b)]):.4f} |" for b in sizes]
+    return f"""
+## Reading a long line
+
+N point masses joined by springs (bench/read_benchmark.cpp): reading and
+checking the case's text, and building its line, in seconds for the whole
+line (medians of 7). Target: 10^5 bodies read in under a second.
+
+| bodies | read (s) | build the line (s) |
+|---:|---:|---:|
+{chr(10).join(rows)}
+"""
+
+
 def main():
     binary, out = sys.argv[1], sys.argv[2]
     build = os.path.dirname(os.path.dirname(os.path.abspath(binary)))
@@ -327,11 +345,15 @@ def main():
             "--benchmark_enable_random_interleaving=true", "--benchmark_min_time=0.2"]
     data = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
     samples = defaultdict(list)
+    reading = defaultdict(list)  # (name, bodies): seconds per read or build of the whole line
     for b in data["benchmarks"]:
         if b.get("run_type") != "iteration":
             continue
         parts = b["run_name"].split("/")
         name, size = "/".join(parts[:-1]), parts[-1]
+        if "per_body" in b:
+            reading[(name, int(size))].append(b["real_time"] * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9}[b["time_unit"]])
+            continue
         samples[(name, int(size))].append(b["per_node_step"] * 1e9)
     sizes = sorted({s for n, s in samples if n == "BM_PaperStep"})
     rows = []
@@ -487,6 +509,7 @@ with this scheme, batched or not. Debian's Google
 Benchmark prints "Library was built as DEBUG": that concerns the harness,
 not the code measured.
 """
+    text += reading_section(reading)
     with open(out, "w") as f:
         f.write(text)
     print(text)
