@@ -63,7 +63,7 @@ std::vector<double> Line::lumped_mass() const {
 }
 
 void Line::load(const Expression& f, double t, std::vector<double>& out) const {
-  // 3-point Gauss-Legendre per element, as Mesh::load.
+  // 3-point Gauss-Legendre per element: exact for f phi_i of degree <= 5.
   static const double r = std::sqrt(0.6);
   static constexpr std::array<double, 3> weight{5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   const std::array<double, 3> xi{-r, 0.0, r};

@@ -39,7 +39,7 @@
 // Held ends (line_rigid.hpp): a clamped node's z is 0, a node driven at v(t)
 // moves by dt v(t_{n+1/2}); their rows become the identity and the support's
 // force is the original row's residual. The solve is two-ended, as the
-// single bar's (mesh.hpp's TwistedTridiagonal), each row's right-hand side
+// single bar's (tridiagonal.hpp's TwistedTridiagonal), each row's right-hand side
 // formed as the sweeps inwards reach it: the single bar's constant stencils
 // inside each uniform stretch of a bar, the general row at body ends,
 // joints, masses and held ends.
