@@ -504,7 +504,10 @@ void LinePaper::sweeps(long long m) {
   const double* __restrict zc = next_;
   const double* __restrict zo = cur_;
   const std::array<double, 3> w = load_weights(m);
-  const auto [fp, f0, fm] = level_loads<mode>(m);
+  const std::array<const double*, 3> f = level_loads<mode>(m);  // not a structured binding: lambdas capture these
+  const double* fp = f[0];
+  const double* f0 = f[1];
+  const double* fm = f[2];
   const double wbar = w[0] + w[1] + w[2];
   const double* soil = soil_rhs_.data();
   auto load = [=](std::size_t j) {
