@@ -13,6 +13,7 @@
 #include "barimpact/case/case.hpp"
 #include "barimpact/exact/lines.hpp"
 #include "barimpact/run/simulate.hpp"
+#include "line_parts.hpp"
 
 namespace barimpact::testing {
 
@@ -26,6 +27,17 @@ inline Case line_case(std::vector<BodyData> bodies, std::vector<JointData> joint
   c.time.scheme = scheme;
   c.time.step = dt;
   c.time.end = end;
+  return c;
+}
+
+// The welded junction of two bars (b four times as stiff) under a unit
+// force step at the near end, on 50 + 50 elements to t = 2.5 at dt = 0.01.
+inline Case welded_junction(const std::string& scheme) {
+  BodyData stiff = bar("b", 1.0, 50);
+  stiff.modulus = 4.0;
+  Case c = line_case({bar("a", 1.0, 50), stiff}, {}, 0.01, 2.5, scheme);
+  c.near_end.law = JointLaw::force;
+  c.near_end.value = std::string("1");
   return c;
 }
 

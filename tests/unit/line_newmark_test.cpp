@@ -107,12 +107,7 @@ TEST(LineNewmark, CoupledLinksHoldTheirLawsAtTheNewLevel) {
 // impedances): the near end's displacement converges at the rate of a
 // discontinuous wave (measured 0.65-0.67 over four meshes), asserted above 0.55.
 TEST(LineNewmark, ConvergesToTheWeldedJunction) {
-  BodyData stiff = bar("b", 1.0, 50);
-  stiff.modulus = 4.0;
-  Case c = line_case({bar("a", 1.0, 50), stiff}, {}, 0.01, 2.5, "newmark");
-  c.near_end.law = JointLaw::force;
-  c.near_end.value = std::string("1");
-  EXPECT_GT(measured_order(c, false), 0.55);
+  EXPECT_GT(measured_order(testing::welded_junction("newmark"), false), 0.55);
 }
 
 }  // namespace
