@@ -5,6 +5,8 @@
 //   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
 //   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch]   (also under mpirun -n P)
 //   barimpact bearing CASE.toml --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--set K=V ...] [--jobs N]
+//   barimpact drive CASE.toml --out DIR [--set K=V ...] [--jobs N] [--no-plot]
+//   barimpact hammers
 //   [--no-plot] barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
 //                      [--vary key=spec] [--schemes a,b] [--reference auto|rigid|finest] [--jobs N]
 //
@@ -50,6 +52,7 @@
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
+#include "barimpact/study/drive.hpp"
 #include "barimpact/study/executor.hpp"
 #include "barimpact/study/sweep.hpp"
 
@@ -532,6 +535,63 @@ int bearing_command(const BearingArgs& a) {
   return study_exit({"cases", "bearing.csv", rows.size(), complete, stopped, warned}, a.flags);
 }
 
+struct DriveArgs {
+  std::string case_path, out;
+  std::vector<std::string> sets;
+  bool no_plot = false;
+  barimpact::SweepOptions options;
+  WriteFlags flags;
+};
+
+// The drive's outcome in one line: how deep, in how many blows and minutes, the largest stresses.
+void print_drive(const barimpact::DrivePlan& plan, const std::vector<barimpact::DriveRow>& rows, bool plotted,
+                 const std::string& out) {
+  const auto t = barimpact::drive_totals(plan, rows);
+  const bool si = plan.base().units == "SI";
+  const char* m = si ? " m" : "";
+  const std::string reached =
+      t.refusal_depth
+          ? fmt::format("refusal ({:g} blows per 250 mm) at {:g}{}", plan.drive().refusal, *t.refusal_depth, m)
+          : fmt::format("driven to {:g}{}", rows.empty() ? 0.0 : rows.back().depth, m);
+  fmt::print(
+      "{} depths: {}; {:.0f} blows, {:.1f} min at {:g} blows/min; max compression {:.4g}{} at {:g}{}, max "
+      "tension {:.4g}{} at {:g}{}; drive.csv, summary.json{} in {}\n",
+      rows.size(), reached, t.total_blows, t.driving_time, plan.drive().blow_rate,
+      si ? t.max_compression * 1e-6 : t.max_compression, si ? " MPa" : "", t.max_compression_depth, m,
+      si ? t.max_tension * 1e-6 : t.max_tension, si ? " MPa" : "", t.max_tension_depth, m,
+      plotted ? " and drive.png" : "", out);
+}
+
+int drive_command(const DriveArgs& a) {
+  std::vector<barimpact::Case::Override> sets;
+  for (const auto& s : a.sets) sets.push_back({s});
+  const barimpact::DrivePlan plan(a.case_path, sets);
+  const std::filesystem::path dir(a.out);
+  const auto rows = barimpact::write_drive(plan, dir, a.options, a.flags.force);
+  std::vector<barimpact::SweepRow> runs;
+  for (const auto& r : rows) runs.push_back(r.run);
+  auto count = [&](auto&& pred) { return std::count_if(runs.begin(), runs.end(), pred); };
+  const auto complete = count([](const auto& r) { return r.status == "complete"; });
+  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
+  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
+  const bool plotted = !a.no_plot && stopped == 0 && complete > 0 && run_python({"drive-plot", dir.string()});
+  print_drive(plan, rows, plotted, a.out);
+  print_study_warnings(runs);
+  return study_exit({"depths", "drive.csv", rows.size(), complete, stopped, warned}, a.flags);
+}
+
+// hammers: the shipped table, one hammer a line.
+int hammers_command() {
+  fmt::print("{:<18} {:<10} {:>9} {:>8} {:>11} {:>6}  source\n", "name", "kind", "ram (kg)", "stroke", "energy (kJ)",
+             "eff.");
+  for (const auto& h : barimpact::shipped_hammers()) {
+    const double stroke = h.stroke > 0 ? h.stroke : h.energy / (h.ram_mass * 9.81);
+    fmt::print("{:<18} {:<10} {:>9.0f} {:>6.3f} m {:>11.1f} {:>6.2f}  {}\n", h.name, barimpact::to_string(h.kind),
+               h.ram_mass, stroke, 1e-3 * h.ram_mass * 9.81 * stroke, h.efficiency, h.source);
+  }
+  return 0;
+}
+
 // hopkinson: the analysis first (a signal it refuses writes nothing), then
 // hopkinson.csv, summary.json and the figures, moved into place together.
 int hopkinson_command(const std::string& setup_path, const std::string& out, bool no_plot, const WriteFlags& flags) {
@@ -709,6 +769,28 @@ Command add_bearing(CLI::App& app) {
           }};
 }
 
+Command add_drive(CLI::App& app) {
+  auto a = std::make_shared<DriveArgs>();
+  auto* c = app.add_subcommand(
+      "drive", "Drivability of a pile case with [drive]: blow counts, stresses and capacity against depth (drive.csv)");
+  c->add_option("case", a->case_path, "Case file (TOML) with [drive] and [[layer]]")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or a drive's (resumes)")->required();
+  c->add_option("--set", a->sets, "Override a key of the case for every depth: section.key=value (repeatable)");
+  c->add_option("--jobs", a->options.jobs, jobs_help);
+  c->add_flag("--no-plot", a->no_plot, "Skip drive.png");
+  add_write_flags(c, a->flags);
+  return {c, [a] {
+            a->options.interrupt = &interrupted;
+            a->options.batch = false;  // Smith's soil runs on central differences
+            return drive_command(*a);
+          }};
+}
+
+Command add_hammers(CLI::App& app) {
+  auto* c = app.add_subcommand("hammers", "List the hammers barimpact ships ([hammer] model = \"NAME\")");
+  return {c, [] { return hammers_command(); }};
+}
+
 Command add_hopkinson(CLI::App& app) {
   struct Args {
     std::string setup, out;
@@ -811,18 +893,14 @@ int main(int argc, char** argv) {
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text);
-  const std::vector<Command> commands{add_run(app, false),
-                                      add_check(app),
-                                      add_run(app, true),
-                                      add_sweep(app),
-                                      add_bearing(app),
-                                      add_hopkinson(app),
-                                      add_converge(app, argc, argv),
+  const std::vector<Command> commands{add_run(app, false), add_check(app),     add_run(app, true),
+                                      add_sweep(app),      add_bearing(app),   add_drive(app),
+                                      add_hammers(app),    add_hopkinson(app), add_converge(app, argc, argv),
                                       add_plot(app)};
   if (!known_command(argc, argv, commands)) {
     fmt::print(stderr,
                "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, "
-               "hopkinson, plot; see barimpact --help)\n",
+               "drive, hammers, hopkinson, plot; see barimpact --help)\n",
                argv[1]);
     return exit_bad_input;
   }

@@ -32,6 +32,9 @@ def _run(args):
     if args.command == "bearing-plot":
         from .bearing import plot_bearing
         return plot_bearing(args.dir)
+    if args.command == "drive-plot":
+        from .drive import plot_drive
+        return plot_drive(args.dir)
     if args.command == "hopkinson-plot":
         from .hopkinson import plot_hopkinson_into
         plot_hopkinson_into(args.dir, args.shown or args.dir)
@@ -60,6 +63,8 @@ def main(argv=None):
     c.add_argument("dir")
     b = sub.add_parser("bearing-plot", help="draw bearing.png of a barimpact bearing directory")
     b.add_argument("dir")
+    v = sub.add_parser("drive-plot", help="draw drive.png of a barimpact drive directory")
+    v.add_argument("dir")
     h = sub.add_parser("hopkinson-plot", help="draw the figures of a barimpact hopkinson directory")
     h.add_argument("dir")
     h.add_argument("--as", dest="shown", default=None,
@@ -68,7 +73,7 @@ def main(argv=None):
     try:
         written = _run(args)
     except (OSError, ValueError, ImportError) as e:  # ImportError: results.h5 without h5py
-        # The command the user gave: plot, converge, bearing, hopkinson. Exit 2, as the command's own refusals.
+        # The command the user gave: plot, converge, bearing, drive, hopkinson. Exit 2, as the command's own refusals.
         print(f"barimpact: error: {args.command.removesuffix('-plot')}: {_message(e)}", file=sys.stderr)
         return 2
     for path in written:

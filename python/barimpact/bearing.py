@@ -22,8 +22,13 @@ def _float(text):
 
 def read_bearing(directory):
     """bearing.csv's rows as dicts of floats (finished as a bool, the rest as text)."""
+    return read_study_table(directory, "bearing.csv")
+
+
+def read_study_table(directory, name):
+    """A pile study's table (bearing.csv, drive.csv): dicts of floats, finished a bool, the rest text."""
     rows = []
-    with open(Path(directory) / "bearing.csv", newline="") as f:
+    with open(Path(directory) / name, newline="") as f:
         for r in csv.DictReader(f):
             row = {k: _float(v) for k, v in r.items() if k not in ("finished", "id", "status", "message", "warnings")}
             row.update(finished=r["finished"] == "true", id=r["id"], status=r["status"], message=r["message"])

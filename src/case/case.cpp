@@ -15,11 +15,16 @@
 
 #include <memory>
 #include "barimpact/model/expression.hpp"
+#include "drive_input.hpp"
+#include "reader.hpp"
 #include "toml_input.hpp"
 
 namespace barimpact {
 
 namespace {
+
+using detail::find_array;
+using detail::Reader;
 
 // The largest mesh a case may ask for. Reading a case evaluates its
 // expressions at every node: a fuzzing build (the usual
@@ -30,238 +35,6 @@ constexpr long long max_elements = 100'000;
 #else
 constexpr long long max_elements = 100'000'000;
 #endif
-
-struct SectionKeys {
-  std::string_view section;
-  std::vector<std::string_view> keys;
-};
-
-// The case-file contract: sections and keys, in file order.
-const std::array<SectionKeys, 10>& contract() {
-  static const std::array<SectionKeys, 10> c{{
-      {"bar",
-       {"length", "density", "stiffness", "viscosity", "elements", "far_end", "material", "yield_stress",
-        "hardening_modulus", "hardening"}},
-      {"load", {"body_force", "gravity"}},
-      {"initial", {"displacement", "velocity"}},
-      {"obstacle", {"kind", "stiffness", "gap", "viscosity"}},
-      {"near_end",
-       {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
-      {"far_end",
-       {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
-      {"blow", {"gauge", "ram", "pile"}},
-      {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution"}},
-      {"output", {"every", "fields_at", "format", "compression"}},
-      {"units", {"system"}},
-  }};
-  return c;
-}
-
-// The arrays of tables: [[body]], [[joint]], [[gauge]].
-const std::array<SectionKeys, 3>& array_contract() {
-  static const std::array<SectionKeys, 3> c{{
-      {"body",
-       {"name", "kind", "length", "elements", "area", "modulus", "density", "viscosity", "mass", "displacement",
-        "velocity", "material", "yield_stress", "hardening_modulus", "hardening", "shaft"}},
-      {"joint", {"name", "between", "law", "stiffness", "viscosity", "restitution", "gap"}},
-      {"gauge", {"name", "body", "at"}},
-  }};
-  return c;
-}
-
-const SectionKeys* find_array(std::string_view name) {
-  for (const auto& s : array_contract())
-    if (s.section == name) return &s;
-  return nullptr;
-}
-
-const SectionKeys* find_section(std::string_view name) {
-  for (const auto& s : contract())
-    if (s.section == name) return &s;
-  return nullptr;
-}
-
-bool has_key(const SectionKeys& s, std::string_view key) {
-  for (auto k : s.keys)
-    if (k == key) return true;
-  return false;
-}
-
-// A string's hash that also takes a string_view, for look-ups without a copy.
-struct TextHash {
-  using is_transparent = void;
-  std::size_t operator()(std::string_view text) const { return std::hash<std::string_view>{}(text); }
-};
-
-// Reads the table, remembering where each key came from so that every error
-// names the file and line, or the --set option, that set it.
-class Reader {
- public:
-  Reader(toml::table root, std::string origin, std::map<std::string, std::string> overridden, bool cite_lines)
-      : root_(std::move(root)),
-        origin_(std::move(origin)),
-        overridden_(std::move(overridden)),
-        cite_lines_(cite_lines) {}
-
-  [[noreturn]] void fail(std::string_view section, std::string_view key, std::string_view rule) const {
-    throw InputError(fmt::format("{}: {}.{} {}", where(section, key), section, key, rule));
-  }
-
-  std::string where(std::string_view section, std::string_view key) const {
-    const std::string dotted = fmt::format("{}.{}", section, key);
-    if (auto it = overridden_.find(dotted); it != overridden_.end()) return it->second;
-    if (const auto* n = node(section, key)) return located(*n);
-    if (const auto* t = viewed(section)) return located(*t);
-    if (const auto* t = root_.get(section)) return located(*t);
-    return origin_;
-  }
-
-  std::string located(const toml::node& n) const {
-    const auto& src = n.source();
-    if (src.begin.line == 0 || !cite_lines_) return origin_;
-    return fmt::format("{}:{}", origin_, src.begin.line);
-  }
-
-  void check_layout() const {
-    std::vector<std::string_view> names;
-    for (const auto& s : contract()) names.push_back(s.section);
-    for (const auto& s : array_contract()) names.push_back(s.section);
-    for (auto&& [name, value] : root_) {
-      const std::string_view sname = name.str();
-      const std::string loc =
-          overridden_.count(std::string(sname) + ".") ? overridden_.at(std::string(sname) + ".") : located(value);
-      if (const auto* array = find_array(sname)) {
-        check_array(*array, value, loc);
-        continue;
-      }
-      const auto* section = find_section(sname);
-      if (section == nullptr || !value.is_table()) {
-        if (section == nullptr)
-          throw InputError(fmt::format("{}: unknown section [{}] (known: {})", loc, sname, fmt::join(names, ", ")));
-        throw InputError(fmt::format("{}: {} must be a section [{}], not a value", loc, sname, sname));
-      }
-      check_keys(*section, *value.as_table(), std::string(sname));
-    }
-  }
-
-  // [[body]], [[joint]], [[gauge]]: arrays of tables with known keys.
-  void check_array(const SectionKeys& array, const toml::node& value, const std::string& loc) const {
-    const auto* a = value.as_array();
-    if (a == nullptr || !a->is_array_of_tables())
-      throw InputError(fmt::format("{}: {} must be an array of tables [[{}]]", loc, array.section, array.section));
-    for (std::size_t i = 0; i < a->size(); ++i)
-      check_keys(array, *(*a)[i].as_table(), fmt::format("{}[{}]", array.section, i + 1));
-  }
-
-  void check_keys(const SectionKeys& section, const toml::table& table, const std::string& label) const {
-    for (auto&& [key, v] : table) {
-      if (has_key(section, key.str())) continue;
-      const std::string dotted = fmt::format("{}.{}", label, key.str());
-      auto it = overridden_.find(dotted);
-      throw InputError(fmt::format("{}: unknown key {} (known in [{}]: {})",
-                                   it != overridden_.end() ? it->second : located(v), dotted, section.section,
-                                   fmt::join(section.keys, ", ")));
-    }
-  }
-
-  /// Lets `label` ("body.pile") name a table of an array, for node() and messages.
-  void view(const std::string& label, const toml::table* table) { views_[label] = table; }
-  /// The same for as long as this table is read, until the next glance:
-  /// for the names a table goes by only while it is read ("joint[3]",
-  /// "joint.a-b"), with no entry kept for each of 10^5 tables.
-  void glance(std::string label, const toml::table* table) { glanced_ = {std::move(label), table}; }
-  /// Room for a view of every [[body]], made once.
-  void reserve_views() {
-    if (const auto* bodies = root_.get_as<toml::array>("body")) views_.reserve(bodies->size());
-  }
-  [[nodiscard]] const toml::table& root() const { return root_; }
-
-  const toml::node* node(std::string_view section, std::string_view key) const {
-    const auto* t = table(section);
-    return t ? t->get(key) : nullptr;
-  }
-
-  /// The table `section` names (a view, or a section of the file), or null.
-  const toml::table* table(std::string_view section) const {
-    if (const auto* t = viewed(section)) return t;
-    return root_.get_as<toml::table>(section);
-  }
-
-  double number(std::string_view section, std::string_view key, double fallback) const {
-    const auto* n = node(section, key);
-    if (n == nullptr) return fallback;
-    double v = 0.0;
-    if (const auto* i = n->as_integer())
-      v = static_cast<double>(i->get());
-    else if (const auto* f = n->as_floating_point())
-      v = f->get();
-    else
-      fail(section, key, fmt::format("must be a number (got {})", toml_type_name(*n)));
-    if (!std::isfinite(v)) fail(section, key, fmt::format("must be a finite number (got {})", v));
-    return v;
-  }
-
-  long long integer(std::string_view section, std::string_view key, long long fallback) const {
-    const auto* n = node(section, key);
-    if (n == nullptr) return fallback;
-    if (const auto* i = n->as_integer()) return i->get();
-    fail(section, key, fmt::format("must be an integer (got {})", toml_type_name(*n)));
-  }
-
-  std::string word(std::string_view section, std::string_view key, std::string_view fallback) const {
-    const auto* n = node(section, key);
-    if (n == nullptr) return std::string(fallback);
-    if (const auto* s = n->as_string()) return s->get();
-    fail(section, key, fmt::format("must be a string (got {})", toml_type_name(*n)));
-  }
-
-  // An expression: a string, or a number written without quotes.
-  std::string expression(std::string_view section, std::string_view key, std::string_view fallback) const {
-    const auto* n = node(section, key);
-    if (n == nullptr) return std::string(fallback);
-    if (const auto* s = n->as_string()) return s->get();
-    if (const auto* i = n->as_integer()) return fmt::format("{}", i->get());
-    if (const auto* f = n->as_floating_point()) {
-      if (!std::isfinite(f->get())) fail(section, key, "must be finite");
-      return fmt::format("{}", f->get());
-    }
-    fail(section, key, fmt::format("must be an expression in x and t (got {})", toml_type_name(*n)));
-  }
-
-  std::vector<double> numbers(std::string_view section, std::string_view key) const {
-    const auto* n = node(section, key);
-    std::vector<double> out;
-    if (n == nullptr) return out;
-    auto one = [&](const toml::node& e) {
-      if (const auto* i = e.as_integer()) return static_cast<double>(i->get());
-      if (const auto* f = e.as_floating_point()) {
-        if (!std::isfinite(f->get())) fail(section, key, "must hold finite numbers");
-        return f->get();
-      }
-      fail(section, key, fmt::format("must be an array of numbers (found {})", toml_type_name(e)));
-    };
-    if (const auto* a = n->as_array()) {
-      for (const auto& e : *a) out.push_back(one(e));
-    } else {
-      out.push_back(one(*n));
-    }
-    return out;
-  }
-
- private:
-  toml::table root_;
-  std::string origin_;
-  std::map<std::string, std::string> overridden_;
-  bool cite_lines_;
-  std::unordered_map<std::string, const toml::table*, TextHash, std::equal_to<>> views_;  // found by a string_view
-  std::pair<std::string, const toml::table*> glanced_{"", nullptr};
-
-  const toml::table* viewed(std::string_view label) const {
-    if (glanced_.second != nullptr && glanced_.first == label) return glanced_.second;
-    const auto it = views_.find(label);
-    return it == views_.end() ? nullptr : it->second;
-  }
-};
 
 // The name an element of [[body]], [[joint]] or [[gauge]] goes by: its
 // `name`, else body<i>, <lower>-<upper>, gauge<i>.
@@ -604,19 +377,70 @@ SoilSpring read_soil(const Reader& r, const std::string& section, SoilSpring soi
   return soil;
 }
 
+// Fails on the first key of `t` that `known` does not list.
+void check_known(const Reader& r, const std::string& section, const toml::table& t,
+                 std::initializer_list<std::string_view> known, std::string_view what) {
+  for (auto&& [key, v] : t)
+    if (std::find(known.begin(), known.end(), key.str()) == known.end())
+      r.fail(section, key.str(), fmt::format("is not a {} key (known: {})", what, fmt::join(known, ", ")));
+}
+
+// A number or [first, last] pair: (v, v) or (first, last).
+std::pair<double, double> read_pair(const Reader& r, const std::string& section, std::string_view key) {
+  const auto v = r.numbers(section, key);
+  if (v.empty() || v.size() > 2) r.fail(section, key, "must be a number or a pair [at the top, at the bottom]");
+  return {v.front(), v.back()};
+}
+
+// [body.<name>.shaft] profile: the shaft as pieces along the body.
+std::vector<ShaftPiece> read_profile(Reader& r, const std::string& s, const toml::node& node, double length) {
+  const auto* a = node.as_array();
+  if (a == nullptr || a->empty() || !a->is_array_of_tables())
+    r.fail(s, "profile", "must be a non-empty array of tables {from, to, resistance, quake, damping, damping_law}");
+  std::vector<ShaftPiece> pieces;
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    const std::string p = fmt::format("{}.profile[{}]", s, i + 1);
+    const auto& t = *(*a)[i].as_table();
+    r.view(p, &t);
+    check_known(r, p, t, {"from", "to", "resistance", "quake", "damping", "damping_law"}, "shaft profile");
+    ShaftPiece piece;
+    for (const char* key : {"from", "to", "resistance"})
+      if (r.node(p, key) == nullptr) r.fail(p, key, "is required");
+    piece.from = r.number(p, "from", 0.0);
+    piece.to = r.number(p, "to", 0.0);
+    std::tie(piece.resistance_from, piece.resistance_to) = read_pair(r, p, "resistance");
+    piece.soil = read_soil(r, p, piece.soil);
+    const double below = pieces.empty() ? 0.0 : pieces.back().to;
+    if (!(piece.from >= below && piece.to >= piece.from && piece.to <= length))
+      r.fail(p, "to",
+             fmt::format("must have {} <= from <= to <= {} (the pieces ascend along the body; got from {}, to {})",
+                         below, length, piece.from, piece.to));
+    if (!(piece.resistance_from >= 0 && piece.resistance_to >= 0))
+      r.fail(p, "resistance", "must be >= 0 (N per m of shaft)");
+    pieces.push_back(piece);
+  }
+  return pieces;
+}
+
 // [body.<name>.shaft]: Smith's side springs along a bar.
 ShaftData read_shaft(Reader& r, const std::string& body, const toml::node& node, double length) {
   const std::string s = body + ".shaft";
   const auto* t = node.as_table();
   if (t == nullptr) r.fail(body, "shaft", "must be a table [body.shaft] (ultimate, embedded, distribution, ...)");
   r.view(s, t);
-  constexpr std::array<std::string_view, 6> known{"ultimate", "embedded", "distribution",
-                                                  "quake",    "damping",  "damping_law"};
-  for (auto&& [key, v] : *t)
-    if (std::find(known.begin(), known.end(), key.str()) == known.end())
-      r.fail(s, key.str(), fmt::format("is not a shaft key (known: {})", fmt::join(known, ", ")));
-  if (r.node(s, "ultimate") == nullptr) r.fail(s, "ultimate", "is required: the total static shaft capacity, in N");
+  check_known(r, s, *t, {"ultimate", "embedded", "distribution", "quake", "damping", "damping_law", "profile"},
+              "shaft");
   ShaftData d;
+  if (const auto* profile = t->get("profile")) {
+    for (const char* key : {"ultimate", "embedded", "distribution", "quake", "damping", "damping_law"})
+      if (r.node(s, key) != nullptr) r.fail(s, key, "cannot be combined with profile (each piece has its own)");
+    d.profile = read_profile(r, s, *profile, length);
+    d.soil.ultimate = 0.0;
+    for (const auto& p : d.profile) d.soil.ultimate += p.ultimate();
+    d.embedded = d.profile.back().to;
+    return d;
+  }
+  if (r.node(s, "ultimate") == nullptr) r.fail(s, "ultimate", "is required: the total static shaft capacity, in N");
   d.soil = read_soil(r, s, d.soil);
   d.embedded = r.number(s, "embedded", length);
   if (!(d.embedded > 0 && d.embedded <= length))
@@ -971,8 +795,10 @@ Case read_case(Reader& r) {
     refuse_sections(r, {"bar", "initial", "obstacle"},
                     "cannot be combined with [[body]]: use either [bar]/[initial]/[obstacle] or [[body]] with "
                     "[near_end]/[far_end]");
-  const BodyIndex body_index = line ? read_line(r, c) : read_one_bar(r, c);
+  BodyIndex body_index = line ? read_line(r, c) : read_one_bar(r, c);
+  detail::read_hammer(r, c, body_index);
   read_blow(r, c, body_index);
+  detail::read_drive(r, c, body_index);
   c.load.body_force = r.expression("load", "body_force", c.load.body_force);
   c.load.gravity = r.number("load", "gravity", 0.0);
   read_time(r, c);
@@ -1171,6 +997,29 @@ void write_material(std::string& out, const MaterialData& m) {
                      m.hardening == Hardening::isotropic ? "\"isotropic\"" : "\"kinematic\"");
 }
 
+std::string_view damping_law_name(DampingLaw law) {
+  return law == DampingLaw::smith ? "smith" : "viscous";
+}
+
+void write_shaft(std::string& out, const ShaftData& s) {
+  if (s.profile.empty()) {
+    out += fmt::format(
+        "[body.shaft]\nultimate = {}\nembedded = {}\ndistribution = {}\nquake = {}\ndamping = {}\n"
+        "damping_law = \"{}\"\n\n",
+        toml_float(s.soil.ultimate), toml_float(s.embedded),
+        s.distribution == ShaftDistribution::uniform ? "\"uniform\"" : "\"triangular\"", toml_float(s.soil.quake),
+        toml_float(s.soil.damping), damping_law_name(s.soil.damping_law));
+    return;
+  }
+  for (const auto& p : s.profile)
+    out += fmt::format(
+        "[[body.shaft.profile]]\nfrom = {}\nto = {}\nresistance = [{}, {}]\nquake = {}\ndamping = {}\n"
+        "damping_law = \"{}\"\n",
+        toml_float(p.from), toml_float(p.to), toml_float(p.resistance_from), toml_float(p.resistance_to),
+        toml_float(p.soil.quake), toml_float(p.soil.damping), damping_law_name(p.soil.damping_law));
+  out += "\n";
+}
+
 void write_body(std::string& out, const BodyData& b) {
   out +=
       fmt::format("[[body]]\nname = {}\nkind = {}\n", toml_string(b.name), toml_string(std::string(to_string(b.kind))));
@@ -1186,13 +1035,7 @@ void write_body(std::string& out, const BodyData& b) {
       toml_float(b.viscosity), toml_string(b.displacement), toml_string(b.velocity));
   write_material(out, b.material);
   out += "\n";
-  if (const auto& s = b.shaft)
-    out += fmt::format(
-        "[body.shaft]\nultimate = {}\nembedded = {}\ndistribution = {}\nquake = {}\ndamping = {}\n"
-        "damping_law = {}\n\n",
-        toml_float(s->soil.ultimate), toml_float(s->embedded),
-        s->distribution == ShaftDistribution::uniform ? "\"uniform\"" : "\"triangular\"", toml_float(s->soil.quake),
-        toml_float(s->soil.damping), s->soil.damping_law == DampingLaw::smith ? "\"smith\"" : "\"viscous\"");
+  if (const auto& s = b.shaft) write_shaft(out, *s);
 }
 
 }  // namespace

@@ -104,37 +104,62 @@ void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, con
                                 : std::nullopt);
 }
 
-// [body.shaft] of body `b` (nodes r.first..r.last): the distribution's
-// consistent nodal shares R_j = int r(xi) phi_j(xi) dxi over the embedded
-// length (2-point Gauss per element piece, exact: r and phi_j are linear),
-// which add up to R_u.
+// The consistent nodal shares R_j += int r(xi) phi_j(xi) dxi of a resistance
+// per unit length r, linear on [a, b] (body coordinates from x0), over the
+// elements of nodes r.first..r.last (2-point Gauss per element piece, exact:
+// r and phi_j are linear), which add up to int r.
+template <class Density>
+void add_shares(const Line& line, const BodyRange& r, double a, double b, Density density,
+                std::vector<double>& ultimate) {
+  const double x0 = line.x[r.first], g = 0.5 / std::sqrt(3.0);
+  for (std::size_t j = r.first; j < r.last; ++j) {
+    const double xa = line.x[j] - x0, xb = line.x[j + 1] - x0;
+    const double lo = std::max(a, xa), hi = std::min(b, xb);
+    if (hi <= lo) continue;
+    for (const double w : {0.5 - g, 0.5 + g}) {
+      const double xi = lo + w * (hi - lo), f = 0.5 * (hi - lo) * density(xi);
+      const double phi_b = (xi - xa) / (xb - xa);  // node j + 1's hat function
+      ultimate[j] += f * (1.0 - phi_b);
+      ultimate[j + 1] += f * phi_b;
+    }
+  }
+}
+
+// The soil of a shaft's node at x along the body (ShaftPiece's rule).
+const SoilSpring& piece_soil(const ShaftData& d, double x) {
+  for (const auto& p : d.profile)
+    if (p.from < x && x <= p.to) return p.soil;
+  for (const auto& p : d.profile)
+    if (p.from <= x && x <= p.to) return p.soil;
+  return d.soil;
+}
+
+// [body.shaft] of body `b` (nodes r.first..r.last): the distribution's or
+// the profile's consistent nodal shares, each node with its soil's quake
+// and damping.
 void add_shaft(Line& line, const BodyRange& r, const ShaftData& d) {
   const std::size_t n = line.nodes();
   Shaft& s = line.shaft;
   for (auto* v : {&s.ultimate, &s.stiffness, &s.quake, &s.smith, &s.viscous}) v->resize(n, 0.0);  // the bodies so far
-  const double x0 = line.x[r.first], le = d.embedded;
-  auto density = [&](double xi) {
-    return d.distribution == ShaftDistribution::uniform ? d.soil.ultimate / le
-                                                        : 2.0 * d.soil.ultimate / le * (1.0 - xi / le);
-  };
-  const double g = 0.5 / std::sqrt(3.0);
-  for (std::size_t j = r.first; j < r.last; ++j) {
-    const double xa = line.x[j] - x0, xb = line.x[j + 1] - x0;
-    const double a = std::max(0.0, xa), b = std::min(le, xb);
-    if (b <= a) continue;
-    for (const double w : {0.5 - g, 0.5 + g}) {
-      const double xi = a + w * (b - a), f = 0.5 * (b - a) * density(xi);
-      const double phi_b = (xi - xa) / (xb - xa);  // node j + 1's hat function
-      s.ultimate[j] += f * (1.0 - phi_b);
-      s.ultimate[j + 1] += f * phi_b;
-    }
-  }
+  const double le = d.embedded;
+  if (d.profile.empty())
+    add_shares(
+        line, r, 0.0, le,
+        [&](double xi) {
+          return d.distribution == ShaftDistribution::uniform ? d.soil.ultimate / le
+                                                              : 2.0 * d.soil.ultimate / le * (1.0 - xi / le);
+        },
+        s.ultimate);
+  for (const auto& p : d.profile)
+    add_shares(
+        line, r, p.from, p.to, [&](double xi) { return p.resistance_at(xi); }, s.ultimate);
   for (std::size_t j = r.first; j <= r.last; ++j) {
     if (s.ultimate[j] <= 0.0) continue;
-    s.stiffness[j] = s.ultimate[j] / d.soil.quake;
-    s.quake[j] = d.soil.quake;
-    (d.soil.damping_law == DampingLaw::smith ? s.smith[j] : s.viscous[j]) =
-        d.soil.damping_law == DampingLaw::smith ? d.soil.damping : d.soil.damping * s.ultimate[j];
+    const SoilSpring& soil = piece_soil(d, line.x[j] - line.x[r.first]);
+    s.stiffness[j] = s.ultimate[j] / soil.quake;
+    s.quake[j] = soil.quake;
+    (soil.damping_law == DampingLaw::smith ? s.smith[j] : s.viscous[j]) =
+        soil.damping_law == DampingLaw::smith ? soil.damping : soil.damping * s.ultimate[j];
   }
 }
 

@@ -11,43 +11,12 @@
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/schemes/registry.hpp"
+#include "blow_read.hpp"
 #include "csv_cells.hpp"
 
 namespace barimpact {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-// The blow a run directory's summary.json holds, into `row`.
-void read_blow(const fs::path& run_dir, BearingRow& row) {
-  row.set = row.blows_per_250mm = row.blows_per_m = row.max_compression = row.max_tension = row.enthru =
-      row.transfer_ratio = nan;
-  row.finished = false;
-  std::ifstream in(run_dir / "summary.json");
-  if (!in) return;
-  try {
-    const auto j = nlohmann::json::parse(in);
-    const auto& b = j.at("blow");
-    if (b.is_null()) return;
-    auto number = [](const nlohmann::json& v) { return v.is_number() ? v.get<double>() : nan; };
-    row.set = number(b.at("set"));
-    const bool refusal = row.set == 0.0;  // the hammer did not move the pile: infinite blow counts
-    row.blows_per_m = refusal ? std::numeric_limits<double>::infinity() : number(b.at("blows_per_m"));
-    row.blows_per_250mm = refusal ? std::numeric_limits<double>::infinity() : number(b.at("blows_per_250mm"));
-    row.max_compression = number(b.at("max_compression").at("value"));
-    row.max_tension = number(b.at("max_tension").at("value"));
-    row.enthru = number(b.at("enthru"));
-    row.transfer_ratio = number(b.at("transfer_ratio"));
-    row.finished = b.at("finished").get<bool>();
-  } catch (const std::exception&) {
-    row.set = nan;  // not a summary barimpact wrote whole
-  }
-}
-
-}  // namespace
 
 void parse_capacity(const std::string& text, BearingOptions& o) {
   const auto fail = [&](const std::string& rule) { throw InputError(fmt::format("--capacity {}: {}", text, rule)); };
@@ -136,7 +105,7 @@ std::vector<BearingRow> run_bearing(const BearingPlan& plan, const fs::path& dir
     row.capacity = plan.capacity(i);
     row.toe = plan.toe_share() * row.capacity;
     row.shaft = row.capacity - row.toe;
-    read_blow(dir / "runs" / points[i].id, row);
+    detail::take_blow(row, detail::read_blow(dir / "runs" / points[i].id));
     if (row.run.status != "complete") row.finished = false;
   }
   return rows;

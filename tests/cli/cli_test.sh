@@ -383,6 +383,21 @@ expect_refused "no Smith soil" bearing "$ex1" --out "$work/refused" --capacity 1
 expect_refused "far_end.law = \"smith\" is a near-end law only" run "$pipe" --out "$work/refused" --set far_end.law=smith
 expect_refused "time.scheme = \"moreau-jean\" cannot run Smith's soil" run "$pipe" --out "$work/refused" --set time.scheme=moreau-jean --set time.step=1e-5
 
+# Drivability: drive.csv's contract columns, summary.json's totals, a rerun
+# resumes; `run` of a [drive] case analyses its deepest depth; the hammers.
+drv="$examples/pile/drive-pipe-drop.toml"
+"$bin" drive "$drv" --out "$work/drive" --no-plot --set drive.depths=[3.0,8.0] > /dev/null 2>&1 && ok || bad "drive exit"
+[ "$(head -1 "$work/drive/drive.csv" | cut -d, -f1-14)" = "depth,shaft,toe,capacity,long_term_capacity,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru,stroke,cumulative_blows,finished" ] && ok || bad "drive columns"
+[ "$(wc -l < "$work/drive/drive.csv")" -eq 3 ] && ok || bad "drive rows"
+grep -q '"total_blows"' "$work/drive/summary.json" && grep -q '"refusal_depth"' "$work/drive/summary.json" && ok || bad "drive summary"
+"$bin" drive "$drv" --out "$work/drive" --no-plot --set drive.depths=[3.0,8.0] > /dev/null 2>&1 && ok || bad "drive rerun"
+"$bin" run "$drv" --out "$work/drive-run" --set drive.depths=[3.0,8.0] --set time.end=0.02 > /dev/null 2>&1 && ok || bad "run of a drive case"
+grep -q '^\[\[body.shaft.profile\]\]$' "$work/drive-run/case.toml" && ok || bad "the run's case.toml spells the profile"
+"$bin" hammers | grep -q "Vulcan 010" && ok || bad "hammers lists the table"
+expect_refused "no [drive] section" drive "$pipe" --out "$work/refused"
+expect_refused "layer[1].top" drive "$drv" --out "$work/refused" --set layer.layer1.top=1.0
+expect_refused "nearest: \"Vulcan 010\"" run "$drv" --out "$work/refused" --set "hammer.model=Vulkan 010"
+
 # The Hopkinson bar: simulate, analyse the run's gauges (the contract's
 # columns first), analyse measured files; a signal that cannot be analysed
 # writes nothing.

@@ -18,6 +18,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "barimpact/case/drive.hpp"
 #include "barimpact/model/contact_law.hpp"
 #include "barimpact/model/input_error.hpp"
 #include "barimpact/model/material.hpp"
@@ -71,6 +72,9 @@ struct ShaftData {
   SoilSpring soil{0.0, 0.00254, 0.164, DampingLaw::smith};
   double embedded = -1.0;  ///< length in the soil from the body's near end (< 0: all of it)
   ShaftDistribution distribution = ShaftDistribution::uniform;
+  /// The shaft as pieces, ascending (empty: soil, embedded and distribution
+  /// say it; else soil.ultimate is their sum and embedded their reach).
+  std::vector<ShaftPiece> profile;
 };
 
 struct BodyData {
@@ -182,6 +186,8 @@ struct Case {
   LawData far_end;
   std::vector<GaugeData> gauges;
   BlowData blow;
+  std::optional<DriveData> drive;    ///< [drive] and [[layer]]: the pile's soil at drive's depth
+  std::optional<HammerData> hammer;  ///< [hammer]: the ram's start (and the bodies a model adds)
   LoadData load;
   TimeData time;
   OutputData output;

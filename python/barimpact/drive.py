@@ -1,0 +1,80 @@
+"""The drivability of a `barimpact drive` directory: blow count, driving
+stresses and capacity against depth, depth downwards (the way wave-equation
+programs draw it), and the stroke for a diesel hammer."""
+import json
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from .bearing import read_study_table  # noqa: E402
+from .plot import DPI, _save, study_directory  # noqa: E402
+
+
+def read_drive(directory):
+    """drive.csv's rows as dicts of floats (finished as a bool, the rest as text)."""
+    return read_study_table(directory, "drive.csv")
+
+
+def _blow_counts(ax, rows, refusal):
+    """Blow counts up to twice the refusal; counts beyond it (and set 0) at the axis' right edge."""
+    right = 2.0 * refusal
+    shown = [r for r in rows if r["blows_per_250mm"] <= right]
+    ax.plot([r["blows_per_250mm"] for r in shown], [r["depth"] for r in shown], "o-", label="blow count")
+    beyond = [r for r in rows if r["blows_per_250mm"] > right]
+    if beyond:
+        ax.plot([right] * len(beyond), [r["depth"] for r in beyond], ">", color="tab:gray",
+                label=f"beyond {right:g} (set 0: inf)")
+    ax.axvline(refusal, color="tab:red", ls=":", label=f"refusal ({refusal:g})")
+    ax.set_xlabel("blows per 250 mm")
+    ax.set_ylabel("penetration (m)")
+    ax.set_xlim(0, right * 1.05)
+    ax.set_title("Blow count")
+
+
+def _stresses(ax, rows, yield_stress):
+    ok = [r for r in rows if math.isfinite(r["max_compression"])]
+    ax.plot([1e-6 * r["max_compression"] for r in ok], [r["depth"] for r in ok], "o-", label="max compression")
+    ax.plot([1e-6 * r["max_tension"] for r in ok], [r["depth"] for r in ok], "s--", label="max tension")
+    if yield_stress:
+        ax.axvline(1e-6 * yield_stress, color="tab:red", ls=":", label="yield stress")
+    ax.set_xlabel("stress in the pile (MPa)")
+    ax.set_xlim(left=0)
+    ax.set_title("Driving stresses")
+
+
+def _capacity(ax, rows):
+    depth = [r["depth"] for r in rows]
+    ax.plot([1e-3 * r["capacity"] for r in rows], depth, "o-", label="during driving")
+    ax.plot([1e-3 * r["long_term_capacity"] for r in rows], depth, "--", label="long term (setup)")
+    ax.plot([1e-3 * r["toe"] for r in rows], depth, ":", label="toe")
+    ax.set_xlabel("static capacity (kN)")
+    ax.set_xlim(left=0)
+    ax.set_title("Capacity")
+
+
+def plot_drive(directory, formats=("png", "svg")):
+    """Draws drive.png (and .svg) into the directory barimpact drive wrote
+    (nowhere else); returns the paths."""
+    d = study_directory(directory, "drive")
+    rows = read_drive(d)
+    summary = json.loads((d / "summary.json").read_text())
+    diesel = (summary.get("hammer") or {}).get("kind") == "diesel"
+    panels = 4 if diesel else 3
+    fig, axes = plt.subplots(1, panels, figsize=(3.6 * panels, 5), dpi=DPI, sharey=True, layout="constrained")
+    _blow_counts(axes[0], rows, summary["refusal"])
+    _stresses(axes[1], rows, (summary.get("pile") or {}).get("yield_stress"))
+    _capacity(axes[2], rows)
+    if diesel:
+        axes[3].plot([r["stroke"] for r in rows], [r["depth"] for r in rows], "o-", label="stroke")
+        axes[3].set_xlabel("stroke (m)")
+        axes[3].set_title("Diesel hammer stroke")
+    axes[0].invert_yaxis()  # depth downwards (the axes share it)
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize="small")
+    written = []
+    _save(fig, d, "drive", formats, written)
+    return written

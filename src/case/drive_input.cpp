@@ -1,0 +1,314 @@
+#include "drive_input.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+namespace barimpact::detail {
+
+namespace {
+
+// The edit distance of two names, case folded: how near an unknown hammer is.
+std::size_t distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const bool same =
+          std::tolower(static_cast<unsigned char>(a[i - 1])) == std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The table [hammer] reads: the shipped one, or `table` (relative to the case file).
+std::vector<HammerModel> hammer_table(const Reader& r) {
+  const std::string file = r.word("hammer", "table", "");
+  if (file.empty()) return shipped_hammers();
+  std::filesystem::path path(file);
+  std::error_code ec;
+  if (path.is_relative() && std::filesystem::is_regular_file(r.origin(), ec))
+    path = std::filesystem::path(r.origin()).parent_path() / path;
+  try {
+    return read_hammer_table(read_input_file(path, "hammer table"), path.string());
+  } catch (const InputError& e) {
+    r.fail("hammer", "table", fmt::format("cannot be used: {}", e.what()));
+  }
+}
+
+const HammerModel& find_model(const Reader& r, const std::vector<HammerModel>& table, const std::string& name) {
+  for (const auto& h : table)
+    if (h.name == name) return h;
+  std::vector<std::pair<std::size_t, std::string>> near;
+  for (const auto& h : table) near.emplace_back(distance(name, h.name), fmt::format("\"{}\"", h.name));
+  std::sort(near.begin(), near.end());
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < near.size() && i < 4; ++i) names.push_back(near[i].second);
+  r.fail("hammer", "model",
+         fmt::format("= \"{}\" is no hammer of the table (nearest: {}; `barimpact hammers` lists them)", name,
+                     fmt::join(names, ", ")));
+}
+
+HammerKind read_kind(const Reader& r, const std::string& kind) {
+  for (const auto k : {HammerKind::drop, HammerKind::hydraulic, HammerKind::air_steam, HammerKind::diesel})
+    if (kind == to_string(k)) return k;
+  r.fail("hammer", "kind", fmt::format("must be drop, hydraulic, air-steam or diesel (got \"{}\")", kind));
+}
+
+double default_efficiency(HammerKind kind) {
+  return kind == HammerKind::hydraulic ? 0.95 : kind == HammerKind::diesel ? 0.8 : 0.67;
+}
+
+double body_mass(const BodyData& b) {
+  return b.kind == BodyKind::mass ? b.mass : b.density * b.area * b.length;
+}
+
+// The model's helmet, capblock and ram above the pile head `head`, and the
+// pile cushion (or the helmet resting on the head, as stiff as its top element).
+void add_model(const Reader& r, Case& c, BodyIndex& index, const HammerModel& m, const HammerData& h) {
+  for (const char* name : {"helmet", "ram"})
+    if (index(name) != c.bodies.size())
+      r.fail("hammer", "model",
+             fmt::format("= \"{}\" adds the body \"{}\", which the case already defines (with a model, the line "
+                         "ends at the pile head)",
+                         m.name, name));
+  const BodyData& head = c.bodies.back();
+  if (head.kind != BodyKind::bar)
+    r.fail("hammer", "model",
+           fmt::format("needs the line to end at the pile head (a bar; \"{}\" is a mass)", head.name));
+  JointData cushion{"pile-cushion", head.name, "helmet", {}};
+  cushion.law.law = h.pile_cushion ? JointLaw::cushion : JointLaw::elastic;
+  cushion.law.stiffness =
+      h.pile_cushion ? h.pile_cushion->stiffness : head.modulus * head.area * head.elements / head.length;
+  cushion.law.restitution = h.pile_cushion ? h.pile_cushion->restitution : 1.0;
+  JointData capblock{"capblock", "helmet", "ram", {}};
+  capblock.law.law = JointLaw::cushion;
+  capblock.law.stiffness = m.cushion_stiffness;
+  capblock.law.restitution = m.cushion_restitution;
+  for (auto [name, mass] : {std::pair{"helmet", m.helmet_mass}, std::pair{"ram", m.ram_mass}}) {
+    BodyData b;
+    b.name = name;
+    b.kind = BodyKind::mass;
+    b.mass = mass;
+    c.bodies.push_back(b);
+    index.add(name);
+  }
+  c.joints.push_back(cushion);
+  c.joints.push_back(capblock);
+}
+
+std::optional<HammerData::Cushion> read_pile_cushion(const Reader& r) {
+  const auto* n = r.node("hammer", "pile_cushion");
+  if (n == nullptr) return std::nullopt;
+  const auto* t = n->as_table();
+  HammerData::Cushion k;
+  const auto stiffness = t ? t->get("stiffness") : nullptr;
+  const auto restitution = t ? t->get("restitution") : nullptr;
+  if (t == nullptr || stiffness == nullptr || t->size() != (restitution ? 2U : 1U))
+    r.fail("hammer", "pile_cushion", "must be a table { stiffness = N/m, restitution = e }");
+  k.stiffness = stiffness->value<double>().value_or(-1.0);
+  k.restitution = restitution ? restitution->value<double>().value_or(-1.0) : 0.8;
+  if (!(k.stiffness > 0 && std::isfinite(k.stiffness) && k.restitution > 0 && k.restitution <= 1))
+    r.fail("hammer", "pile_cushion", "needs stiffness > 0 (N/m) and restitution in (0, 1]");
+  return k;
+}
+
+// drive.depths: "FROM:TO:COUNT" (linear) or a list, ascending, each in (0, length].
+std::vector<double> read_depths(const Reader& r, double length) {
+  const auto* n = r.node("drive", "depths");
+  if (n == nullptr) r.fail("drive", "depths", "is required: \"FROM:TO:COUNT\" or a list of penetrations (m)");
+  std::vector<double> d;
+  if (const auto* text = n->as_string()) {
+    const std::string t = text->get();
+    double from = 0, to = 0;
+    long long count = 0;
+    int used = 0;
+    if (std::sscanf(t.c_str(), "%lf:%lf:%lld%n", &from, &to, &count, &used) != 3 ||
+        used != static_cast<int>(t.size()) || count < 1 || count > 100'000 || (count == 1 && from != to))
+      r.fail("drive", "depths",
+             fmt::format("= \"{}\": expected \"FROM:TO:COUNT\" (m, COUNT in [1, 100000]; 1 needs FROM = TO)", t));
+    for (long long i = 0; i < count; ++i)
+      d.push_back(count == 1 ? from : from + (to - from) * static_cast<double>(i) / static_cast<double>(count - 1));
+  } else {
+    d = r.numbers("drive", "depths");
+  }
+  if (d.empty()) r.fail("drive", "depths", "lists no penetration");
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (!(d[i] > 0 && d[i] <= length))
+      r.fail("drive", "depths", fmt::format("must lie in (0, {}], the pile's length (got {})", length, d[i]));
+    if (i > 0 && !(d[i] > d[i - 1])) r.fail("drive", "depths", "must ascend (from the ground down)");
+  }
+  return d;
+}
+
+SoilSpring read_layer_soil(const Reader& r, const std::string& s, const char* quake, const char* damping,
+                           SoilSpring soil, DampingLaw law) {
+  soil.quake = r.number(s, quake, soil.quake);
+  soil.damping = r.number(s, damping, soil.damping);
+  soil.damping_law = law;
+  if (!(soil.quake > 0)) r.fail(s, quake, fmt::format("must be > 0 (got {})", soil.quake));
+  if (!(soil.damping >= 0)) r.fail(s, damping, fmt::format("must be >= 0 (got {})", soil.damping));
+  return soil;
+}
+
+LayerData read_layer(Reader& r, const toml::table& t, std::size_t i, double top) {
+  const std::string s = fmt::format("layer[{}]", i + 1);
+  r.view(s, &t);
+  LayerData l;
+  for (const char* key : {"top", "bottom", "shaft", "toe"})
+    if (r.node(s, key) == nullptr) r.fail(s, key, "is required");
+  l.top = r.number(s, "top", 0.0);
+  l.bottom = r.number(s, "bottom", 0.0);
+  if (l.top != top)
+    r.fail(s, "top",
+           i == 0 ? fmt::format("must be 0: the layers start at the ground (got {})", l.top)
+                  : fmt::format("must be {}, the bottom of the layer above (got {}: {})", top, l.top,
+                                l.top > top ? "a gap" : "an overlap"));
+  if (!(l.bottom > l.top)) r.fail(s, "bottom", fmt::format("must be below top = {} (got {})", l.top, l.bottom));
+  const auto shaft = r.numbers(s, "shaft");
+  if (shaft.empty() || shaft.size() > 2) r.fail(s, "shaft", "must be a number or [at the top, at the bottom] (Pa)");
+  l.shaft_top = shaft.front();
+  l.shaft_bottom = shaft.back();
+  l.toe = r.number(s, "toe", 0.0);
+  if (!(l.shaft_top >= 0 && l.shaft_bottom >= 0)) r.fail(s, "shaft", "must be >= 0 (Pa)");
+  if (!(l.toe >= 0)) r.fail(s, "toe", fmt::format("must be >= 0 (Pa; got {})", l.toe));
+  const std::string law = r.word(s, "damping_law", "smith");
+  if (law != "smith" && law != "viscous")
+    r.fail(s, "damping_law", fmt::format("must be smith or viscous (got \"{}\")", law));
+  const DampingLaw dl = law == "smith" ? DampingLaw::smith : DampingLaw::viscous;
+  l.shaft = read_layer_soil(r, s, "shaft_quake", "shaft_damping", l.shaft, dl);
+  l.toe_soil = read_layer_soil(r, s, "toe_quake", "toe_damping", l.toe_soil, dl);
+  l.setup = r.number(s, "setup", 1.0);
+  if (!(l.setup > 0)) r.fail(s, "setup", fmt::format("must be > 0 (got {})", l.setup));
+  return l;
+}
+
+// The pile [drive] drives: drive.pile, [blow] pile, else the bar nearest x = 0; it must be the first body.
+std::size_t drive_pile(const Reader& r, const Case& c, const BodyIndex& index, std::string& name) {
+  name = r.word("drive", "pile", c.blow.pile.empty() ? c.bodies.front().name : c.blow.pile);
+  const std::size_t i = index(name);
+  if (i == c.bodies.size()) r.fail("drive", "pile", fmt::format("names no body of the line (got \"{}\")", name));
+  if (i != 0 || c.bodies[i].kind != BodyKind::bar)
+    r.fail("drive", "pile", fmt::format("must be the bar at the near end, x = 0 (its toe; got \"{}\")", name));
+  return i;
+}
+
+// Gives the pile the profile's soil at the analysed depth: its shaft as pieces, its toe as [near_end].
+void apply_profile(Case& c, std::size_t pile) {
+  const DriveData& d = *c.drive;
+  BodyData& b = c.bodies[pile];
+  const double depth = d.analysed_depth();
+  const DriveSoil soil = soil_at(d, depth, d.toe_area.value_or(b.area));
+  ShaftData shaft;
+  shaft.profile = soil.shaft;
+  shaft.soil.ultimate = soil.shaft_capacity;
+  shaft.embedded = depth;
+  b.shaft = shaft;
+  c.near_end = LawData{};
+  c.near_end.law = JointLaw::smith;
+  c.near_end.soil = soil.toe;
+}
+
+}  // namespace
+
+void read_hammer(Reader& r, Case& c, BodyIndex& index) {
+  if (r.table("hammer") == nullptr) return;
+  HammerData h;
+  const double g = drive_gravity(r.number("load", "gravity", 0.0));
+  h.model = r.word("hammer", "model", "");
+  std::optional<HammerModel> model;
+  if (!h.model.empty()) {
+    for (const char* key : {"kind", "ram"})
+      if (r.node("hammer", key) != nullptr) r.fail("hammer", key, "comes from the table with model (remove it)");
+    model = find_model(r, hammer_table(r), h.model);
+    h.kind = model->kind;
+    h.pile_cushion = read_pile_cushion(r);
+    add_model(r, c, index, *model, h);
+    h.ram = "ram";
+  } else {
+    if (r.node("hammer", "pile_cushion") != nullptr)
+      r.fail("hammer", "pile_cushion", "goes with model; by hand, the case's joints are the cushions");
+    h.kind = read_kind(r, r.word("hammer", "kind", "drop"));
+    h.ram = r.word("hammer", "ram", c.bodies.back().name);
+    if (index(h.ram) == c.bodies.size())
+      r.fail("hammer", "ram", fmt::format("names no body of the line (got \"{}\")", h.ram));
+  }
+  if (h.kind == HammerKind::diesel) r.fail("hammer", model ? "model" : "kind", "is a diesel hammer: not available yet");
+  BodyData& ram = c.bodies[index(h.ram)];
+  const double mass = body_mass(ram);
+  const bool stroke = r.node("hammer", "stroke") != nullptr, energy = r.node("hammer", "energy") != nullptr;
+  if (stroke && energy) r.fail("hammer", "energy", "cannot be given with stroke (energy = m g stroke)");
+  if (!model && !stroke && !energy) r.fail("hammer", "stroke", "is required (m), or energy (J, rated: m g stroke)");
+  h.stroke = stroke              ? r.number("hammer", "stroke", 0.0)
+             : energy            ? r.number("hammer", "energy", 0.0) / (mass * g)
+             : model->stroke > 0 ? model->stroke
+                                 : model->energy / (mass * g);
+  if (!(h.stroke > 0)) r.fail("hammer", energy ? "energy" : "stroke", fmt::format("must be > 0 (got {})", h.stroke));
+  h.efficiency = r.number("hammer", "efficiency", model ? model->efficiency : default_efficiency(h.kind));
+  if (!(h.efficiency > 0 && h.efficiency <= 1))
+    r.fail("hammer", "efficiency", fmt::format("must be in (0, 1] (got {})", h.efficiency));
+  if (r.table("body." + h.ram) != nullptr && r.node("body." + h.ram, "velocity") != nullptr)
+    r.fail("body." + h.ram, "velocity", "is set by [hammer] (the ram's speed at impact): remove it");
+  ram.velocity = fmt::format("{}", -h.impact_velocity(g));
+  c.hammer = h;
+}
+
+}  // namespace barimpact::detail
+
+namespace barimpact::detail {
+
+void read_drive(Reader& r, Case& c, const BodyIndex& index) {
+  const auto* layers = r.root().get_as<toml::array>("layer");
+  if (r.table("drive") == nullptr) {
+    if (layers != nullptr) throw InputError(fmt::format("{}: [[layer]] needs a [drive] section", r.where("layer", "")));
+    return;
+  }
+  if (layers == nullptr || layers->empty())
+    throw InputError(fmt::format("{}: [drive] needs the soil as [[layer]] tables", r.where("drive", "")));
+  DriveData d;
+  const std::size_t pile = drive_pile(r, c, index, d.pile);
+  const BodyData& b = c.bodies[pile];
+  d.perimeter = r.number("drive", "perimeter", 0.0);
+  if (!(d.perimeter > 0)) r.fail("drive", "perimeter", fmt::format("must be > 0 (m; got {})", d.perimeter));
+  if (r.node("drive", "toe_area") != nullptr) {
+    d.toe_area = r.number("drive", "toe_area", 0.0);
+    if (!(*d.toe_area > 0)) r.fail("drive", "toe_area", fmt::format("must be > 0 (m2; got {})", *d.toe_area));
+  }
+  d.depths = read_depths(r, b.length);
+  d.refusal = r.number("drive", "refusal", d.refusal);
+  d.blow_rate = r.number("drive", "blow_rate", d.blow_rate);
+  const long long blows = r.integer("drive", "blows", d.blows);
+  if (!(d.refusal > 0)) r.fail("drive", "refusal", fmt::format("must be > 0 (blows per 250 mm; got {})", d.refusal));
+  if (!(d.blow_rate > 0)) r.fail("drive", "blow_rate", fmt::format("must be > 0 (per minute; got {})", d.blow_rate));
+  if (blows < 1 || blows > 1000) r.fail("drive", "blows", fmt::format("must be in [1, 1000] (got {})", blows));
+  d.blows = static_cast<int>(blows);
+  if (r.node("drive", "depth") != nullptr) {
+    d.depth = r.number("drive", "depth", 0.0);
+    if (!(*d.depth > 0 && *d.depth <= b.length))
+      r.fail("drive", "depth", fmt::format("must lie in (0, {}], the pile's length (got {})", b.length, *d.depth));
+  }
+  double top = 0.0;
+  for (std::size_t i = 0; i < layers->size(); ++i) {
+    const auto* t = (*layers)[i].as_table();
+    if (t == nullptr)
+      throw InputError(fmt::format("{}: layer must be an array of tables [[layer]]", r.where("layer", "")));
+    d.layers.push_back(read_layer(r, *t, i, top));
+    top = d.layers.back().bottom;
+  }
+  const double deepest = std::max(d.depths.back(), d.depth.value_or(0.0));
+  if (top < deepest)
+    r.fail(fmt::format("layer[{}]", layers->size()), "bottom",
+           fmt::format("= {} must reach the deepest penetration analysed, {} m", top, deepest));
+  c.drive = d;
+  apply_profile(c, pile);
+}
+
+}  // namespace barimpact::detail
