@@ -44,6 +44,7 @@ import numpy as np
 # (barimpact.bearing, barimpact.hopkinson, barimpact.plot) from the function
 # to the module.
 from . import bearing as _bearing_figures
+from . import drive as _drive_figures
 from . import convergence as _convergence_figures
 from . import hopkinson as _hopkinson_figures
 from . import plot as _figures
@@ -56,7 +57,7 @@ OutOfMemoryError.__module__ = "barimpact"
 from .plot import RunData, load
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "hammers", "hopkinson", "plot", "load",
            "read_table", "exact_example1"]
 
 
@@ -177,7 +178,7 @@ def _table_from_csv(text, summary=None, table=Table):
     return table({name: _column(name, c) for name, c in zip(header, cells)}, summary)
 
 
-_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "hopkinson.csv")
+_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "drive.csv", "hopkinson.csv")
 
 
 def read_table(path):
@@ -476,6 +477,37 @@ def bearing(case, out, capacity, toe_share=None, jobs=None, plot=True, force=Fal
     lines = _study_warnings(done["warnings"], "bearing.csv")
     _strict(strict, lines, table, "the capacities' runs")
     return table
+
+
+def drive(case, out, jobs=None, *, no_plot=False, force=False, strict=False, set=None):
+    """Drivability (`barimpact drive CASE --out OUT`): `case` a case file
+    with [drive] and [[layer]], `set` overrides of the case for every depth,
+    as --set ({"hammer.stroke": 1.2}). Runs every depth on `jobs` threads
+    (None: every core; resumes a drive directory), writes drive.csv and
+    summary.json and, unless no_plot, drive.png. Returns drive.csv's table
+    (blow counts inf where the hammer cannot advance the pile) with
+    `summary` {"total_blows", "driving_time" (minutes), "refusal_depth"
+    (None: no refusal), "max_compression", "max_tension", "directory"}.
+    Ctrl-C writes what is done and raises KeyboardInterrupt. Warnings are
+    `HealthWarning`s; strict=True raises `StrictError` after writing."""
+    done = _core._drive(case, os.fspath(out), _jobs(jobs), bool(force), set)
+    summary = {k: done[k] for k in ("total_blows", "driving_time", "refusal_depth", "max_compression",
+                                    "max_tension")}
+    summary["directory"] = os.fspath(out)
+    table = _table_from_csv(done["csv"], summary)
+    if not no_plot and np.any(table["status"] == "complete"):
+        _drive_figures.plot_drive(out)
+    lines = _study_warnings(done["warnings"], "drive.csv")
+    _strict(strict, lines, table, "the depths' runs")
+    return table
+
+
+def hammers():
+    """The hammers barimpact ships (`barimpact hammers`; `[hammer] model =
+    NAME` in a case): a table with name, kind, ram_mass (kg), stroke (m),
+    energy (J, m g stroke), efficiency, cushion_stiffness (N/m),
+    cushion_restitution, helmet_mass (kg) and source."""
+    return _table_from_csv(_core._hammers_csv(), {})
 
 
 def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):

@@ -101,6 +101,13 @@ def bearing(case: _PathArg, out: _PathArg, capacity: str | tuple[float, float, i
     """barimpact bearing CASE --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--set K=V] [--jobs N] [--no-plot]
     [--force] [--strict]: bearing.csv's table."""
 
+def drive(case: _PathArg, out: _PathArg, jobs: int | None = None, *, no_plot: bool = False, force: bool = False,
+          strict: bool = False, set: _Overrides = None) -> Table:
+    """barimpact drive CASE --out DIR [--set K=V] [--jobs N] [--no-plot] [--force] [--strict]: drive.csv's table."""
+
+def hammers() -> Table:
+    """barimpact hammers: the shipped hammer table."""
+
 def hopkinson(setup: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,
               force: bool = False, strict: bool = False) -> HopkinsonTable:
     """barimpact hopkinson SETUP [--out DIR] [--no-plot] [--force] [--strict]: hopkinson.csv's table."""

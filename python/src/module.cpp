@@ -28,6 +28,7 @@
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
+#include "barimpact/study/drive.hpp"
 #include "barimpact/study/sweep.hpp"
 
 namespace py = pybind11;
@@ -317,6 +318,46 @@ py::dict sweep_binding(const py::object& sweep, const std::string& out, int jobs
   d["resumed"] = outcome.resumed;
   d["warnings"] = study_warnings(outcome.rows);
   return d;
+}
+
+py::dict drive_binding(const py::object& case_file, const std::string& out, int jobs, bool force,
+                       const py::object& set) {
+  const DrivePlan plan(fspath(case_file), overrides_from(set));
+  SweepOptions options;
+  options.jobs = jobs;
+  options.batch = false;  // Smith's soil runs on central differences
+  const auto rows = interruptible(
+      options, [&](const SweepOptions& sweep_options) { return write_drive(plan, out, sweep_options, force); });
+  std::vector<SweepRow> runs;
+  for (const auto& r : rows) runs.push_back(r.run);
+  const DriveTotals t = drive_totals(plan, rows);
+  py::dict d;
+  d["csv"] = drive_csv(rows);
+  d["total_blows"] = t.total_blows;
+  d["driving_time"] = t.driving_time;
+  d["refusal_depth"] = t.refusal_depth ? py::cast(*t.refusal_depth) : py::none();
+  d["max_compression"] = t.max_compression;
+  d["max_tension"] = t.max_tension;
+  d["warnings"] = study_warnings(runs);
+  return d;
+}
+
+// The shipped hammers as CSV (name, kind, ram_mass, stroke, energy, ...), for a Table.
+std::string hammers_csv() {
+  std::string out =
+      "name,kind,ram_mass,stroke,energy,efficiency,cushion_stiffness,cushion_restitution,helmet_mass,source\n";
+  auto quoted = [](const std::string& s) {
+    std::string q = "\"";
+    for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    return q + "\"";
+  };
+  for (const auto& h : shipped_hammers()) {
+    const double stroke = h.stroke > 0 ? h.stroke : h.energy / (h.ram_mass * 9.81);
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{}\n", quoted(h.name), to_string(h.kind), h.ram_mass, stroke,
+                       h.ram_mass * 9.81 * stroke, h.efficiency, h.cushion_stiffness, h.cushion_restitution,
+                       h.helmet_mass, quoted(h.source));
+  }
+  return out;
 }
 
 py::dict bearing_binding(const py::object& case_file, const std::string& out, const std::string& capacity,
@@ -638,6 +679,10 @@ void bind_studies(py::module_& m) {
   m.def("_bearing", &bearing_binding, py::arg("case"), py::arg("out"), py::arg("capacity"), py::arg("toe_share"),
         py::arg("jobs"), py::arg("force"), py::arg("set") = py::none(),
         "write_bearing (the bearing command without its figure); use barimpact.bearing");
+
+  m.def("_drive", &drive_binding, py::arg("case"), py::arg("out"), py::arg("jobs"), py::arg("force"),
+        py::arg("set") = py::none(), "write_drive (the drive command without its figure); use barimpact.drive");
+  m.def("_hammers_csv", &hammers_csv, "The shipped hammers as CSV; use barimpact.hammers");
 
   m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,
         py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");

@@ -301,6 +301,29 @@ def test_bearing_takes_the_commands_capacity_and_returns_a_table(tmp_path):
     assert not (tmp_path / "c").exists()
 
 
+def test_drive_returns_drive_csv_as_a_table_with_its_totals(tmp_path):
+    case = EXAMPLES / "pile" / "drive-pipe-drop.toml"
+    t = barimpact.drive(case, tmp_path / "d", set={"drive.depths": [3.0, 8.0], "time.end": 0.03}, no_plot=True,
+                        jobs=2)
+    assert isinstance(t, barimpact.Table) and t.depth.tolist() == [3.0, 8.0]
+    assert t.finished.dtype == bool and list(t)[:14] == [
+        "depth", "shaft", "toe", "capacity", "long_term_capacity", "set", "blows_per_250mm", "blows_per_m",
+        "max_compression", "max_tension", "enthru", "stroke", "cumulative_blows", "finished"]
+    assert t.summary["total_blows"] == pytest.approx(t.cumulative_blows[-1])
+    assert t.summary["refusal_depth"] is None
+    assert_tables_equal(t, barimpact.read_table(tmp_path / "d"))
+    with pytest.raises(barimpact.InputError, match="no \\[drive\\] section"):
+        barimpact.drive(EXAMPLES / "pile" / "steel-pipe-sand.toml", tmp_path / "n")
+    assert not (tmp_path / "n").exists()
+
+
+def test_hammers_lists_the_shipped_table():
+    h = barimpact.hammers()
+    assert h.rows >= 20 and "Vulcan 010" in list(h.name)
+    assert set(h.kind) == {"drop", "hydraulic", "air-steam", "diesel"}
+    assert all(s for s in h.source)
+
+
 def test_hopkinson_writes_the_commands_directory(tmp_path):
     write_hopkinson_signals(tmp_path)
     setup = tmp_path / "setup.toml"

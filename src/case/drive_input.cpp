@@ -289,6 +289,11 @@ void read_drive(Reader& r, Case& c, const BodyIndex& index) {
   if (!(d.refusal > 0)) r.fail("drive", "refusal", fmt::format("must be > 0 (blows per 250 mm; got {})", d.refusal));
   if (!(d.blow_rate > 0)) r.fail("drive", "blow_rate", fmt::format("must be > 0 (per minute; got {})", d.blow_rate));
   if (blows < 1 || blows > 1000) r.fail("drive", "blows", fmt::format("must be in [1, 1000] (got {})", blows));
+  if (blows > 1)
+    r.fail("drive", "blows",
+           fmt::format("= {}: the residual stress analysis (blows > 1) is not in this version; each depth's blow "
+                       "starts from rest (blows = 1)",
+                       blows));
   d.blows = static_cast<int>(blows);
   if (r.node("drive", "depth") != nullptr) {
     d.depth = r.number("drive", "depth", 0.0);

@@ -149,6 +149,7 @@ TEST(DriveProfile, RefusesABrokenProfileNamingTheKey) {
   EXPECT_REFUSED(pile + "[drive]\nperimeter = 1.0\ndepths = [4.0, 3.0]\n" + layer(0, 10), "drive.depths", "ascend");
   EXPECT_REFUSED(pile + "[drive]\nperimeter = 0.0\ndepths = [4.0]\n" + layer(0, 10), "drive.perimeter", "> 0");
   EXPECT_REFUSED(head + "blows = 0\n" + layer(0, 10), "drive.blows", "[1, 1000]");
+  EXPECT_REFUSED(head + "blows = 5\n" + layer(0, 10), "drive.blows", "residual stress analysis");
   EXPECT_REFUSED(head + layer(0, 10) + "shaft_quake = -1.0\n", "layer[1].shaft_quake", "> 0");
   EXPECT_REFUSED(head + layer(0, 10) + "toe_damping = -1.0\n", "layer[1].toe_damping", ">= 0");
   EXPECT_REFUSED(head + layer(0, 10) + "damping_law = \"linear\"\n", "layer[1].damping_law", "smith or viscous");
