@@ -6,6 +6,7 @@
 //   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch]   (also under mpirun -n P)
 //   barimpact bearing CASE.toml --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--set K=V ...] [--jobs N]
 //   barimpact drive CASE.toml --out DIR [--set K=V ...] [--jobs N] [--no-plot]
+//   barimpact inspector CASE.toml --out DIR --stroke FROM:TO:COUNT [--depth D] [--set K=V ...] [--no-plot]
 //   barimpact hammers
 //   [--no-plot] barimpact converge CASE.toml --out DIR [--levels N] [--refine both|h|dt|none] [--ratio R]
 //                      [--vary key=spec] [--schemes a,b] [--reference auto|rigid|finest] [--jobs N]
@@ -580,6 +581,34 @@ int drive_command(const DriveArgs& a) {
   return study_exit({"depths", "drive.csv", rows.size(), complete, stopped, warned}, a.flags);
 }
 
+struct InspectorArgs {
+  std::string case_path, out, stroke;
+  std::optional<double> depth;
+  std::vector<std::string> sets;
+  bool no_plot = false;
+  barimpact::SweepOptions options;
+  WriteFlags flags;
+};
+
+int inspector_command(const InspectorArgs& a) {
+  std::vector<barimpact::Case::Override> sets;
+  for (const auto& s : a.sets) sets.push_back({s});
+  const barimpact::InspectorPlan plan(a.case_path, a.stroke, a.depth, sets);
+  const std::filesystem::path dir(a.out);
+  const auto rows = barimpact::write_inspector(plan, dir, a.options, a.flags.force);
+  std::vector<barimpact::SweepRow> runs;
+  for (const auto& r : rows) runs.push_back(r.run);
+  auto count = [&](auto&& pred) { return std::count_if(runs.begin(), runs.end(), pred); };
+  const auto complete = count([](const auto& r) { return r.status == "complete"; });
+  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
+  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
+  const bool plotted = !a.no_plot && stopped == 0 && complete > 0 && run_python({"inspector-plot", dir.string()});
+  fmt::print("{} strokes: {} complete; inspector.csv{} in {}\n", rows.size(), complete,
+             plotted ? " and inspector.png" : "", a.out);
+  print_study_warnings(runs);
+  return study_exit({"strokes", "inspector.csv", rows.size(), complete, stopped, warned}, a.flags);
+}
+
 // hammers: the shipped table, one hammer a line.
 int hammers_command() {
   fmt::print("{:<18} {:<10} {:>9} {:>8} {:>11} {:>6}  source\n", "name", "kind", "ram (kg)", "stroke", "energy (kJ)",
@@ -786,6 +815,25 @@ Command add_drive(CLI::App& app) {
           }};
 }
 
+Command add_inspector(CLI::App& app) {
+  auto a = std::make_shared<InspectorArgs>();
+  auto* c = app.add_subcommand(
+      "inspector", "Inspector's chart: blow count and stresses against the hammer's stroke (inspector.csv)");
+  c->add_option("case", a->case_path, "Case file (TOML) with a [hammer] and Smith's soil or [drive]")->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or an inspector's (resumes)")->required();
+  c->add_option("--stroke", a->stroke, "FROM:TO:COUNT strokes, in m")->required();
+  c->add_option("--depth", a->depth, "The penetration (m) of a [drive] case's profile to chart at");
+  c->add_option("--set", a->sets, "Override a key of the case for every stroke: section.key=value (repeatable)");
+  c->add_option("--jobs", a->options.jobs, jobs_help);
+  c->add_flag("--no-plot", a->no_plot, "Skip inspector.png");
+  add_write_flags(c, a->flags);
+  return {c, [a] {
+            a->options.interrupt = &interrupted;
+            a->options.batch = false;  // Smith's soil runs on central differences
+            return inspector_command(*a);
+          }};
+}
+
 Command add_hammers(CLI::App& app) {
   auto* c = app.add_subcommand("hammers", "List the hammers barimpact ships ([hammer] model = \"NAME\")");
   return {c, [] { return hammers_command(); }};
@@ -893,14 +941,14 @@ int main(int argc, char** argv) {
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text);
-  const std::vector<Command> commands{add_run(app, false), add_check(app),     add_run(app, true),
-                                      add_sweep(app),      add_bearing(app),   add_drive(app),
-                                      add_hammers(app),    add_hopkinson(app), add_converge(app, argc, argv),
-                                      add_plot(app)};
+  const std::vector<Command> commands{
+      add_run(app, false), add_check(app),     add_run(app, true), add_sweep(app),     add_bearing(app),
+      add_drive(app),      add_inspector(app), add_hammers(app),   add_hopkinson(app), add_converge(app, argc, argv),
+      add_plot(app)};
   if (!known_command(argc, argv, commands)) {
     fmt::print(stderr,
                "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, "
-               "drive, hammers, hopkinson, plot; see barimpact --help)\n",
+               "drive, inspector, hammers, hopkinson, plot; see barimpact --help)\n",
                argv[1]);
     return exit_bad_input;
   }

@@ -57,7 +57,7 @@ OutOfMemoryError.__module__ = "barimpact"
 from .plot import RunData, load
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "hammers", "hopkinson", "plot", "load",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "plot", "load",
            "read_table", "exact_example1"]
 
 
@@ -499,6 +499,24 @@ def drive(case, out, jobs=None, *, no_plot=False, force=False, strict=False, set
         _drive_figures.plot_drive(out)
     lines = _study_warnings(done["warnings"], "drive.csv")
     _strict(strict, lines, table, "the depths' runs")
+    return table
+
+
+def inspector(case, out, stroke, depth=None, jobs=None, *, no_plot=False, force=False, strict=False, set=None):
+    """The inspector's chart (`barimpact inspector CASE --out OUT --stroke
+    FROM:TO:COUNT [--depth D]`): `stroke` "FROM:TO:COUNT" or (from, to,
+    count) in m, `depth` the penetration of a [drive] case's profile (required
+    for one, refused otherwise). Writes inspector.csv and, unless no_plot,
+    inspector.png; returns inspector.csv's table."""
+    if not isinstance(stroke, str):
+        lo, hi, count = stroke
+        stroke = f"{float(lo)!r}:{float(hi)!r}:{int(count)}"
+    done = _core._inspector(case, os.fspath(out), stroke, depth, _jobs(jobs), bool(force), set)
+    table = _table_from_csv(done["csv"], {"directory": os.fspath(out)})
+    if not no_plot and np.any(table["status"] == "complete"):
+        _drive_figures.plot_inspector(out)
+    lines = _study_warnings(done["warnings"], "inspector.csv")
+    _strict(strict, lines, table, "the strokes' runs")
     return table
 
 

@@ -105,6 +105,11 @@ def drive(case: _PathArg, out: _PathArg, jobs: int | None = None, *, no_plot: bo
           strict: bool = False, set: _Overrides = None) -> Table:
     """barimpact drive CASE --out DIR [--set K=V] [--jobs N] [--no-plot] [--force] [--strict]: drive.csv's table."""
 
+def inspector(case: _PathArg, out: _PathArg, stroke: str | tuple[float, float, int], depth: float | None = None,
+              jobs: int | None = None, *, no_plot: bool = False, force: bool = False, strict: bool = False,
+              set: _Overrides = None) -> Table:
+    """barimpact inspector CASE --out DIR --stroke FROM:TO:COUNT [--depth D]: inspector.csv's table."""
+
 def hammers() -> Table:
     """barimpact hammers: the shipped hammer table."""
 

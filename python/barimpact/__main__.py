@@ -35,6 +35,9 @@ def _run(args):
     if args.command == "drive-plot":
         from .drive import plot_drive
         return plot_drive(args.dir)
+    if args.command == "inspector-plot":
+        from .drive import plot_inspector
+        return plot_inspector(args.dir)
     if args.command == "hopkinson-plot":
         from .hopkinson import plot_hopkinson_into
         plot_hopkinson_into(args.dir, args.shown or args.dir)
@@ -65,6 +68,8 @@ def main(argv=None):
     b.add_argument("dir")
     v = sub.add_parser("drive-plot", help="draw drive.png of a barimpact drive directory")
     v.add_argument("dir")
+    i = sub.add_parser("inspector-plot", help="draw inspector.png of a barimpact inspector directory")
+    i.add_argument("dir")
     h = sub.add_parser("hopkinson-plot", help="draw the figures of a barimpact hopkinson directory")
     h.add_argument("dir")
     h.add_argument("--as", dest="shown", default=None,
@@ -73,7 +78,7 @@ def main(argv=None):
     try:
         written = _run(args)
     except (OSError, ValueError, ImportError) as e:  # ImportError: results.h5 without h5py
-        # The command the user gave: plot, converge, bearing, drive, hopkinson. Exit 2, as the command's own refusals.
+        # The command the user gave: plot, converge, bearing, drive, inspector, hopkinson. Exit 2, as the command's own refusals.
         print(f"barimpact: error: {args.command.removesuffix('-plot')}: {_message(e)}", file=sys.stderr)
         return 2
     for path in written:

@@ -78,3 +78,27 @@ def plot_drive(directory, formats=("png", "svg")):
     written = []
     _save(fig, d, "drive", formats, written)
     return written
+
+
+def plot_inspector(directory, formats=("png", "svg")):
+    """Draws inspector.png (and .svg), the inspector's chart, into the
+    directory barimpact inspector wrote (nowhere else); returns the paths."""
+    d = study_directory(directory, "inspector")
+    rows = read_study_table(d, "inspector.csv")
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=DPI, sharex=True, layout="constrained")
+    stroke = [r["stroke"] for r in rows]
+    ax.plot(stroke, [r["blows_per_250mm"] for r in rows], "o-", label="blow count")
+    ax.set_xlabel("stroke (m)")
+    ax.set_ylabel("blows per 250 mm")
+    ax.set_title("Inspector's chart")
+    ax2.plot(stroke, [1e-6 * r["max_compression"] for r in rows], "o-", label="max compression")
+    ax2.plot(stroke, [1e-6 * r["max_tension"] for r in rows], "s--", label="max tension")
+    ax2.set_xlabel("stroke (m)")
+    ax2.set_ylabel("stress in the pile (MPa)")
+    ax2.set_title("Driving stresses")
+    for a in (ax, ax2):
+        a.grid(True, alpha=0.3)
+        a.legend(fontsize="small")
+    written = []
+    _save(fig, d, "inspector", formats, written)
+    return written

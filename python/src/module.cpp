@@ -342,6 +342,22 @@ py::dict drive_binding(const py::object& case_file, const std::string& out, int 
   return d;
 }
 
+py::dict inspector_binding(const py::object& case_file, const std::string& out, const std::string& stroke,
+                           std::optional<double> depth, int jobs, bool force, const py::object& set) {
+  const InspectorPlan plan(fspath(case_file), stroke, depth, overrides_from(set));
+  SweepOptions options;
+  options.jobs = jobs;
+  options.batch = false;  // Smith's soil runs on central differences
+  const auto rows = interruptible(
+      options, [&](const SweepOptions& sweep_options) { return write_inspector(plan, out, sweep_options, force); });
+  std::vector<SweepRow> runs;
+  for (const auto& r : rows) runs.push_back(r.run);
+  py::dict d;
+  d["csv"] = inspector_csv(rows);
+  d["warnings"] = study_warnings(runs);
+  return d;
+}
+
 // The shipped hammers as CSV (name, kind, ram_mass, stroke, energy, ...), for a Table.
 std::string hammers_csv() {
   std::string out =
@@ -682,6 +698,9 @@ void bind_studies(py::module_& m) {
 
   m.def("_drive", &drive_binding, py::arg("case"), py::arg("out"), py::arg("jobs"), py::arg("force"),
         py::arg("set") = py::none(), "write_drive (the drive command without its figure); use barimpact.drive");
+  m.def("_inspector", &inspector_binding, py::arg("case"), py::arg("out"), py::arg("stroke"), py::arg("depth"),
+        py::arg("jobs"), py::arg("force"), py::arg("set") = py::none(),
+        "write_inspector (the inspector command without its figure); use barimpact.inspector");
   m.def("_hammers_csv", &hammers_csv, "The shipped hammers as CSV; use barimpact.hammers");
 
   m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,

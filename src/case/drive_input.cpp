@@ -136,7 +136,9 @@ std::vector<double> read_depths(const Reader& r, double length) {
       r.fail("drive", "depths",
              fmt::format("= \"{}\": expected \"FROM:TO:COUNT\" (m, COUNT in [1, 100000]; 1 needs FROM = TO)", t));
     for (long long i = 0; i < count; ++i)
-      d.push_back(count == 1 ? from : from + (to - from) * static_cast<double>(i) / static_cast<double>(count - 1));
+      d.push_back(count == 1 ? from
+                             : (from * static_cast<double>(count - 1 - i) + to * static_cast<double>(i)) /
+                                   static_cast<double>(count - 1));
   } else {
     d = r.numbers("drive", "depths");
   }

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <nlohmann/json.hpp>
 
@@ -179,6 +180,92 @@ std::string drive_csv(const std::vector<DriveRow>& rows) {
                        detail::csv_text(r.run.message), detail::csv_text(warnings));
   }
   return out;
+}
+
+namespace {
+
+// The strokes of --stroke FROM:TO:COUNT (m, > 0).
+std::vector<double> parse_strokes(const std::string& text) {
+  double from = 0, to = 0;
+  long long count = 0;
+  int used = 0;
+  if (std::sscanf(text.c_str(), "%lf:%lf:%lld%n", &from, &to, &count, &used) != 3 ||
+      used != static_cast<int>(text.size()) || count < 1 || count > 10'000 || (count == 1 && from != to) ||
+      !(from > 0 && to > 0 && std::isfinite(from) && std::isfinite(to)))
+    throw InputError(fmt::format(
+        "--stroke {}: expected FROM:TO:COUNT, strokes > 0 in m and COUNT in [1, 10000] (1 needs FROM = TO)", text));
+  std::vector<double> s;
+  for (long long i = 0; i < count; ++i)
+    s.push_back(count == 1 ? from
+                           : (from * static_cast<double>(count - 1 - i) + to * static_cast<double>(i)) /
+                                 static_cast<double>(count - 1));
+  return s;
+}
+
+}  // namespace
+
+InspectorPlan::InspectorPlan(const fs::path& case_file, const std::string& strokes, std::optional<double> depth,
+                             std::vector<Case::Override> sets)
+    : strokes_(parse_strokes(strokes)) {
+  const Case probe = Case::from_file(case_file, sets);
+  if (probe.drive && !depth)
+    throw InputError(
+        fmt::format("--depth is required: {} has a [drive] profile (the penetration to chart at)", case_file.string()));
+  if (!probe.drive && depth)
+    throw InputError(
+        fmt::format("--depth {}: {} has no [drive] profile (its soil is the case's own)", *depth, case_file.string()));
+  if (depth) sets.push_back({fmt::format("drive.depth={}", toml_float(*depth))});
+  const Case c = fit_scheme(Case::from_file(case_file, sets)).c;  // --depth's rules, named
+  if (!c.hammer)
+    throw InputError(fmt::format("inspector: {} has no [hammer] (the stroke it varies)", case_file.string()));
+  for (const auto& b : c.bodies)
+    if (b.name == c.hammer->ram)
+      ram_weight_ = (b.kind == BodyKind::mass ? b.mass : b.density * b.area * b.length) * drive_gravity(c.load.gravity);
+  std::vector<std::string> values;
+  for (double v : strokes_) values.push_back(toml_float(v));
+  sweep_ = SweepPlan::from_string(
+      fmt::format("case = {}\n[[axis]]\nkey = \"hammer.stroke\"\nvalues = [{}]\n",
+                  nlohmann::json(fs::absolute(case_file).string()).dump(), fmt::join(values, ", ")),
+      fmt::format("inspector of {}", case_file.string()), fs::current_path());
+  sweep_.set_base(sets);
+}
+
+std::string inspector_csv(const std::vector<InspectorRow>& rows) {
+  using detail::csv_number;
+  std::string out =
+      "stroke,energy,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru,finished,transfer_ratio,id,"
+      "status,message,warnings\n";
+  for (const auto& r : rows) {
+    std::string warnings;
+    for (const auto& w : r.run.warnings) warnings += (warnings.empty() ? "" : "; ") + w;
+    out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(r.stroke), csv_number(r.energy),
+                       csv_number(r.set), csv_number(r.blows_per_250mm), csv_number(r.blows_per_m),
+                       csv_number(r.max_compression), csv_number(r.max_tension), csv_number(r.enthru),
+                       r.finished ? "true" : "false", csv_number(r.transfer_ratio), r.run.id, r.run.status,
+                       detail::csv_text(r.run.message), detail::csv_text(warnings));
+  }
+  return out;
+}
+
+std::vector<InspectorRow> write_inspector(const InspectorPlan& plan, const fs::path& dir, const SweepOptions& options,
+                                          bool force) {
+  prepare_sweep(dir, options, force, plan.sweep().inputs(), "inspector",
+                {"runs", "inspector.csv", "inspector.png", "inspector.svg"});
+  const auto& points = plan.sweep().points();
+  SweepStart start = resume_sweep(plan.sweep(), dir);
+  for (auto& r : run_sweep(plan.sweep(), dir, start.todo, options))
+    start.rows[static_cast<std::size_t>(std::stoll(r.id))] = r;
+  std::vector<InspectorRow> rows(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    InspectorRow& row = rows[i];
+    row.run = std::move(start.rows[i]);
+    row.stroke = plan.stroke(i);
+    row.energy = plan.ram_weight() * row.stroke;
+    detail::take_blow(row, detail::read_blow(dir / "runs" / points[i].id));
+    row.finished = row.finished && row.run.status == "complete";
+  }
+  replace_text(dir / "inspector.csv", inspector_csv(rows));
+  return rows;
 }
 
 }  // namespace barimpact

@@ -394,6 +394,10 @@ grep -q '"total_blows"' "$work/drive/summary.json" && grep -q '"refusal_depth"' 
 "$bin" run "$drv" --out "$work/drive-run" --set drive.depths=[3.0,8.0] --set time.end=0.02 > /dev/null 2>&1 && ok || bad "run of a drive case"
 grep -q '^\[\[body.shaft.profile\]\]$' "$work/drive-run/case.toml" && ok || bad "the run's case.toml spells the profile"
 "$bin" hammers | grep -q "Vulcan 010" && ok || bad "hammers lists the table"
+"$bin" inspector "$drv" --out "$work/inspector" --stroke 0.5:1.0:2 --depth 6 --no-plot --set time.end=0.02 > /dev/null 2>&1 && ok || bad "inspector exit"
+[ "$(head -1 "$work/inspector/inspector.csv" | cut -d, -f1-8)" = "stroke,energy,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru" ] && ok || bad "inspector columns"
+expect_refused "--depth is required" inspector "$drv" --out "$work/refused" --stroke 0.5:1.0:2
+expect_refused "no [hammer]" inspector "$pipe" --out "$work/refused" --stroke 0.5:1.0:2
 expect_refused "no [drive] section" drive "$pipe" --out "$work/refused"
 expect_refused "layer[1].top" drive "$drv" --out "$work/refused" --set layer.layer1.top=1.0
 expect_refused "nearest: \"Vulcan 010\"" run "$drv" --out "$work/refused" --set "hammer.model=Vulkan 010"

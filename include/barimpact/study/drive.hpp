@@ -75,4 +75,40 @@ struct DriveTotals {
 /// status,message,warnings (infinite counts "inf", a missing value "nan").
 [[nodiscard]] std::string drive_csv(const std::vector<DriveRow>& rows);
 
+/// The inspector's chart: at one soil (the case's, or its [drive] profile
+/// at one depth), the blow against the hammer's stroke. Each stroke is a
+/// point of a sweep over hammer.stroke.
+class InspectorPlan {
+ public:
+  /// `strokes` "FROM:TO:COUNT" (m); `depth` required for a case with
+  /// [drive], refused for one without. Throws InputError naming the option or key.
+  InspectorPlan(const std::filesystem::path& case_file, const std::string& strokes, std::optional<double> depth,
+                std::vector<Case::Override> sets);
+  [[nodiscard]] const SweepPlan& sweep() const { return sweep_; }
+  [[nodiscard]] double stroke(std::size_t point) const { return strokes_[point]; }
+  [[nodiscard]] double ram_weight() const { return ram_weight_; }  ///< m g, N
+
+ private:
+  SweepPlan sweep_;
+  std::vector<double> strokes_;
+  double ram_weight_ = 0.0;
+};
+
+struct InspectorRow {
+  double stroke = 0.0, energy = 0.0;
+  double set = 0.0, blows_per_250mm = 0.0, blows_per_m = 0.0, max_compression = 0.0, max_tension = 0.0, enthru = 0.0,
+         transfer_ratio = 0.0;
+  bool finished = false;
+  SweepRow run;
+};
+
+/// All of `barimpact inspector` but its figure: prepares `dir`, runs or
+/// resumes every stroke and writes inspector.csv
+/// (stroke,energy,set,blows_per_250mm,blows_per_m,max_compression,
+/// max_tension,enthru, then finished,transfer_ratio,id,status,message,warnings).
+[[nodiscard]] std::vector<InspectorRow> write_inspector(const InspectorPlan& plan, const std::filesystem::path& dir,
+                                                        const SweepOptions& options, bool force);
+
+[[nodiscard]] std::string inspector_csv(const std::vector<InspectorRow>& rows);
+
 }  // namespace barimpact
