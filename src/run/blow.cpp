@@ -104,7 +104,8 @@ bool BlowMonitor::observe(const Scheme& s) {
 }
 
 // A diesel ram past the ports moving up after impact rises ballistically:
-// its height above impact is y + v^2 / 2g at the first step it is there.
+// its height above impact is y + v^2 / 2g at the first step it is there
+// (the anvil at rest by then: v is the ram's own velocity).
 void BlowMonitor::watch_rebound(const Scheme& s) {
   if (!impacted_ || !std::isnan(out_.next_stroke)) return;
   const double y = s.link_opening(ram_link_), v = s.velocity_at(ram_first_);
