@@ -331,7 +331,7 @@ const std::vector<std::pair<std::string_view, JointLaw>>& law_names() {
       {"free", JointLaw::free},         {"clamped", JointLaw::clamped}, {"welded", JointLaw::welded},
       {"spring", JointLaw::spring},     {"elastic", JointLaw::elastic}, {"viscoelastic", JointLaw::viscoelastic},
       {"rigid", JointLaw::rigid},       {"cushion", JointLaw::cushion}, {"force", JointLaw::force},
-      {"velocity", JointLaw::velocity}, {"smith", JointLaw::smith}};
+      {"velocity", JointLaw::velocity}, {"smith", JointLaw::smith},     {"diesel", JointLaw::diesel}};
   return names;
 }
 
@@ -353,6 +353,14 @@ std::vector<std::string_view> law_keys(JointLaw law) {
       return {"value"};
     case JointLaw::smith:
       return {"ultimate", "quake", "damping", "damping_law"};
+    case JointLaw::diesel:
+      return {"cylinder_area",
+              "compression_length",
+              "chamber_length",
+              "combustion_pressure",
+              "impact_stiffness",
+              "impact_restitution",
+              "gap"};
     default:
       return {};
   }
@@ -452,12 +460,32 @@ ShaftData read_shaft(Reader& r, const std::string& body, const toml::node& node,
   return d;
 }
 
+// A diesel cylinder's keys (contact_law.hpp's DieselGas): the four of the
+// cylinder required, the impact cushion's defaults issue 32's.
+void read_diesel(const Reader& r, const std::string& section, LawData& d) {
+  for (auto [key, field] :
+       {std::pair{"cylinder_area", &DieselGas::area}, std::pair{"compression_length", &DieselGas::compression_length},
+        std::pair{"chamber_length", &DieselGas::chamber_length},
+        std::pair{"combustion_pressure", &DieselGas::combustion_pressure}}) {
+    if (r.node(section, key) == nullptr) r.fail(section, key, "is required by law = \"diesel\"");
+    d.gas.*field = r.number(section, key, 0.0);
+    if (!(d.gas.*field > 0 && std::isfinite(d.gas.*field)))
+      r.fail(section, key, fmt::format("must be > 0 (got {})", d.gas.*field));
+  }
+  d.stiffness = r.number(section, "impact_stiffness", 2e10);
+  d.restitution = r.number(section, "impact_restitution", 0.8);
+  if (!(d.stiffness > 0 && std::isfinite(d.stiffness)))
+    r.fail(section, "impact_stiffness", fmt::format("must be > 0 (got {})", d.stiffness));
+  if (!(d.restitution > 0 && d.restitution <= 1))
+    r.fail(section, "impact_restitution", fmt::format("must be in (0, 1] (got {})", d.restitution));
+}
+
 LawData read_law(const Reader& r, const std::string& section, bool end) {
   LawData d;
   const std::vector<std::string_view> allowed =
       end ? std::vector<std::string_view>{"free",    "clamped", "elastic",  "viscoelastic", "rigid",
                                           "cushion", "force",   "velocity", "smith"}
-          : std::vector<std::string_view>{"welded", "spring", "elastic", "viscoelastic", "rigid", "cushion"};
+          : std::vector<std::string_view>{"welded", "spring", "elastic", "viscoelastic", "rigid", "cushion", "diesel"};
   const std::string law = r.word(section, "law", end ? "free" : "welded");
   if (law == "smith" && section != "near_end")
     r.fail(section, "law",
@@ -468,13 +496,16 @@ LawData read_law(const Reader& r, const std::string& section, bool end) {
   for (const auto& [name, value] : law_names())
     if (name == law) d.law = value;
   const auto keys = law_keys(d.law);
-  constexpr std::array<std::string_view, 9> law_only{"stiffness", "viscosity", "restitution", "gap",        "value",
-                                                     "ultimate",  "quake",     "damping",     "damping_law"};
+  auto some_law_uses = [](std::string_view key) {  // a key of some law, besides `law`
+    for (const auto& [name, other] : law_names())
+      for (std::string_view k : law_keys(other))
+        if (k == key) return true;
+    return false;
+  };
   if (const auto* table = r.table(section))
     for (auto&& [name, v] : *table) {  // the keys given, not every key there is
       const std::string_view key = name.str();
-      if (std::find(law_only.begin(), law_only.end(), key) != law_only.end() &&
-          std::find(keys.begin(), keys.end(), key) == keys.end())
+      if (some_law_uses(key) && std::find(keys.begin(), keys.end(), key) == keys.end())
         r.fail(section, key,
                fmt::format("is not used by law \"{}\" ({})", law,
                            keys.empty() ? std::string("it takes no other key")
@@ -498,6 +529,7 @@ LawData read_law(const Reader& r, const std::string& section, bool end) {
       r.fail(section, "ultimate", "is required by law = \"smith\": the toe's static capacity R_u, in N");
     d.soil = read_soil(r, section, d.soil);
   }
+  if (d.law == JointLaw::diesel) read_diesel(r, section, d);
   return d;
 }
 
@@ -801,6 +833,11 @@ Case read_case(Reader& r) {
   detail::read_drive(r, c, body_index);
   c.load.body_force = r.expression("load", "body_force", c.load.body_force);
   c.load.gravity = r.number("load", "gravity", 0.0);
+  for (const auto& j : c.joints)
+    if (j.law.law == JointLaw::diesel && !(c.load.gravity > 0))
+      r.fail("load", "gravity",
+             fmt::format("must be > 0 with the diesel joint \"{}\": its ram rises and falls under it (got {})", j.name,
+                         c.load.gravity));
   read_time(r, c);
   const std::optional<OneBar> one = c.one_bar();
   // A single bar's rigid obstacle takes its restitution as time.restitution
@@ -950,6 +987,8 @@ std::string_view to_string(JointLaw law) {
       return "velocity";
     case JointLaw::smith:
       return "smith";
+    case JointLaw::diesel:
+      return "diesel";
   }
   return "?";
 }
@@ -985,6 +1024,12 @@ void write_law(std::string& out, const LawData& d) {
     out += fmt::format("ultimate = {}\nquake = {}\ndamping = {}\ndamping_law = {}\n", toml_float(d.soil.ultimate),
                        toml_float(d.soil.quake), toml_float(d.soil.damping),
                        d.soil.damping_law == DampingLaw::smith ? "\"smith\"" : "\"viscous\"");
+  if (d.law == JointLaw::diesel)
+    out += fmt::format(
+        "cylinder_area = {}\ncompression_length = {}\nchamber_length = {}\ncombustion_pressure = {}\n"
+        "impact_stiffness = {}\nimpact_restitution = {}\n",
+        toml_float(d.gas.area), toml_float(d.gas.compression_length), toml_float(d.gas.chamber_length),
+        toml_float(d.gas.combustion_pressure), toml_float(d.stiffness), toml_float(d.restitution));
 }
 
 void write_material(std::string& out, const MaterialData& m) {

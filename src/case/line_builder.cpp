@@ -10,7 +10,7 @@ namespace {
 
 bool unilateral(JointLaw law) {
   return law == JointLaw::elastic || law == JointLaw::viscoelastic || law == JointLaw::rigid ||
-         law == JointLaw::cushion || law == JointLaw::smith;
+         law == JointLaw::cushion || law == JointLaw::smith || law == JointLaw::diesel;
 }
 
 ContactLaw contact_law(const Case& c, const LawData& d) {
@@ -28,6 +28,11 @@ ContactLaw contact_law(const Case& c, const LawData& d) {
       break;
     case JointLaw::cushion:
       l.kind = LawKind::cushion;
+      l.viscosity = 0.0;
+      break;
+    case JointLaw::diesel:
+      l.kind = LawKind::diesel;
+      l.gas = d.gas;
       l.viscosity = 0.0;
       break;
     case JointLaw::smith:

@@ -19,6 +19,8 @@ std::string_view to_string(LawKind kind) {
       return "rigid";
     case LawKind::smith:
       return "smith";
+    case LawKind::diesel:
+      return "diesel";
   }
   return "?";
 }

@@ -56,6 +56,12 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
     const Bond& b = line.bonds[std::min(gauge_->node, line.bonds.size() - 1)];  // the gauged bar's
     out_.impedance = std::sqrt(b.axial * b.mass / b.h);                         // E A / c
   }
+  if (ram_link_ != Link::ground && line.links[ram_link_].law.kind == LawKind::diesel) {
+    const DieselGas& gas = line.links[ram_link_].law.gas;
+    diesel_ = out_.diesel = true;
+    out_.compression_work = gas.compression_work();
+    out_.expansion_work = gas.expansion_work();
+  }
   for (std::size_t j = first_; j < last_; ++j) out_.envelope.x.push_back(0.5 * (line.x[j] + line.x[j + 1]));
   out_.envelope.compression.assign(out_.envelope.x.size(), 0.0);
   out_.envelope.tension.assign(out_.envelope.x.size(), 0.0);
@@ -93,7 +99,18 @@ bool BlowMonitor::observe(const Scheme& s) {
   else
     out_.toe_penetration = std::max(out_.toe_penetration, -s.displacement_at(first_));
   watch_rest(s);
+  if (diesel_) watch_rebound(s);
   return true;
+}
+
+// A diesel ram past the ports moving up after impact rises ballistically:
+// its height above impact is y + v^2 / 2g at the first step it is there
+// (the anvil at rest by then: v is the ram's own velocity).
+void BlowMonitor::watch_rebound(const Scheme& s) {
+  if (!impacted_ || !std::isnan(out_.next_stroke)) return;
+  const double y = s.link_opening(ram_link_), v = s.velocity_at(ram_first_);
+  if (y >= line_.links[ram_link_].law.gas.compression_length && v > 0.0)
+    out_.next_stroke = y + v * v / (2.0 * line_.gravity);
 }
 
 // Impact: the first step the link below the ram pushes (from t = 0 without
@@ -107,7 +124,9 @@ void BlowMonitor::watch_impact(const Scheme& s) {
     momentum += mass_[j] * v;
     mass += mass_[j];
   }
-  const bool touching = ram_link_ == Link::ground || s.link_force(ram_link_) > 0.0;
+  // A diesel cylinder pushes before impact (its gas): the ram strikes when its cushion first closes.
+  const bool touching = ram_link_ == Link::ground ||
+                        (diesel_ ? s.link_largest_compression(ram_link_) > 0.0 : s.link_force(ram_link_) > 0.0);
   if (touching) {
     impacted_ = true;
     const bool before = s.step() > 0 && ram_link_ != Link::ground;

@@ -325,6 +325,10 @@ BlowSummary read_blow(const nlohmann::json& j) {
   b.impact = j.value("impact", true);
   b.finished = j.value("finished", false);
   b.rest_time = number_or_nan(j, "rest_time");
+  b.diesel = j.contains("next_stroke");
+  b.next_stroke = number_or_nan(j, "next_stroke");
+  b.compression_work = number_or_nan(j, "compression_work");
+  b.expansion_work = number_or_nan(j, "expansion_work");
   for (auto [key, peak] : {std::pair{"max_compression", &b.max_compression}, std::pair{"max_tension", &b.max_tension}})
     if (j.contains(key) && j.at(key).is_object()) peak->value = number_or_nan(j.at(key), "value");
   return b;
@@ -432,7 +436,7 @@ nlohmann::json stress_peak_json(const StressPeak& p) {
 nlohmann::json blow_json(const Summary& s) {
   const auto& b = s.blow;
   if (!b) return nullptr;
-  return {
+  nlohmann::json out = {
       {"set", b->set},
       {"blows_per_m", number_or_null(b->blows_per_m())},
       {"blows_per_250mm", number_or_null(b->blows_per_250mm())},
@@ -452,6 +456,12 @@ nlohmann::json blow_json(const Summary& s) {
       {"impact", b->impact},
       {"impedance", number_or_null(b->impedance)},
       {"envelope", {{"x", b->envelope.x}, {"compression", b->envelope.compression}, {"tension", b->envelope.tension}}}};
+  if (b->diesel) {  // a diesel hammer's rebound and gas works
+    out["next_stroke"] = number_or_null(b->next_stroke);
+    out["compression_work"] = b->compression_work;
+    out["expansion_work"] = b->expansion_work;
+  }
+  return out;
 }
 
 }  // namespace
@@ -523,6 +533,11 @@ std::string blow_text(const BlowSummary& b) {
                      std::isnan(b.enthru) ? "" : ratio,
                      b.finished ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
                                 : std::string("the pile had not come to rest"));
+  if (b.diesel)
+    out += fmt::format("  diesel: next stroke {}; gas works W_c {:.4g} J, W_e {:.4g} J\n",
+                       std::isnan(b.next_stroke) ? std::string("not reached (the ram has not risen past the ports)")
+                                                 : fmt::format("{:.4g} m", b.next_stroke),
+                       b.compression_work, b.expansion_work);
   return out;
 }
 

@@ -31,6 +31,7 @@ Probes::Probes(const Case& c, const Line& line) : line_(&line) {
     if (const std::size_t i = link_named(links, stem); i != Link::ground) {
       add(stem + ".force", Kind::link_force, i);
       add(stem + ".opening", Kind::link_opening, i);
+      if (j.law.law == JointLaw::diesel) add(stem + ".pressure", Kind::link_pressure, i);
       continue;
     }
     // A spring or welded joint: the bond (or, welded, the first element of
@@ -83,6 +84,8 @@ double Probes::value(const Scheme& s, const Column& col) const {
       return s.link_force(i);
     case Kind::link_opening:
       return i == Link::ground ? 0.0 : s.link_opening(i);
+    case Kind::link_pressure:  // a diesel cylinder's gas, burnt once the ram struck
+      return line_->links[i].law.gas.pressure(s.link_opening(i), s.link_largest_compression(i) > 0.0);
     case Kind::bond_force:
       return i == Link::ground ? std::numeric_limits<double>::quiet_NaN() : -bond_tension(*line_, s, i);
     case Kind::bond_opening:

@@ -273,7 +273,7 @@ void LineCentralDifference::start() {
     // A rigid link's impulse against the mean of the rates at t = 0 and over
     // (0, dt): the Taylor step's own identity (twice the half step's share).
     if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
-    book_link_damping(i, -line_.opening(i, cur_), rate, viscous, contact);
+    book_link_damping(i, -line_.opening(i, cur_), rate, power, viscous, contact);
   }
   for (std::size_t j : line_.shaft.nodes) contact -= soil_damping_[j] * v0_[j];  // R_d dw/dt, w = -u
   budget_.start(dt_, power, viscous, contact);
@@ -316,7 +316,7 @@ void LineCentralDifference::book_budget(const double* um, const double* u, const
       dd += c_[j] * ((u[j + 1] - u[j]) - (um[j + 1] - um[j])) * inv_dt * 0.5 *
             ((up[j + 1] - up[j]) - (um[j + 1] - um[j]));
   }
-  book_link_work(um, u, up, dd, dc);
+  book_link_work(um, u, up, dw, dd, dc);
   for (std::size_t j : special_soil_) dc += soil_damping_[j] * 0.5 * (um[j] - up[j]);
 }
 

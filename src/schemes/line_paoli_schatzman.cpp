@@ -160,7 +160,7 @@ void LinePaoliSchatzman::start() {
     // A rigid link's impulse against the mean of the rates at t = 0 and over
     // (0, dt), as central differences' start (the Taylor step's identity).
     if (l.law.rigid()) contact += 0.5 * force_[i] * (rate + (line_.opening(i, cur_) - line_.opening(i, next_)) / dt_);
-    book_link_damping(i, -line_.opening(i, cur_), rate, viscous, contact);
+    book_link_damping(i, -line_.opening(i, cur_), rate, power, viscous, contact);
   }
   budget_.start(dt_, power, viscous, contact);
 }
@@ -201,7 +201,7 @@ void LinePaoliSchatzman::book_budget(const double* um, const double* u, const do
     for (std::size_t j = 0; j + 1 < n; ++j)
       dd += c_[j] * ((u[j + 1] - u[j]) - (um[j + 1] - um[j])) * inv_dt * (moved(j + 1) - moved(j));
   }
-  book_link_work(um, u, up, dd, dc);
+  book_link_work(um, u, up, dw, dd, dc);
 }
 
 double LinePaoliSchatzman::half_step_kinetic(const double* a, const double* b) const {

@@ -157,20 +157,25 @@ double LineScheme::link_energy(const double* u) const {
   return e;
 }
 
-void LineScheme::book_link_work(const double* um, const double* u, const double* up, double& viscous,
+void LineScheme::book_link_work(const double* um, const double* u, const double* up, double& work, double& viscous,
                                 double& contact) const {
   for (std::size_t i = 0; i < line_.links.size(); ++i) {
     const Link& l = line_.links[i];
     const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
     if (l.law.rigid()) contact += force_[i] * dcomp;
-    book_link_damping(i, -line_.opening(i, u), dcomp, viscous, contact);
+    book_link_damping(i, -line_.opening(i, u), dcomp, work, viscous, contact);
   }
 }
 
-void LineScheme::book_link_damping(std::size_t i, double c, double motion, double& viscous, double& contact) const {
+void LineScheme::book_link_damping(std::size_t i, double c, double motion, double& work, double& viscous,
+                                   double& contact) const {
   const ContactLaw& law = line_.links[i].law;
-  const double work = law.damping_part(force_[i], c, c_max_[i]) * motion;
-  (law.kind == LawKind::smith ? contact : viscous) += work;  // Smith's damping is the soil's
+  if (law.kind == LawKind::diesel) {  // the gas pushes the faces apart: its work is -p dc
+    work -= law.gas_force(c, c_max_[i]) * motion;
+    return;
+  }
+  const double damping = law.damping_part(force_[i], c, c_max_[i]) * motion;
+  (law.kind == LawKind::smith ? contact : viscous) += damping;  // Smith's damping is the soil's
 }
 
 double LineScheme::link_hysteresis() const {

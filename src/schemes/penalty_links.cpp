@@ -33,7 +33,8 @@ double closed_form(const ContactLaw& law, double cbar, double rbar, double alpha
       return std::max(0.0, kk * (cbar - (1.0 - e2) * c_max) / (1.0 + kk * alpha));
     }
     case LawKind::rigid:
-    case LawKind::smith:  // not a penalty law of the implicit schemes (line_scheme_misfit refuses it)
+    case LawKind::smith:   // not a penalty law of the implicit schemes (line_scheme_misfit refuses it)
+    case LawKind::diesel:  // nor a diesel cylinder (registry.cpp's diesel_misfit)
       break;
   }
   return 0.0;
@@ -136,7 +137,8 @@ PenaltyLinks::Branch PenaltyLinks::branch_of(std::size_t i, double c, double rat
       if (p <= 0.0) return Branch::off;
       return (alpha_ > 0.0 && p < law.stiffness * c + law.viscosity * rate - tol_p_) ? Branch::face : Branch::on;
     case LawKind::rigid:
-    case LawKind::smith:  // not a penalty law of the implicit schemes (line_scheme_misfit refuses it)
+    case LawKind::smith:   // not a penalty law of the implicit schemes (line_scheme_misfit refuses it)
+    case LawKind::diesel:  // nor a diesel cylinder (registry.cpp's diesel_misfit)
       break;
   }
   return Branch::off;
@@ -174,7 +176,8 @@ PenaltyLinks::Branch PenaltyLinks::indicated(std::size_t i, double c, double rat
       return Branch::off;
     }
     case LawKind::rigid:
-    case LawKind::smith:  // not a penalty law of the implicit schemes (line_scheme_misfit refuses it)
+    case LawKind::smith:   // not a penalty law of the implicit schemes (line_scheme_misfit refuses it)
+    case LawKind::diesel:  // nor a diesel cylinder (registry.cpp's diesel_misfit)
       break;
   }
   return Branch::off;

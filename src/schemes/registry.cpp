@@ -107,6 +107,25 @@ std::string schemes_that(bool SchemeInfo::*can) {
   return out;
 }
 
+// A diesel cylinder's gas is no piecewise-linear law: the schemes that apply
+// penalty laws as forces at t_n (the explicit ones) run it, not the implicit
+// ones' exact branch solve (penalty_links.hpp).
+bool runs_diesel(const SchemeInfo& s) {
+  return s.penalty_laws && s.step == StepRule::limited;
+}
+
+std::optional<SchemeMisfit> diesel_misfit(const SchemeInfo& s, const Line& line) {
+  for (const auto& l : line.links) {
+    if (l.law.kind != LawKind::diesel || runs_diesel(s)) continue;
+    std::string names;
+    for (const auto& other : table)
+      if (runs_diesel(other)) names += (names.empty() ? "" : ", ") + std::string(other.name);
+    return SchemeMisfit{l.name + ".law",
+                        fmt::format("= \"diesel\" runs on the schemes {} only (time.scheme is \"{}\")", names, s.name)};
+  }
+  return std::nullopt;
+}
+
 // The laws and bodies a scheme does not run, by its row.
 std::optional<SchemeMisfit> law_misfit(const SchemeInfo& s, const Line& line) {
   auto refuse = [](std::string rule) { return SchemeMisfit{"scheme", std::move(rule)}; };
@@ -211,6 +230,7 @@ const SchemeInfo& scheme_info(std::string_view name) {
 
 std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
+  if (auto m = diesel_misfit(s, line)) return m;
   if (auto m = law_misfit(s, line)) return m;
   if (s.misfit)
     if (auto m = s.misfit(c, line)) return m;
@@ -220,7 +240,10 @@ std::optional<SchemeMisfit> scheme_misfit(const Case& c, const Line& line) {
 FittedCase fit_scheme(Case c) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
   Line line = checked_line(s, c);
-  auto refuse = [&c](const SchemeMisfit& m) { c.refuse("time." + m.key, m.rule); };
+  // A time key by its name alone, another (a joint's law) by its full name.
+  auto refuse = [&c](const SchemeMisfit& m) {
+    c.refuse(m.key.find('.') == std::string::npos ? "time." + m.key : m.key, m.rule);
+  };
   if (c.time.step_auto)
     if (const auto m = choose_step(s, c, line)) refuse(*m);
   if (const auto m = set_transit_step(s, c, line, c.time.step_given)) refuse(*m);

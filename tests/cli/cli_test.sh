@@ -374,6 +374,18 @@ grep -q '^end = 0.05$' "$work/bearing-set/runs/0001/case.toml" && ok || bad "bea
 expect_refused "--set time.nope=1" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:2 --set time.nope=1
 expect_refused "--toe-share must be in [0, 1]" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --toe-share -0.5
 expect_refused "--jobs: must be 1 .. 1024" bearing "$pipe" --out "$work/refused" --capacity 1e6:2e6:3 --jobs -1
+# A diesel hammer's blow on a rigid stop: the gas's pressure in the
+# history, the rebound in the blow; refused by a scheme that cannot run it.
+diesel="$examples/pile/diesel-rigid-stop.toml"
+"$bin" run "$diesel" --out "$work/diesel" > /dev/null 2>&1 && ok || bad "diesel example"
+head -1 "$work/diesel/history.csv" | grep -q 'joint.gas.force,joint.gas.opening,joint.gas.pressure' && ok || bad "diesel columns"
+/usr/bin/python3 - "$work/diesel/summary.json" <<'PY' && ok || bad "summary.json diesel blow"
+import json, sys
+b = json.load(open(sys.argv[1]))["blow"]
+w = 1000 * 9.81
+assert abs(b["next_stroke"] - (0.64 * (2 - b["compression_work"] / w) + b["expansion_work"] / w)) < 0.01, b
+PY
+expect_refused 'joint.gas.law = "diesel" runs on the schemes central-difference, paoli-schatzman only' run "$diesel" --out "$work/refused" --set 'time.scheme="newmark"'
 # A pile's numbers in another unit: a modulus in MPa refused, a capacity in kN warned (exit 4 under --strict).
 expect_refused "body.pile.modulus = 210000: MPa?" run "$pipe" --out "$work/refused" --set body.pile.modulus=210000
 "$bin" run "$pipe" --out "$work/pipe-kn" --strict --set near_end.ultimate=900 --set time.end=0.002 --set "output.fields_at=[]" > /dev/null 2> "$work/err"

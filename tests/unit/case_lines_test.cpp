@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/diesel.hpp"
 #include "../support/run_case.hpp"
 #include "../support/scratch_directory.hpp"
 #include "barimpact/case/case.hpp"
@@ -734,6 +735,38 @@ scheme = "moreau-jean"
   ASSERT_TRUE(c.one_bar().has_value());
   EXPECT_EQ(c.time.restitution, 0.5);
   EXPECT_EQ(Case::from_string(c.to_toml(), {}, "resolved").time.restitution, 0.5);
+}
+
+// A diesel joint: its cylinder's keys, the impact cushion's defaults
+// (2e10 N/m, 0.8), the ram's height above impact as its gap; case.toml
+// writes them all and reads back the same; bad values, a missing key, a key
+// of another law, a diesel end and a case without gravity are refused
+// naming the key.
+TEST(CaseLines, ReadsAndRefusesADieselJoint) {
+  const Case c = testing::diesel_drop();
+  const LawData& d = c.joints.at(0).law;
+  EXPECT_EQ(d.law, JointLaw::diesel);
+  EXPECT_EQ(d.stiffness, 2e10);
+  EXPECT_EQ(d.restitution, 0.8);
+  EXPECT_EQ(d.gap, 0.5);
+  EXPECT_EQ(d.gas.area, 0.05);
+  EXPECT_EQ(d.gas.compression_length, 0.5);
+  EXPECT_EQ(d.gas.chamber_length, 0.1);
+  EXPECT_EQ(d.gas.combustion_pressure, 3e6);
+  const Case again = case_from(c.to_toml());
+  EXPECT_EQ(again.to_toml(), c.to_toml());
+  EXPECT_EQ(again.joints.at(0).law.gas.chamber_length, 0.1);
+  const std::string diesel = testing::diesel_drop_text();
+  EXPECT_SET_REFUSED(diesel, "joint.gas.chamber_length=0", "joint.gas.chamber_length", "> 0");
+  EXPECT_SET_REFUSED(diesel, "joint.gas.impact_restitution=1.5", "joint.gas.impact_restitution", "(0, 1]");
+  EXPECT_SET_REFUSED(diesel, "joint.gas.impact_stiffness=-1", "joint.gas.impact_stiffness", "> 0");
+  EXPECT_SET_REFUSED(diesel, "joint.gas.stiffness=1e9", "joint.gas.stiffness", "not used by law \"diesel\"");
+  EXPECT_SET_REFUSED(diesel, "load.gravity=0", "load.gravity", "diesel joint \"gas\"");
+  EXPECT_SET_REFUSED(diesel, "near_end.law=\"diesel\"", "near_end.law", "must be one of");
+  std::string missing = diesel;
+  const std::size_t area = missing.find("cylinder_area");
+  missing.erase(area, missing.find('\n', area) - area);
+  EXPECT_REFUSED(missing, "joint.gas.cylinder_area", "required by law = \"diesel\"");
 }
 
 }  // namespace

@@ -311,5 +311,16 @@ TEST(TimeLoop, PileDrivingNeverAllocates) {
   }
 }
 
+// A diesel hammer's blow on the pile (its gas's pressure in the history, the
+// ram's rebound watched) up to the ram's return past its ports.
+TEST(TimeLoop, DieselBlowNeverAllocates) {
+  const Case c = testing::example("pile/diesel-pipe-sand.toml", {"time.end=0.25"});
+  const Line line = build_line(c);
+  BlowMonitor blow(c, line);
+  const Counted r = count_loop(c, nullptr, &blow);
+  EXPECT_EQ(r.allocations, 0);
+  EXPECT_GT(blow.summary().next_stroke, 0.0);
+}
+
 }  // namespace
 }  // namespace barimpact

@@ -1,6 +1,7 @@
 // The history's columns beyond the budget (probe.hpp): their names in
 // history.csv's order, and each one's value off a scheme's state through
-// the line's numbering, against the formulas the header states.
+// the line's numbering, against the formulas the header states (a diesel
+// joint's gas pressure among them).
 #include "barimpact/run/probe.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/diesel.hpp"
 #include "../support/line_parts.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
@@ -141,6 +143,23 @@ end = 0.01
   ASSERT_GE(r.columns.size(), 4u);
   EXPECT_EQ(r.columns[0], "joint.a-b.force");
   EXPECT_EQ(r.columns[2], "joint.b-c.force");
+}
+
+// A diesel joint adds its gas's pressure after its force and opening: at
+// the state's opening 0 (the ram at impact) with no compression kept (not
+// yet struck), the compression polytrope's p_atm (0.6 / 0.1)^1.35.
+TEST(Probes, ADieselJointAddsItsGasPressure) {
+  const Case c = testing::diesel_drop();
+  const Line line = build_line(c);
+  const Probes probes(c, line);
+  ASSERT_GE(probes.size(), 3u);
+  EXPECT_EQ(probes.names()[0], "joint.gas.force");
+  EXPECT_EQ(probes.names()[1], "joint.gas.opening");
+  EXPECT_EQ(probes.names()[2], "joint.gas.pressure");
+  const StateScheme s(line.nodes());
+  std::vector<double> out(probes.size());
+  probes.read(s, out.data());
+  EXPECT_NEAR(out[2], 101325.0 * std::pow(6.0, 1.35), 1e-9 * out[2]);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <string>
 #include <string_view>
 
+#include "../support/diesel.hpp"
 #include "../support/line_parts.hpp"
 #include "../support/line_runs.hpp"
 #include "../support/pile.hpp"
@@ -141,6 +142,14 @@ TEST(Registry, RefusalsNameWhatTheSchemeCannotRunAndTheSchemesThatCan) {
   EXPECT_EQ(body->rule,
             "= \"characteristic\" cannot run the elastic-plastic body \"p\" (schemes that can: paper, newmark, "
             "central-difference, mass-redistribution, paoli-schatzman, moreau-jean)");
+  // A diesel cylinder: the explicit schemes with penalty laws only, refused naming the joint's law.
+  for (const char* scheme : {"newmark", "paper", "characteristic", "moreau-jean"}) {
+    const std::string msg = testing::refusal(testing::diesel_drop_text(), {fmt::format("time.scheme=\"{}\"", scheme)});
+    EXPECT_EQ(msg.rfind("joint.gas.law = \"diesel\" runs on the schemes central-difference, paoli-schatzman only", 0),
+              0u)
+        << msg;
+    EXPECT_NE(msg.find(fmt::format("(time.scheme is \"{}\")", scheme)), std::string::npos) << msg;
+  }
   // A scheme the line fits: no misfit.
   c.joints[0].law.law = JointLaw::rigid;
   EXPECT_FALSE(scheme_misfit(c, build_line(c)).has_value());

@@ -94,7 +94,20 @@ struct BodyData {
 };
 
 /// A joint's or an end's law. At an end, the obstacle is a joint with the ground.
-enum class JointLaw { free, clamped, welded, spring, elastic, viscoelastic, rigid, cushion, force, velocity, smith };
+enum class JointLaw {
+  free,
+  clamped,
+  welded,
+  spring,
+  elastic,
+  viscoelastic,
+  rigid,
+  cushion,
+  force,
+  velocity,
+  smith,
+  diesel
+};
 
 struct LawData {
   JointLaw law = JointLaw::free;
@@ -107,6 +120,10 @@ struct LawData {
   /// smith (near end only): R_u (toe capacity, N), q (m, default Smith's 0.1 in),
   /// J_toe (s/m, default Smith's 0.15 s/ft) and the damping law.
   SoilSpring soil{0.0, 0.00254, 0.492, DampingLaw::smith};
+  /// diesel (joints only): the cylinder; its impact cushion is `stiffness`
+  /// and `restitution` (keys impact_stiffness, impact_restitution), the ram's
+  /// initial height above impact `gap`.
+  DieselGas gas{};
 };
 
 struct JointData {

@@ -48,6 +48,15 @@ struct BlowSummary {
   struct Envelope {
     std::vector<double> x, compression, tension;
   } envelope;
+  /// A diesel hammer (the link below the ram a diesel cylinder, contact_law.hpp):
+  /// the height above impact the ram rises to, L_c + v^2 / 2g from where it
+  /// passes the ports moving up (NaN if it has not by the run's end), and the
+  /// gas's compression and expansion works W_c, W_e between the ports and
+  /// impact (closed form, DieselGas); false and NaN for other hammers.
+  bool diesel = false;
+  double next_stroke = std::numeric_limits<double>::quiet_NaN();
+  double compression_work = std::numeric_limits<double>::quiet_NaN();
+  double expansion_work = std::numeric_limits<double>::quiet_NaN();
 
   /// Blows per metre: infinite at refusal (set 0 after a finished blow), NaN
   /// when the ram never struck.
@@ -76,6 +85,7 @@ class BlowMonitor final : public Observer {
   void watch_stresses(const Scheme& s);
   void watch_impact(const Scheme& s);
   void watch_rest(const Scheme& s);
+  void watch_rebound(const Scheme& s);
 
   const Line& line_;
   BlowSummary start_;  // what a run starts from: the names, the envelopes' x, nothing seen yet
@@ -83,6 +93,7 @@ class BlowMonitor final : public Observer {
   std::size_t first_ = 0, last_ = 0;          // the pile's nodes
   std::size_t ram_first_ = 0, ram_last_ = 0;  // the ram's
   std::size_t ram_link_ = Link::ground;       // the link below the ram (none: in contact from t = 0)
+  bool diesel_ = false;                       // ram_link_ is a diesel cylinder
   std::size_t toe_link_ = Link::ground;       // the near end's Smith link
   double toe_quake_ = 0.0;
   std::optional<GaugePoint> gauge_;

@@ -1,7 +1,8 @@
 // The history's columns beyond the budget: named scalars read off a scheme
 // at t_n through the line's numbering (model/line.hpp). In history.csv's
 // order: per [[joint]] in line order `joint.<name>.force` (compression > 0)
-// and `joint.<name>.opening` (< 0 while penetrating), for a far end with a
+// and `joint.<name>.opening` (< 0 while penetrating), a diesel cylinder's
+// `joint.<name>.pressure` (its gas's, Pa absolute), for a far end with a
 // law other than free `far_end.force` and `far_end.opening`, per mass
 // `body.<name>.u` and `body.<name>.v`, per gauge `gauge.<name>.strain`
 // (tension > 0), `gauge.<name>.velocity` and `gauge.<name>.force` (the axial
@@ -38,6 +39,7 @@ class Probes {
   enum class Kind {
     link_force,
     link_opening,
+    link_pressure,
     bond_force,
     bond_opening,
     far_force,

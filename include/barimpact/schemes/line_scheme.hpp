@@ -68,6 +68,7 @@ class LineScheme : public Scheme {
   void velocity(std::span<double> out) const override;
   [[nodiscard]] double link_force(std::size_t i) const override { return force_[i]; }
   [[nodiscard]] double link_opening(std::size_t i) const override;
+  [[nodiscard]] double link_largest_compression(std::size_t i) const override { return c_max_[i]; }
   /// The far end's force (compression > 0) at t_n.
   [[nodiscard]] double far_force() const override { return far_force_; }
   /// A one-step implicit scheme's elastic-plastic elements (the explicit
@@ -205,13 +206,16 @@ class LineScheme : public Scheme {
   [[nodiscard]] double link_energy(const double* u) const;
   [[nodiscard]] double link_hysteresis() const;
   /// Link i's damping force at compression c (force_[i] less its static
-  /// part) times `motion`, a rate or an increment: a viscoelastic dashpot's
-  /// into `viscous` (D_visc), Smith's soil damping into `contact` (D_contact).
-  void book_link_damping(std::size_t i, double c, double motion, double& viscous, double& contact) const;
+  /// part) times `motion`, a rate or an increment of c: a viscoelastic dashpot's
+  /// into `viscous` (D_visc), Smith's soil damping into `contact` (D_contact);
+  /// a diesel cylinder's gas force times -motion into `work` (W_ext).
+  void book_link_damping(std::size_t i, double c, double motion, double& work, double& viscous, double& contact) const;
   /// A three-level scheme's level-m link terms, each link's force at t_m
   /// tested with (c^{m+1} - c^{m-1}) / 2: a rigid link's into `contact`
-  /// (D_contact), a viscoelastic link's beyond its spring into `viscous`.
-  void book_link_work(const double* um, const double* u, const double* up, double& viscous, double& contact) const;
+  /// (D_contact), a viscoelastic link's beyond its spring into `viscous`, a
+  /// diesel gas's into `work`.
+  void book_link_work(const double* um, const double* u, const double* up, double& work, double& viscous,
+                      double& contact) const;
 
   Line line_;
   double dt_, inv_dt_;

@@ -63,6 +63,8 @@ class Scheme {
   /// its force p >= 0 (a compression) and its opening y at t_n.
   [[nodiscard]] virtual double link_force(std::size_t /*i*/) const { return reaction(); }
   [[nodiscard]] virtual double link_opening(std::size_t i) const = 0;
+  /// Link i's largest compression so far (its law's history, contact_law.hpp), 0 where not kept.
+  [[nodiscard]] virtual double link_largest_compression(std::size_t /*i*/) const { return 0.0; }
   /// The force (compression > 0) on a held or loaded far end at t_n, when the
   /// scheme computes it; NaN: read it off the last element instead.
   [[nodiscard]] virtual double far_force() const;
@@ -83,7 +85,7 @@ class Scheme {
 };
 
 /// Why a case does not fit its scheme: the `time` key to blame ("scheme",
-/// "step" or a parameter) and the rule, naming the law or body it cannot run
+/// "step" or a parameter; or a full key such as "joint.gas.law") and the rule, naming the law or body it cannot run
 /// and the schemes that can (registry.hpp).
 struct SchemeMisfit {
   std::string key;
