@@ -187,7 +187,7 @@ void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigi
 void BM_LineStep(benchmark::State& state, const std::string& scheme) {
   const long long M = state.range(0), third = M / 3;
   barimpact::Case c = bars(M, {{"a", third}, {"b", third}, {"c", M - 2 * third}});
-  barimpact::JointData j{std::string("a-b"), std::string("a"), std::string("b"), barimpact::LawData{}};
+  barimpact::JointData j{std::string("a-b"), std::string("a"), std::string("b"), barimpact::LawData{}, {}};
   const bool rigid = scheme != "newmark" && scheme != "paper";
   j.law.law = rigid ? barimpact::JointLaw::rigid : barimpact::JointLaw::elastic;
   c.joints = {j};
@@ -236,7 +236,7 @@ barimpact::Case rigid_line_case(long long M, const std::string& scheme, bool act
   barimpact::Case c = bars(M, {{"a", third}, {"b", third}, {"c", M - 2 * third}}, active ? "-1" : "1");
   // Strings by construction: GCC 12 warns (-Wrestrict, a false positive) on
   // assigning these literals once inlined.
-  barimpact::JointData j{"a-b", "a", "b", {}};
+  barimpact::JointData j{"a-b", "a", "b", {}, {}};
   j.law.law = barimpact::JointLaw::rigid;
   j.law.gap = active ? 0.0 : 0.01;
   c.joints = {j};

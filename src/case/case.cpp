@@ -734,6 +734,7 @@ BodyIndex read_line(Reader& r, Case& c) {
       r.fail("body." + b.name, "elements",
              fmt::format("brings the line's elements to {}; at most {} in all", elements, max_elements));
   }
+  detail::add_hammer_bodies(r, c, body_index);
   read_joints(r, c, body_index);
   c.near_end = read_law(r, "near_end", true);
   c.far_end = read_law(r, "far_end", true);
@@ -828,11 +829,11 @@ Case read_case(Reader& r) {
                     "cannot be combined with [[body]]: use either [bar]/[initial]/[obstacle] or [[body]] with "
                     "[near_end]/[far_end]");
   BodyIndex body_index = line ? read_line(r, c) : read_one_bar(r, c);
+  c.load.body_force = r.expression("load", "body_force", c.load.body_force);
+  c.load.gravity = r.number("load", "gravity", 0.0);
   detail::read_hammer(r, c, body_index);
   read_blow(r, c, body_index);
   detail::read_drive(r, c, body_index);
-  c.load.body_force = r.expression("load", "body_force", c.load.body_force);
-  c.load.gravity = r.number("load", "gravity", 0.0);
   for (const auto& j : c.joints)
     if (j.law.law == JointLaw::diesel && !(c.load.gravity > 0))
       r.fail("load", "gravity",

@@ -1,5 +1,7 @@
 #include "barimpact/case/drive.hpp"
 
+#include "barimpact/case/case.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -45,6 +47,17 @@ DriveSoil soil_at(const DriveData& drive, double depth, double toe_area) {
   s.toe_capacity = s.toe.ultimate = toe_area * at.toe;
   s.long_term_capacity += s.toe_capacity;
   return s;
+}
+
+void start_ram(Case& c, double stroke) {
+  HammerData& h = *c.hammer;
+  h.stroke = stroke;
+  const double g = drive_gravity(c.load.gravity);
+  const bool diesel = h.kind == HammerKind::diesel;
+  const double v =
+      diesel ? std::sqrt(2.0 * g * std::max(0.0, stroke - h.diesel.compression_length)) : h.impact_velocity(g);
+  for (auto& b : c.bodies)
+    if (b.name == h.ram) b.velocity = fmt::format("{}", -v);
 }
 
 std::string_view to_string(HammerKind kind) {

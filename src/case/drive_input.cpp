@@ -71,40 +71,6 @@ double body_mass(const BodyData& b) {
   return b.kind == BodyKind::mass ? b.mass : b.density * b.area * b.length;
 }
 
-// The model's helmet, capblock and ram above the pile head `head`, and the
-// pile cushion (or the helmet resting on the head, as stiff as its top element).
-void add_model(const Reader& r, Case& c, BodyIndex& index, const HammerModel& m, const HammerData& h) {
-  for (const char* name : {"helmet", "ram"})
-    if (index(name) != c.bodies.size())
-      r.fail("hammer", "model",
-             fmt::format("= \"{}\" adds the body \"{}\", which the case already defines (with a model, the line "
-                         "ends at the pile head)",
-                         m.name, name));
-  const BodyData& head = c.bodies.back();
-  if (head.kind != BodyKind::bar)
-    r.fail("hammer", "model",
-           fmt::format("needs the line to end at the pile head (a bar; \"{}\" is a mass)", head.name));
-  JointData cushion{"pile-cushion", head.name, "helmet", {}};
-  cushion.law.law = h.pile_cushion ? JointLaw::cushion : JointLaw::elastic;
-  cushion.law.stiffness =
-      h.pile_cushion ? h.pile_cushion->stiffness : head.modulus * head.area * head.elements / head.length;
-  cushion.law.restitution = h.pile_cushion ? h.pile_cushion->restitution : 1.0;
-  JointData capblock{"capblock", "helmet", "ram", {}};
-  capblock.law.law = JointLaw::cushion;
-  capblock.law.stiffness = m.cushion_stiffness;
-  capblock.law.restitution = m.cushion_restitution;
-  for (auto [name, mass] : {std::pair{"helmet", m.helmet_mass}, std::pair{"ram", m.ram_mass}}) {
-    BodyData b;
-    b.name = name;
-    b.kind = BodyKind::mass;
-    b.mass = mass;
-    c.bodies.push_back(b);
-    index.add(name);
-  }
-  c.joints.push_back(cushion);
-  c.joints.push_back(capblock);
-}
-
 std::optional<HammerData::Cushion> read_pile_cushion(const Reader& r) {
   const auto* n = r.node("hammer", "pile_cushion");
   if (n == nullptr) return std::nullopt;
@@ -219,48 +185,147 @@ void apply_profile(Case& c, std::size_t pile) {
   c.near_end.soil = soil.toe;
 }
 
+// A diesel hammer by hand: its masses and cylinder ([hammer] keys).
+void read_diesel(const Reader& r, HammerData& h) {
+  DieselData& d = h.diesel;
+  for (auto [key, field] :
+       {std::pair{"ram_mass", &h.ram_mass}, std::pair{"anvil_mass", &d.anvil_mass},
+        std::pair{"cylinder_area", &d.cylinder_area}, std::pair{"compression_length", &d.compression_length},
+        std::pair{"chamber_length", &d.chamber_length}, std::pair{"combustion_pressure", &d.combustion_pressure},
+        std::pair{"max_stroke", &d.max_stroke}}) {
+    if (r.node("hammer", key) == nullptr) r.fail("hammer", key, "is required by a diesel hammer");
+    *field = r.number("hammer", key, 0.0);
+    if (!(*field > 0)) r.fail("hammer", key, fmt::format("must be > 0 (got {})", *field));
+  }
+  d.impact_stiffness = r.number("hammer", "impact_stiffness", d.impact_stiffness);
+  d.impact_restitution = r.number("hammer", "impact_restitution", d.impact_restitution);
+  if (!(d.impact_stiffness > 0)) r.fail("hammer", "impact_stiffness", "must be > 0 (N/m)");
+  if (!(d.impact_restitution > 0 && d.impact_restitution <= 1))
+    r.fail("hammer", "impact_restitution", "must be in (0, 1]");
+  if (!(d.max_stroke > d.compression_length))
+    r.fail("hammer", "max_stroke",
+           fmt::format("= {} must exceed compression_length = {} (the ram falls from above the ports)", d.max_stroke,
+                       d.compression_length));
+}
+
+// The gas between anvil and ram, the ram at the exhaust ports.
+JointData gas_joint(const DieselData& d) {
+  JointData j{"gas", "anvil", "ram", {}, "hammer.gas"};
+  j.law.law = JointLaw::diesel;
+  j.law.gas.area = d.cylinder_area;
+  j.law.gas.compression_length = d.compression_length;
+  j.law.gas.chamber_length = d.chamber_length;
+  j.law.gas.combustion_pressure = d.combustion_pressure;
+  j.law.stiffness = d.impact_stiffness;
+  j.law.restitution = d.impact_restitution;
+  j.law.gap = d.compression_length;
+  return j;
+}
+
+// A model's pile cushion (or the helmet resting on the head, as stiff as
+// its top element), and its capblock below the ram or the anvil.
+void add_model_joints(const Reader& r, Case& c, HammerData& h) {
+  const HammerModel& m = *h.entry;
+  h.pile_cushion = read_pile_cushion(r);
+  const BodyData& head =
+      *std::find_if(c.bodies.rbegin(), c.bodies.rend(), [](const BodyData& b) { return b.kind == BodyKind::bar; });
+  JointData cushion{"pile-cushion", head.name, "helmet", {}, {}};
+  cushion.law.law = h.pile_cushion ? JointLaw::cushion : JointLaw::elastic;
+  cushion.law.stiffness =
+      h.pile_cushion ? h.pile_cushion->stiffness : head.modulus * head.area * head.elements / head.length;
+  cushion.law.restitution = h.pile_cushion ? h.pile_cushion->restitution : 1.0;
+  JointData capblock{"capblock", "helmet", h.kind == HammerKind::diesel ? "anvil" : "ram", {}, {}};
+  capblock.law.law = JointLaw::cushion;
+  capblock.law.stiffness = m.cushion_stiffness;
+  capblock.law.restitution = m.cushion_restitution;
+  c.joints.push_back(cushion);
+  c.joints.push_back(capblock);
+}
+
+// The stroke: given, from the rated energy (m g stroke), or the table's; a
+// diesel hammer's first blow falls from its max_stroke.
+void read_stroke(const Reader& r, const Case& c, const BodyIndex& index, HammerData& h) {
+  const double g = drive_gravity(c.load.gravity);
+  const double mass = body_mass(c.bodies[index(h.ram)]);
+  const bool stroke = r.node("hammer", "stroke") != nullptr, energy = r.node("hammer", "energy") != nullptr;
+  const bool diesel = h.kind == HammerKind::diesel;
+  if (stroke && energy) r.fail("hammer", "energy", "cannot be given with stroke (energy = m g stroke)");
+  if (!h.entry && !diesel && !stroke && !energy)
+    r.fail("hammer", "stroke", "is required (m), or energy (J, rated: m g stroke)");
+  h.stroke = stroke                ? r.number("hammer", "stroke", 0.0)
+             : energy              ? r.number("hammer", "energy", 0.0) / (mass * g)
+             : diesel              ? h.diesel.max_stroke
+             : h.entry->stroke > 0 ? h.entry->stroke
+                                   : h.entry->energy / (mass * g);
+  if (!(h.stroke > 0)) r.fail("hammer", energy ? "energy" : "stroke", fmt::format("must be > 0 (got {})", h.stroke));
+  if (diesel && !(h.stroke > h.diesel.compression_length))
+    r.fail("hammer", energy ? "energy" : "stroke",
+           fmt::format("gives a stroke of {} m, not above the ports (compression_length = {} m)", h.stroke,
+                       h.diesel.compression_length));
+  h.efficiency = r.number("hammer", "efficiency", h.entry ? h.entry->efficiency : default_efficiency(h.kind));
+  if (!(h.efficiency > 0 && h.efficiency <= 1))
+    r.fail("hammer", "efficiency", fmt::format("must be in (0, 1] (got {})", h.efficiency));
+}
+
 }  // namespace
 
-void read_hammer(Reader& r, Case& c, BodyIndex& index) {
+void add_hammer_bodies(Reader& r, Case& c, BodyIndex& index) {
   if (r.table("hammer") == nullptr) return;
   HammerData h;
-  const double g = drive_gravity(r.number("load", "gravity", 0.0));
   h.model = r.word("hammer", "model", "");
-  std::optional<HammerModel> model;
   if (!h.model.empty()) {
-    for (const char* key : {"kind", "ram"})
+    for (const char* key : {"kind", "ram", "ram_mass", "anvil_mass"})
       if (r.node("hammer", key) != nullptr) r.fail("hammer", key, "comes from the table with model (remove it)");
-    model = find_model(r, hammer_table(r), h.model);
-    h.kind = model->kind;
-    h.pile_cushion = read_pile_cushion(r);
-    add_model(r, c, index, *model, h);
-    h.ram = "ram";
+    h.entry = find_model(r, hammer_table(r), h.model);
+    h.kind = h.entry->kind;
+    h.diesel = h.entry->diesel;
   } else {
+    h.kind = read_kind(r, r.word("hammer", "kind", "drop"));
+    if (h.kind == HammerKind::diesel) read_diesel(r, h);
+  }
+  const bool diesel = h.kind == HammerKind::diesel;
+  std::vector<std::pair<std::string, double>> added;  // the hammer's bodies, bottom up
+  if (h.entry) added.emplace_back("helmet", h.entry->helmet_mass);
+  if (diesel) added.emplace_back("anvil", h.diesel.anvil_mass);
+  if (h.entry || diesel) added.emplace_back("ram", h.entry ? h.entry->ram_mass : h.ram_mass);
+  for (const auto& [name, mass] : added)
+    if (index(name) != c.bodies.size())
+      r.fail("hammer", h.entry ? "model" : "kind",
+             fmt::format("adds the body \"{}\", which the case already defines (the hammer brings its own)", name));
+  if (h.entry && c.bodies.back().kind != BodyKind::bar)
+    r.fail("hammer", "model",
+           fmt::format("needs the line to end at the pile head (a bar; \"{}\" is a mass)", c.bodies.back().name));
+  for (const auto& [name, mass] : added) {
+    BodyData b;
+    b.name = name;
+    b.kind = BodyKind::mass;
+    b.mass = mass;
+    c.bodies.push_back(b);
+    index.add(name);
+  }
+  if (!added.empty()) h.ram = "ram";
+  c.hammer = h;
+}
+
+void read_hammer(Reader& r, Case& c, BodyIndex& index) {
+  if (!c.hammer) return;
+  HammerData& h = *c.hammer;
+  if (h.entry) add_model_joints(r, c, h);
+  if (h.ram.empty()) {
     if (r.node("hammer", "pile_cushion") != nullptr)
       r.fail("hammer", "pile_cushion", "goes with model; by hand, the case's joints are the cushions");
-    h.kind = read_kind(r, r.word("hammer", "kind", "drop"));
     h.ram = r.word("hammer", "ram", c.bodies.back().name);
     if (index(h.ram) == c.bodies.size())
       r.fail("hammer", "ram", fmt::format("names no body of the line (got \"{}\")", h.ram));
   }
-  if (h.kind == HammerKind::diesel) r.fail("hammer", model ? "model" : "kind", "is a diesel hammer: not available yet");
-  BodyData& ram = c.bodies[index(h.ram)];
-  const double mass = body_mass(ram);
-  const bool stroke = r.node("hammer", "stroke") != nullptr, energy = r.node("hammer", "energy") != nullptr;
-  if (stroke && energy) r.fail("hammer", "energy", "cannot be given with stroke (energy = m g stroke)");
-  if (!model && !stroke && !energy) r.fail("hammer", "stroke", "is required (m), or energy (J, rated: m g stroke)");
-  h.stroke = stroke              ? r.number("hammer", "stroke", 0.0)
-             : energy            ? r.number("hammer", "energy", 0.0) / (mass * g)
-             : model->stroke > 0 ? model->stroke
-                                 : model->energy / (mass * g);
-  if (!(h.stroke > 0)) r.fail("hammer", energy ? "energy" : "stroke", fmt::format("must be > 0 (got {})", h.stroke));
-  h.efficiency = r.number("hammer", "efficiency", model ? model->efficiency : default_efficiency(h.kind));
-  if (!(h.efficiency > 0 && h.efficiency <= 1))
-    r.fail("hammer", "efficiency", fmt::format("must be in (0, 1] (got {})", h.efficiency));
+  if (h.kind == HammerKind::diesel) {
+    if (r.node("load", "gravity") == nullptr) c.load.gravity = 9.81;  // the ram rises and falls under it
+    c.joints.push_back(gas_joint(h.diesel));
+  }
+  read_stroke(r, c, index, h);
   if (r.table("body." + h.ram) != nullptr && r.node("body." + h.ram, "velocity") != nullptr)
     r.fail("body." + h.ram, "velocity", "is set by [hammer] (the ram's speed at impact): remove it");
-  ram.velocity = fmt::format("{}", -h.impact_velocity(g));
-  c.hammer = h;
+  start_ram(c, h.stroke);
 }
 
 }  // namespace barimpact::detail

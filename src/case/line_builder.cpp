@@ -231,7 +231,7 @@ Line build(const Case& c) {
     if (b.kind == BodyKind::bar) x += b.length;
     if (j != nullptr && unilateral(j->law.law))
       line.links.push_back(
-          {"joint." + j->name, contact_law(c, j->law), lower_last, line.bodies.back().first, j->law.gap, false});
+          {j->column_stem(), contact_law(c, j->law), lower_last, line.bodies.back().first, j->law.gap, false});
   }
   const std::size_t last = line.x.size() - 1;
   if (unilateral(c.near_end.law))

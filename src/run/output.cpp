@@ -329,6 +329,9 @@ BlowSummary read_blow(const nlohmann::json& j) {
   b.next_stroke = number_or_nan(j, "next_stroke");
   b.compression_work = number_or_nan(j, "compression_work");
   b.expansion_work = number_or_nan(j, "expansion_work");
+  b.stroke = number_or_nan(j, "stroke");
+  b.first_set = number_or_nan(j, "first_set");
+  b.blows_run = j.value("blows_run", 1);
   for (auto [key, peak] : {std::pair{"max_compression", &b.max_compression}, std::pair{"max_tension", &b.max_tension}})
     if (j.contains(key) && j.at(key).is_object()) peak->value = number_or_nan(j.at(key), "value");
   return b;
@@ -460,6 +463,9 @@ nlohmann::json blow_json(const Summary& s) {
     out["next_stroke"] = number_or_null(b->next_stroke);
     out["compression_work"] = b->compression_work;
     out["expansion_work"] = b->expansion_work;
+    out["stroke"] = number_or_null(b->stroke);
+    out["first_set"] = number_or_null(b->first_set);
+    out["blows_run"] = b->blows_run;
   }
   return out;
 }
@@ -534,7 +540,10 @@ std::string blow_text(const BlowSummary& b) {
                      b.finished ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
                                 : std::string("the pile had not come to rest"));
   if (b.diesel)
-    out += fmt::format("  diesel: next stroke {}; gas works W_c {:.4g} J, W_e {:.4g} J\n",
+    out += fmt::format("  diesel: {}next stroke {}; gas works W_c {:.4g} J, W_e {:.4g} J\n",
+                       b.blows_run > 1 ? fmt::format("blow {} from a stroke of {:.4g} m (the first set {:.4g} mm); ",
+                                                     b.blows_run, b.stroke, 1e3 * b.first_set)
+                                       : std::string(),
                        std::isnan(b.next_stroke) ? std::string("not reached (the ram has not risen past the ports)")
                                                  : fmt::format("{:.4g} m", b.next_stroke),
                        b.compression_work, b.expansion_work);

@@ -27,7 +27,7 @@ Probes::Probes(const Case& c, const Line& line) : line_(&line) {
   const auto links = links_by_name(line);
   const BodyIndex body_index(c.bodies);
   for (const auto& j : c.joints) {
-    const std::string stem = "joint." + j.name;
+    const std::string stem = j.column_stem();
     if (const std::size_t i = link_named(links, stem); i != Link::ground) {
       add(stem + ".force", Kind::link_force, i);
       add(stem + ".opening", Kind::link_opening, i);

@@ -108,9 +108,67 @@ RunResult run(const Case& c, const RunOptions& options) {
   return run(fit_scheme(c), options);
 }
 
-RunResult run(FittedCase fitted, const RunOptions& options) {
+namespace {
+
+RunResult run_one(FittedCase fitted, const RunOptions& options) {
   auto scheme = make_scheme(fitted);
   return run_scheme(fitted.c, *scheme, fitted.c.step_count(), options);
+}
+
+bool within_percent(double a, double b) {
+  return std::abs(a - b) <= 0.01 * std::abs(b);
+}
+
+// A diesel hammer's blows at one soil (issue 32's stroke iteration): the
+// first from the case's stroke (its max_stroke unless given), each next
+// from the previous blow's rebound capped at max_stroke, until both set and
+// stroke change by less than 1% from one blow to the next (at most 20). The
+// last blow is the result; its summary gives the stroke, the first blow's
+// set and the blows run.
+RunResult run_diesel(const FittedCase& fitted, const RunOptions& options) {
+  constexpr int most = 20;
+  const DieselData& d = fitted.c.hammer->diesel;
+  double stroke = fitted.c.hammer->stroke, first_set = 0.0, set = 0.0;
+  RunResult r;
+  std::string stopped;  // why the iteration ended before it converged
+  int blows = 1;
+  for (;; ++blows) {
+    Case c = fitted.c;
+    start_ram(c, stroke);
+    r = run_one(fit_scheme(std::move(c)), options);
+    if (r.summary.status != RunStatus::complete || !r.summary.blow) return r;
+    const BlowSummary& b = *r.summary.blow;
+    if (blows == 1) first_set = b.set;
+    const double next = std::min(b.next_stroke, d.max_stroke);
+    if (blows > 1 && within_percent(b.set, set) && within_percent(next, stroke)) break;
+    if (!(next > d.compression_length)) {
+      stopped = std::isnan(b.next_stroke)
+                    ? "the ram did not rise back past the ports by time.end (raise it)"
+                    : fmt::format("the ram rose {:.4g} m, not past the ports: the hammer stalls", b.next_stroke);
+      break;
+    }
+    if (blows == most) {
+      stopped = fmt::format("set and stroke still changed by 1% or more after {} blows", most);
+      break;
+    }
+    set = b.set;
+    stroke = next;
+  }
+  BlowSummary& b = *r.summary.blow;
+  b.stroke = stroke;
+  b.first_set = first_set;
+  b.blows_run = blows;
+  if (!stopped.empty())
+    r.summary.warnings.push_back(
+        fmt::format("diesel-stroke: after {} blows from {:.4g} m: {}", blows, fitted.c.hammer->stroke, stopped));
+  return r;
+}
+
+}  // namespace
+
+RunResult run(FittedCase fitted, const RunOptions& options) {
+  if (fitted.c.hammer && fitted.c.hammer->kind == HammerKind::diesel) return run_diesel(fitted, options);
+  return run_one(std::move(fitted), options);
 }
 
 RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options, bool finite_rows) {

@@ -23,6 +23,9 @@ BlowRead read_blow(const std::filesystem::path& run_dir) {
     row.enthru = number(b.at("enthru"));
     row.transfer_ratio = number(b.at("transfer_ratio"));
     row.finished = b.at("finished").get<bool>();
+    if (b.contains("stroke")) row.stroke = number(b.at("stroke"));
+    if (b.contains("first_set")) row.first_set = number(b.at("first_set"));
+    row.blows_run = b.value("blows_run", 1);
   } catch (const std::exception&) {
     return BlowRead{};  // not a summary barimpact wrote whole
   }

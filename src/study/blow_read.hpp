@@ -12,6 +12,8 @@ struct BlowRead {
   double set = nan, blows_per_250mm = nan, blows_per_m = nan, max_compression = nan, max_tension = nan, enthru = nan,
          transfer_ratio = nan;
   bool finished = false;
+  double stroke = nan, first_set = nan;  ///< a diesel hammer's stroke iteration (NaN: one blow)
+  int blows_run = 1;
 };
 
 /// The blow `run_dir`/summary.json holds: NaN throughout when there is none

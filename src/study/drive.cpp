@@ -80,11 +80,12 @@ std::vector<DriveRow> run_drive(const DrivePlan& plan, const fs::path& dir, cons
     row.toe = soil.toe_capacity;
     row.capacity = row.shaft + row.toe;
     row.long_term_capacity = soil.long_term_capacity;
-    detail::take_blow(row, detail::read_blow(dir / "runs" / points[i].id));
+    const detail::BlowRead blow = detail::read_blow(dir / "runs" / points[i].id);
+    detail::take_blow(row, blow);
     row.finished = row.finished && row.run.status == "complete";
-    row.first_set = row.set;
-    row.blows_run = std::isnan(row.set) ? 0 : 1;
-    row.stroke = plan.stroke();
+    row.first_set = std::isnan(blow.first_set) ? row.set : blow.first_set;
+    row.blows_run = std::isnan(row.set) ? 0 : blow.blows_run;
+    row.stroke = std::isnan(blow.stroke) ? plan.stroke() : blow.stroke;
   }
   accumulate(rows);
   return rows;

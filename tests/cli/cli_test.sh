@@ -406,6 +406,10 @@ grep -q '"total_blows"' "$work/drive/summary.json" && grep -q '"refusal_depth"' 
 "$bin" run "$drv" --out "$work/drive-run" --set drive.depths=[3.0,8.0] --set time.end=0.02 > /dev/null 2>&1 && ok || bad "run of a drive case"
 grep -q '^\[\[body.shaft.profile\]\]$' "$work/drive-run/case.toml" && ok || bad "the run's case.toml spells the profile"
 "$bin" hammers | grep -q "Vulcan 010" && ok || bad "hammers lists the table"
+# A diesel hammer from the table: the stroke found at each depth, the gas's columns.
+"$bin" drive "$examples/pile/drive-concrete-diesel.toml" --out "$work/drive-diesel" --no-plot --set "drive.depths=[6.0,12.0]" > /dev/null 2>&1 && ok || bad "diesel drive exit"
+awk -F, 'NR > 1 && !($12 > 0.5) { bad = 1 } END { exit bad }' "$work/drive-diesel/drive.csv" && ok || bad "diesel strokes: $(cut -d, -f1,12 "$work/drive-diesel/drive.csv")"
+head -1 "$work/drive-diesel/runs/0000/history.csv" | grep -q "hammer.gas.pressure" && ok || bad "the gas's columns"
 "$bin" inspector "$drv" --out "$work/inspector" --stroke 0.5:1.0:2 --depth 6 --no-plot --set time.end=0.02 > /dev/null 2>&1 && ok || bad "inspector exit"
 [ "$(head -1 "$work/inspector/inspector.csv" | cut -d, -f1-8)" = "stroke,energy,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru" ] && ok || bad "inspector columns"
 expect_refused "--depth is required" inspector "$drv" --out "$work/refused" --stroke 0.5:1.0:2

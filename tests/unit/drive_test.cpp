@@ -3,6 +3,7 @@
 // profile gives the pile at one penetration.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -223,6 +224,84 @@ TEST(Hammer, RefusesBadKeysNamingThem) {
   EXPECT_SET_REFUSED(pile, "hammer.efficiency=1.5", "hammer.efficiency", "(0, 1]");
   EXPECT_SET_REFUSED(pile, "hammer.ram=anvil", "hammer.ram", "names no body");
   EXPECT_SET_REFUSED(pile, "body.ram.velocity=-3.0", "body.ram.velocity", "set by [hammer]");
+}
+
+// A diesel hammer from the table on the 10 m pile, its toe in Smith's soil.
+std::string diesel_case(double toe) {
+  return std::string(testing::driven_pile_toml) + "[near_end]\nlaw = \"smith\"\nultimate = " + std::to_string(toe) +
+         R"(
+[hammer]
+model = "Delmag D19-42"
+[blow]
+ram = "ram"
+[time]
+end = 0.5
+step = "auto"
+scheme = "central-difference"
+[output]
+every = 100
+)";
+}
+
+TEST(DieselHammer, AModelAddsAnvilGasAndRamAndItsGasHasTheContractsColumns) {
+  const Case c = case_from(diesel_case(1e6));
+  ASSERT_EQ(c.bodies.size(), 4U);
+  EXPECT_EQ(c.bodies[2].name, "anvil");
+  EXPECT_EQ(c.load.gravity, 9.81);  // a diesel hammer runs under gravity
+  const JointData& gas = c.joints.back();
+  EXPECT_EQ(gas.law.law, JointLaw::diesel);
+  EXPECT_EQ(gas.column_stem(), "hammer.gas");
+  EXPECT_EQ(gas.law.gap, c.hammer->diesel.compression_length);  // the ram starts at the ports
+  // ... moving down at sqrt(2 g (stroke - L_c)), the first blow from max_stroke.
+  EXPECT_DOUBLE_EQ(-std::stod(c.bodies[3].velocity),
+                   std::sqrt(2.0 * 9.81 * (c.hammer->diesel.max_stroke - c.hammer->diesel.compression_length)));
+  const RunResult r = run(c);
+  for (const char* column : {"hammer.gas.pressure", "hammer.gas.force"})
+    EXPECT_NE(std::find(r.columns.begin(), r.columns.end(), column), r.columns.end()) << column;
+}
+
+TEST(DieselHammer, TheStrokeSettlesOverBlowsAndRisesWithTheSoilsResistance) {
+  double last = 0.0;
+  for (const double toe : {0.3e6, 1.5e6}) {
+    const RunResult r = run(case_from(diesel_case(toe)));
+    ASSERT_TRUE(r.summary.blow);
+    const BlowSummary& b = *r.summary.blow;
+    EXPECT_TRUE(r.summary.warnings.empty() || r.summary.warnings[0].rfind("diesel-stroke", 0) != 0)
+        << r.summary.warnings[0];
+    EXPECT_GE(b.blows_run, 2);
+    EXPECT_LE(b.blows_run, 20);
+    const double max_stroke = case_from(diesel_case(toe)).hammer->diesel.max_stroke;
+    EXPECT_LE(b.stroke, max_stroke);
+    // Settled: the last blow's rebound (capped at max_stroke) is its own stroke within 1%.
+    EXPECT_NEAR(std::min(b.next_stroke, max_stroke), b.stroke, 0.011 * b.stroke)
+        << "toe " << toe << ": stroke " << b.stroke << ", next " << b.next_stroke;
+    EXPECT_GT(b.stroke, last) << "a stiffer soil throws the ram higher";
+    last = b.stroke;
+  }
+}
+
+TEST(DieselHammer, ByHandItNeedsItsCylinder) {
+  const std::string hand = std::string(testing::driven_pile_toml) + R"(
+[time]
+end = 0.5
+step = "auto"
+scheme = "central-difference"
+[hammer]
+kind = "diesel"
+ram_mass = 1800.0
+anvil_mass = 400.0
+compression_length = 0.45
+chamber_length = 0.09
+combustion_pressure = 7e6
+max_stroke = 3.0
+)";
+  EXPECT_REFUSED(hand, "hammer.cylinder_area", "required by a diesel hammer");
+  EXPECT_REFUSED(hand + "cylinder_area = 0.08\nstroke = 0.3\n", "hammer.stroke", "not above the ports");
+  EXPECT_REFUSED(hand + "cylinder_area = 0.08\n[[body]]\nname = \"anvil\"\nkind = \"mass\"\nmass = 1.0\n",
+                 "hammer.kind", "\"anvil\"");
+  const Case c = case_from(hand + "cylinder_area = 0.08\n");
+  EXPECT_EQ(c.bodies.back().mass, 1800.0);
+  EXPECT_EQ(c.hammer->stroke, 3.0);
 }
 
 TEST(HammerTable, ShipsAtLeastTwentyHammersEachWithItsSource) {

@@ -498,7 +498,7 @@ TEST(ForLineCase, RecognisesTheThreeSolutions) {
   ASSERT_NE(junction, nullptr);
   EXPECT_EQ(junction->end_force(1.0), 2.5);
   EXPECT_GE(junction->valid_until(), 3.0);
-  step.joints = {JointData{"lower-upper", "lower", "upper", {}}};
+  step.joints = {JointData{"lower-upper", "lower", "upper", {}, {}}};
   step.joints[0].law.law = JointLaw::welded;
   EXPECT_NE(dynamic_cast<const Junction*>(for_line_case(step).get()), nullptr);
 }

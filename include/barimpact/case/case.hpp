@@ -131,6 +131,9 @@ struct JointData {
   std::string lower;  ///< the body nearer x = 0
   std::string upper;
   LawData law;
+  std::string stem;  ///< its columns' and link's name (empty: "joint.<name>"; a diesel hammer's gas: "hammer.gas")
+
+  [[nodiscard]] std::string column_stem() const { return stem.empty() ? "joint." + name : stem; }
 };
 
 /// [blow]: what a pile-driving blow's results (summary.json's `blow`) read.
@@ -279,6 +282,12 @@ class BodyIndex {
   std::unordered_map<std::string, std::size_t> index_;
   std::size_t size_ = 0;
 };
+
+/// Starts the ram of the case's [hammer] for a blow of `stroke` (m): at
+/// impact moving down at sqrt(2 g stroke efficiency), or a diesel hammer's
+/// at the exhaust ports moving down at sqrt(2 g (stroke - compression_length)),
+/// g the case's gravity or 9.81.
+void start_ram(Case& c, double stroke);
 
 /// The whole of an input file (`what`: "case file", "sweep file"); empty is
 /// fine. Throws InputError when it cannot be read or exceeds 64 MiB.

@@ -117,11 +117,16 @@ struct HammerModel {
 
 /// [hammer]: a hammer from a table (`model`) or by hand (`kind`, `ram`).
 struct HammerData {
-  std::string model;  ///< a table's name (empty: by hand)
+  std::string model;                 ///< a table's name (empty: by hand)
+  std::optional<HammerModel> entry;  ///< the table's entry (model only)
   HammerKind kind = HammerKind::drop;
   std::string ram;  ///< the ram body
+  /// The stroke: as given, energy / (m g), or the table's; a diesel
+  /// hammer's blow's fall height above impact (its first: max_stroke).
   double stroke = 0.0;
   double efficiency = 0.0;
+  double ram_mass = 0.0;  ///< a diesel hammer by hand
+  DieselData diesel;      ///< kind diesel
   /// The pile cushion between the pile head and the helmet (model only).
   struct Cushion {
     double stiffness = 0.0, restitution = 1.0;

@@ -57,6 +57,12 @@ struct BlowSummary {
   double next_stroke = std::numeric_limits<double>::quiet_NaN();
   double compression_work = std::numeric_limits<double>::quiet_NaN();
   double expansion_work = std::numeric_limits<double>::quiet_NaN();
+  /// A hammer's blows at one soil (a diesel hammer's stroke iteration): this
+  /// blow's stroke, the first blow's set and how many blows ran; NaN, NaN, 1
+  /// for a single blow.
+  double stroke = std::numeric_limits<double>::quiet_NaN();
+  double first_set = std::numeric_limits<double>::quiet_NaN();
+  int blows_run = 1;
 
   /// Blows per metre: infinite at refusal (set 0 after a finished blow), NaN
   /// when the ram never struck.
