@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "barimpact/schemes/penalty_links.hpp"
+#include "half_step_terms.hpp"
 
 namespace barimpact {
 
@@ -661,26 +662,36 @@ double LinePaper::velocity_at(std::size_t j) const {
 void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
   const std::size_t n = line_.nodes();
   const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;
+  const double* mass = line_.point_mass.data();
   double kinetic = 0.0, strain = 0.0, springs = 0.0;
-  auto w = [&](std::size_t j) { return (sb * zb[j] - sa * za[j]) * inv_dt; };
-  auto mid = [&](std::size_t j) { return 0.5 * (sb * zb[j] + sa * za[j]); };
-  // Node by node as one sum; a run of equal bonds takes its constants once
-  // (the same operations in the same order: the same bits).
+  // A run of equal bonds takes its constants once, a block of its nodes at
+  // a time: the terms vectorised (half_step_terms.hpp), then summed node by
+  // node as one sum (the same operations in the same order: the same bits).
+  constexpr std::size_t block = detail::energy_block;
+  double w[block + 1], m[block + 1], tp[block], tk[block], ts[block];
   for (const BondRun& run : bond_runs_) {
     const Bond& b = line_.bonds[run.first];
     const double third = b.mass / 3.0;
     double& sum = b.kind == BondKind::element ? strain : springs;
-    for (std::size_t j = run.first; j < run.last; ++j) {
-      const double wj = w(j), wr = w(j + 1);
-      kinetic += line_.point_mass[j] * wj * wj;
-      kinetic += third * (wj * wj + wj * wr + wr * wr);
-      if (b.kind == BondKind::open) continue;
-      const double dm = mid(j + 1) - mid(j), dw = wr - wj;
-      sum += b.stiffness * (dm * dm + extra * dw * dw);
+    const bool open = b.kind == BondKind::open;
+    for (std::size_t first = run.first; first < run.last; first += block) {
+      const std::size_t count = std::min(block, run.last - first);
+      detail::rates_and_means(za + first, sa, zb + first, sb, inv_dt, count, w, m);
+      for (std::size_t i = 0; i < count; ++i) {
+        tp[i] = mass[first + i] * w[i] * w[i];
+        tk[i] = third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+        const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
+        ts[i] = b.stiffness * (dm * dm + extra * dw * dw);
+      }
+      for (std::size_t i = 0; i < count; ++i) {
+        if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
+        kinetic += tk[i];
+        if (!open) sum += ts[i];
+      }
     }
   }
-  const double wl = w(n - 1);
-  kinetic += line_.point_mass[n - 1] * wl * wl;
+  const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * inv_dt;
+  kinetic += mass[n - 1] * wl * wl;
   e[0] = 0.5 * kinetic;
   e[1] = 0.5 * strain;
   e[2] = 0.5 * springs;

@@ -1,5 +1,6 @@
 #include "barimpact/schemes/paper_scheme.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
@@ -7,6 +8,7 @@
 
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/simd.hpp"
+#include "half_step_terms.hpp"
 #include "twisted_solve.hpp"
 
 namespace barimpact {
@@ -480,6 +482,28 @@ struct HalfStepSums {
     m_left = m_right;
   }
 };
+
+// HalfStepSums of levels (a, b) on a unit stride, block by block: the
+// elements' terms vectorised, then summed in element order (the same
+// operations in the same order: the same bits).
+void unit_stride_sums(const double* za, double sa, const double* zb, double sb, std::size_t n, HalfStepSums& s) {
+  constexpr std::size_t block = detail::energy_block;
+  double w[block + 1], m[block + 1], tw[block], tk[block], tm[block];
+  for (std::size_t first = 0; first + 1 < n; first += block) {
+    const std::size_t count = std::min(block, n - 1 - first);
+    detail::rates_and_means(za + first, sa, zb + first, sb, s.inv_dt, count, w, m);
+    for (std::size_t i = 0; i < count; ++i) {
+      tw[i] = 2.0 * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+      tk[i] = (w[i + 1] - w[i]) * (w[i + 1] - w[i]);
+      tm[i] = (m[i + 1] - m[i]) * (m[i + 1] - m[i]);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      s.wm += tw[i];
+      s.wk += tk[i];
+      s.mk += tm[i];
+    }
+  }
+}
 }  // namespace
 
 void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
@@ -501,6 +525,8 @@ void PaperScheme::half_step_energies(const double* za, double sa, const double* 
   };
   if (zc != nullptr)
     pass(std::true_type{});
+  else if (st == 1)  // a history row's one half step
+    unit_stride_sums(za, sa, zb, sb, n, ab);
   else
     pass(std::false_type{});
   const HalfStepSums* sums[2] = {&ab, &bc};
