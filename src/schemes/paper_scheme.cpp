@@ -23,15 +23,36 @@ OneBar one_bar_of(const Case& c) {
   return *v;
 }
 
-// The element matrix [[p, q], [q, p]] assembled on `nodes` nodes of the
-// uniform mesh: the mass (p, q = rho h/3, rho h/6) or a stiffness (c/h, -c/h).
-Tridiagonal assemble(std::size_t nodes, double p, double q) {
-  Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes - 1, q)};
-  for (std::size_t e = 0; e + 1 < nodes; ++e) {
-    t.diag[e] += p;
-    t.diag[e + 1] += p;
-  }
-  return t;
+// The element matrix [[p, q], [q, p]] assembled on n nodes of the uniform
+// mesh (the mass: p, q = rho h/3, rho h/6), row j's diagonal as assembly
+// adds it up; its off-diagonal is q. The start's two uses below read it
+// without assembling it: at 10^6 nodes, megabytes the process would fault
+// in for one solve.
+double uniform_diagonal(std::size_t n, double p, std::size_t j) {
+  return j == 0 || j == n - 1 ? p : p + p;
+}
+
+// x^T A x, as Tridiagonal::quadratic_form sums it (the same bits).
+double uniform_quadratic_form(double p, double q, std::span<const double> x) {
+  const std::size_t n = x.size();
+  double s = 0.0;
+  for (std::size_t i = 0; i < n; ++i) s += uniform_diagonal(n, p, i) * x[i] * x[i];
+  for (std::size_t i = 0; i + 1 < n; ++i) s += 2.0 * q * x[i] * x[i + 1];
+  return s;
+}
+
+// x <- A^{-1} x as FactoredTridiagonal factors and solves it (the same
+// pivots; its couplings q / pivot formed again where used: the same bits),
+// the last row the identity when `fix_last`.
+void uniform_solve(double p, double q, bool fix_last, std::vector<double>& x) {
+  const std::size_t n = x.size();
+  std::vector<double> inv(n, 0.0);
+  inv[n - 1] = fix_last ? 0.0 : 1.0 / uniform_diagonal(n, p, n - 1);
+  for (std::size_t j = n - 1; j-- > 0;) inv[j] = 1.0 / (uniform_diagonal(n, p, j) - q * (q * inv[j + 1]));
+  if (inv[n - 1] == 0.0) x[n - 1] = 0.0;
+  for (std::size_t j = n - 1; j-- > 0;) x[j] -= q * inv[j + 1] * x[j + 1];
+  x[0] *= inv[0];
+  for (std::size_t j = 1; j < n; ++j) x[j] = x[j] * inv[j] - q * inv[j] * x[j - 1];
 }
 
 // The same on three rows, the first, an inner and the last (the ends' p, the
@@ -195,7 +216,7 @@ void PaperScheme::start() {
   }
   n_ = 0;
   cached_ = {};
-  start_kinetic_ = 0.5 * assemble(n, density_ * h_ / 3.0, density_ * h_ / 6.0).quadratic_form(v0_);
+  start_kinetic_ = 0.5 * uniform_quadratic_form(density_ * h_ / 3.0, density_ * h_ / 6.0, v0_);
   start_strain_ = 0.5 * stiffness_form(a_, h_, u0_, u0_);
   book_first_half_step();
 }
@@ -233,7 +254,7 @@ std::vector<double> PaperScheme::initial_acceleration() const {
     a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - row(pa, qa, u0_, j) - row(pb, qb, v0_, j);
   a[0] += end_force(u0_[0], v0_[0]);
   if (clamped_) a[n - 1] = 0.0;
-  FactoredTridiagonal(assemble(n, density_ * h_ / 3.0, density_ * h_ / 6.0), clamped_).solve(a);
+  uniform_solve(density_ * h_ / 3.0, density_ * h_ / 6.0, clamped_, a);
   return a;
 }
 
