@@ -48,7 +48,14 @@ void uniform_solve(double p, double q, bool fix_last, std::vector<double>& x) {
   const std::size_t n = x.size();
   std::vector<double> inv(n, 0.0);
   inv[n - 1] = fix_last ? 0.0 : 1.0 / uniform_diagonal(n, p, n - 1);
-  for (std::size_t j = n - 1; j-- > 0;) inv[j] = 1.0 / (uniform_diagonal(n, p, j) - q * (q * inv[j + 1]));
+  for (std::size_t j = n - 1; j-- > 0;) {
+    if (j > 0 && j + 4 <= n && inv[j + 1] == inv[j + 2]) {  // inner rows at the fixed point: see factor()
+      std::fill(inv.begin() + 1, inv.begin() + static_cast<std::ptrdiff_t>(j + 1), inv[j + 1]);
+      j = 1;
+      continue;
+    }
+    inv[j] = 1.0 / (uniform_diagonal(n, p, j) - q * (q * inv[j + 1]));
+  }
   if (inv[n - 1] == 0.0) x[n - 1] = 0.0;
   for (std::size_t j = n - 1; j-- > 0;) x[j] -= q * inv[j + 1] * x[j + 1];
   x[0] *= inv[0];
@@ -138,13 +145,30 @@ void PaperScheme::factor(const std::array<double, 3>& rows) {
   const std::size_t last = n - 1, twist = last / 2;
   inv_.assign(n, 0.0);
   upper_.assign(n, 0.0);
+  // On the inner rows, all alike, each chain's pivot reaches its fixed point
+  // (exactly, in floating point) within a few dozen rows: two equal pivots
+  // in a row repeat to the twist, the same bits without the divisions.
   for (std::size_t j = 0; j < twist; ++j) {
+    if (j >= 3 && inv_[j - 1] == inv_[j - 2]) {
+      std::fill(inv_.begin() + static_cast<std::ptrdiff_t>(j), inv_.begin() + static_cast<std::ptrdiff_t>(twist),
+                inv_[j - 1]);
+      std::fill(upper_.begin() + static_cast<std::ptrdiff_t>(j), upper_.begin() + static_cast<std::ptrdiff_t>(twist),
+                upper_[j - 1]);
+      break;
+    }
     inv_[j] = 1.0 / (a_diag(j) - (j > 0 ? a_off_ * upper_[j - 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
   // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
   // exactly that, and its zero up removes the column's coupling.
   for (std::size_t j = last; j > twist; --j) {
+    if (j + 3 <= last && inv_[j + 1] == inv_[j + 2]) {
+      std::fill(inv_.begin() + static_cast<std::ptrdiff_t>(twist + 1),
+                inv_.begin() + static_cast<std::ptrdiff_t>(j + 1), inv_[j + 1]);
+      std::fill(upper_.begin() + static_cast<std::ptrdiff_t>(twist + 1),
+                upper_.begin() + static_cast<std::ptrdiff_t>(j + 1), upper_[j + 1]);
+      break;
+    }
     inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (a_diag(j) - (j < last ? a_off_ * upper_[j + 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
