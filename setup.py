@@ -75,7 +75,8 @@ class CMakeBuild(build_ext):
         target.parent.mkdir(parents=True, exist_ok=True)
         self.copy_file(str(core), str(target))
         # results.h5's HDF5 module, which the library looks for beside the package's _core.
-        self.copy_file(str(build / "python" / "barimpact" / "libbarimpact_hdf5.so"), str(target.parent))
+        for module in (build / "python" / "barimpact").glob("libbarimpact_hdf5.so.*"):
+            self.copy_file(str(module), str(target.parent))
         # The command, for build_scripts (which runs after build_ext).
         scripts = Path(self.build_temp).resolve() / "scripts"
         scripts.mkdir(parents=True, exist_ok=True)

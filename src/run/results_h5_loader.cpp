@@ -32,7 +32,7 @@ std::vector<fs::path> module_candidates() {
   }
   dirs.emplace_back(BARIMPACT_MODULE_BUILD_DIR);
   dirs.emplace_back(BARIMPACT_MODULE_INSTALL_DIR);
-  for (auto& d : dirs) d /= detail::hdf5_module_file;
+  for (auto& d : dirs) d /= BARIMPACT_HDF5_MODULE;
   return dirs;
 }
 
@@ -50,7 +50,7 @@ const detail::Hdf5Module* load_module() {
     tried = fmt::format("{}: no {}", file.string(), detail::hdf5_module_entry);
   }
   throw Hdf5Error(
-      fmt::format("results.h5 needs the HDF5 module {} ({})", detail::hdf5_module_file,
+      fmt::format("results.h5 needs the HDF5 module {} ({})", BARIMPACT_HDF5_MODULE,
                   tried.empty() ? std::string("not found beside the program or its Python package") : tried));
 }
 

@@ -28,8 +28,7 @@ struct Hdf5Module {
   HistoryColumns (*read_history)(const std::filesystem::path& path);
 };
 
-/// The module's file name, and its one exported symbol.
-inline constexpr const char* hdf5_module_file = "libbarimpact_hdf5.so";
+/// The module's one exported symbol.
 inline constexpr const char* hdf5_module_entry = "barimpact_hdf5_module";
 
 }  // namespace barimpact::detail
