@@ -656,39 +656,58 @@ double LinePaper::velocity_at(std::size_t j) const {
   return (scale(n_ + 1) * next_[j] - scale(n_ - 1) * prev_[j]) / (2.0 * dt_);
 }
 
+namespace {
+
+// A run of equal bonds, nodes first..last: the levels (a, b) scaled by sa, sb,
+// the nodes' point masses, the bonds' mass / 3 and stiffness.
+struct BondRunTerms {
+  const double *za, *zb, *mass;
+  double sa, sb, inv_dt, extra, third, stiffness;
+  bool open;
+};
+
+// The run's kinetic and bond terms into the two sums, a block of nodes at a
+// time: the terms vectorised (half_step_terms.hpp), then summed node by node
+// (the same operations in the same order as the node loop: the same bits).
+BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum,
+                                     double& bond_sum) {
+  constexpr std::size_t block = detail::energy_block;
+  double kinetic = kinetic_sum, sum = bond_sum;  // in registers: the references may alias
+  double w[block + 1], m[block + 1], tp[block], tk[block], ts[block];
+  for (; first < last; first += block) {
+    const std::size_t count = std::min(block, last - first);
+    detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
+    for (std::size_t i = 0; i < count; ++i) {
+      tp[i] = r.mass[first + i] * w[i] * w[i];
+      tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+      const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
+      ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
+      kinetic += tk[i];
+      if (!r.open) sum += ts[i];
+    }
+  }
+  kinetic_sum = kinetic;
+  bond_sum = sum;
+}
+
+}  // namespace
+
 // (1/2)|w|_M^2, and (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 over the bar
 // elements and over the springs, w = (u^b - u^a)/dt, m = (u^b + u^a)/2: the
-// identity (7.1) makes their sum telescope (lambda = 0).
+// identity (7.1) makes their sum telescope (lambda = 0). Node by node as one
+// sum; a run of equal bonds takes its constants once.
 void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
   const std::size_t n = line_.nodes();
   const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;
   const double* mass = line_.point_mass.data();
   double kinetic = 0.0, strain = 0.0, springs = 0.0;
-  // A run of equal bonds takes its constants once, a block of its nodes at
-  // a time: the terms vectorised (half_step_terms.hpp), then summed node by
-  // node as one sum (the same operations in the same order: the same bits).
-  constexpr std::size_t block = detail::energy_block;
-  double w[block + 1], m[block + 1], tp[block], tk[block], ts[block];
   for (const BondRun& run : bond_runs_) {
     const Bond& b = line_.bonds[run.first];
-    const double third = b.mass / 3.0;
-    double& sum = b.kind == BondKind::element ? strain : springs;
-    const bool open = b.kind == BondKind::open;
-    for (std::size_t first = run.first; first < run.last; first += block) {
-      const std::size_t count = std::min(block, run.last - first);
-      detail::rates_and_means(za + first, sa, zb + first, sb, inv_dt, count, w, m);
-      for (std::size_t i = 0; i < count; ++i) {
-        tp[i] = mass[first + i] * w[i] * w[i];
-        tk[i] = third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
-        const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
-        ts[i] = b.stiffness * (dm * dm + extra * dw * dw);
-      }
-      for (std::size_t i = 0; i < count; ++i) {
-        if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
-        kinetic += tk[i];
-        if (!open) sum += ts[i];
-      }
-    }
+    const BondRunTerms terms{za, zb, mass, sa, sb, inv_dt, extra, b.mass / 3.0, b.stiffness, b.kind == BondKind::open};
+    add_run(terms, run.first, run.last, kinetic, b.kind == BondKind::element ? strain : springs);
   }
   const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * inv_dt;
   kinetic += mass[n - 1] * wl * wl;

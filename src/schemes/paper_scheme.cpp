@@ -531,7 +531,8 @@ struct HalfStepSums {
 // HalfStepSums of levels (a, b) on a unit stride, block by block: the
 // elements' terms vectorised, then summed in element order (the same
 // operations in the same order: the same bits).
-void unit_stride_sums(const double* za, double sa, const double* zb, double sb, std::size_t n, HalfStepSums& s) {
+BARIMPACT_ENERGY_CLONES void unit_stride_sums(const double* za, double sa, const double* zb, double sb, std::size_t n,
+                                              HalfStepSums& s) {
   constexpr std::size_t block = detail::energy_block;
   double w[block + 1], m[block + 1], tw[block], tk[block], tm[block];
   for (std::size_t first = 0; first + 1 < n; first += block) {
