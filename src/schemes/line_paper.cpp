@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "barimpact/schemes/penalty_links.hpp"
 #include "half_step_terms.hpp"
@@ -38,7 +39,7 @@ void LinePaper::assemble() {
 
   // S = lambda^2 M + K + lambda C + sum_i (k_i/2) h_i h_i^T, D = 2 lambda M + C.
   Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiff_);
-  S = Tridiagonal::combine(1.0, S, lambda_, visc_);
+  S = Tridiagonal::combine(1.0, std::move(S), lambda_, visc_);
   for (const auto& l : line_.links) {
     if (l.law.kind == LawKind::smith) continue;  // soil_'s
     const double half = 0.5 * l.law.stiffness;
