@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "../model/huge_pages.hpp"
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "half_step_terms.hpp"
@@ -143,8 +144,8 @@ void PaperScheme::factor(const std::array<double, 3>& rows) {
   // (see twisted_solve): pivots p_j from row 0 down to row k - 1 and from row
   // M up to row k + 1, with up_j = a_off / p_j, and row k = M/2's pivot last.
   const std::size_t last = n - 1, twist = last / 2;
-  inv_.assign(n, 0.0);
-  upper_.assign(n, 0.0);
+  detail::assign_huge(inv_, n, 0.0);
+  detail::assign_huge(upper_, n, 0.0);
   // On the inner rows, all alike, each chain's pivot reaches its fixed point
   // (exactly, in floating point) within a few dozen rows: two equal pivots
   // in a row repeat to the twist, the same bits without the divisions.
@@ -189,9 +190,9 @@ void PaperScheme::respond_to_dashpot() {
 
 void PaperScheme::allocate(const Case& c, const OneBar& one) {
   const std::size_t n = line_.nodes();
-  for (auto& level : levels_) level.assign(n, 0.0);
-  u0_.assign(n, 0.0);
-  v0_.assign(n, 0.0);
+  for (auto& level : levels_) detail::assign_huge(level, n, 0.0);
+  detail::assign_huge(u0_, n, 0.0);
+  detail::assign_huge(v0_, n, 0.0);
 
   body_force_ = std::make_unique<Expression>(c.load.body_force);
   if (body_force_->is_zero()) {
