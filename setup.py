@@ -68,17 +68,23 @@ class CMakeBuild(build_ext):
                          "-DBARIMPACT_BUILD_TESTS=OFF", "-DBARIMPACT_BUILD_BENCH=OFF",
                          f"-DBARIMPACT_PYTHON={sys.executable}"]
             subprocess.run(configure, check=True)
-        subprocess.run(["cmake", "--build", str(build), "-j", jobs, "--target", "barimpact_python", "barimpact_cli"],
-                       check=True)
+        subprocess.run(["cmake", "--build", str(build), "-j", jobs, "--target", "barimpact_python", "barimpact_cli",
+                        "barimpact_hdf5_module"], check=True)
         core = next((build / "python" / "barimpact").glob("_core*.so"))
         target = Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         self.copy_file(str(core), str(target))
+        # results.h5's HDF5 module, which the library looks for beside the package's _core.
+        for module in (build / "python" / "barimpact").glob("libbarimpact_hdf5.so.*"):
+            self.copy_file(str(module), str(target.parent))
         # The command, for build_scripts (which runs after build_ext).
         scripts = Path(self.build_temp).resolve() / "scripts"
         scripts.mkdir(parents=True, exist_ok=True)
-        self.copy_file(str(build / "barimpact"), str(scripts / "barimpact"))
-        self.distribution.scripts = [str(scripts / "barimpact")]  # read when build_scripts is finalized
+        # With MPI, its build of the command too, which `barimpact sweep` runs under mpirun.
+        commands = [name for name in ("barimpact", "barimpact-mpi") if (build / name).exists()]
+        for name in commands:
+            self.copy_file(str(build / name), str(scripts / name))
+        self.distribution.scripts = [str(scripts / name) for name in commands]  # read when build_scripts is finalized
 
 
 class CopyCommand(build_scripts):

@@ -937,7 +937,25 @@ int report(const std::exception_ptr& failure) {
 
 }  // namespace
 
+#ifdef BARIMPACT_MPI_PROGRAM
+// Under mpirun (Open MPI sets OMPI_COMM_WORLD_SIZE) a sweep runs as the MPI
+// build of this command, beside it, so that no other process loads MPI's
+// libraries. Returns only when that program cannot be run.
+int exec_mpi_program(char** argv) {
+  std::error_code ec;
+  const auto program = std::filesystem::read_symlink("/proc/self/exe", ec).parent_path() / BARIMPACT_MPI_PROGRAM;
+  if (!ec) execv(program.c_str(), argv);
+  fmt::print(stderr, "barimpact: error: a sweep under mpirun runs {}: {}\n", program.string(),
+             ec ? ec.message() : std::strerror(errno));
+  return 1;
+}
+#endif
+
 int main(int argc, char** argv) {
+#ifdef BARIMPACT_MPI_PROGRAM
+  if (argc > 1 && std::string_view(argv[1]) == "sweep" && std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr)
+    return exec_mpi_program(argv);
+#endif
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "../model/huge_pages.hpp"
+
 namespace barimpact {
 
 namespace {
@@ -208,9 +210,9 @@ Line build(const Case& c) {
   Line line;
   std::size_t nodes = 0;  // reserved: a bar of 10^6 elements grows no copies
   for (const auto& b : c.bodies) nodes += b.kind == BodyKind::bar ? static_cast<std::size_t>(b.elements) + 1 : 1;
-  line.x.reserve(nodes);
-  line.bonds.reserve(nodes);
-  line.point_mass.reserve(nodes);
+  detail::reserve_huge(line.x, nodes);
+  detail::reserve_huge(line.bonds, nodes);
+  detail::reserve_huge(line.point_mass, nodes);
   double x = 0.0;
   const BodyIndex index(c.bodies);
   const auto below = joints_below(c, index);

@@ -3,6 +3,7 @@
 #include <array>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace barimpact {
 
@@ -25,10 +26,14 @@ double Tridiagonal::quadratic_form(std::span<const double> x) const {
 }
 
 Tridiagonal Tridiagonal::combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b) {
+  return combine(c1, Tridiagonal{a.diag, a.off}, c2, b);
+}
+
+Tridiagonal Tridiagonal::combine(double c1, Tridiagonal&& a, double c2, const Tridiagonal& b) {
   assert(a.size() == b.size());
-  Tridiagonal r{a.diag, a.off};
-  for (std::size_t i = 0; i < r.diag.size(); ++i) r.diag[i] = c1 * a.diag[i] + c2 * b.diag[i];
-  for (std::size_t i = 0; i < r.off.size(); ++i) r.off[i] = c1 * a.off[i] + c2 * b.off[i];
+  Tridiagonal r = std::move(a);
+  for (std::size_t i = 0; i < r.diag.size(); ++i) r.diag[i] = c1 * r.diag[i] + c2 * b.diag[i];
+  for (std::size_t i = 0; i < r.off.size(); ++i) r.off[i] = c1 * r.off[i] + c2 * b.off[i];
   return r;
 }
 

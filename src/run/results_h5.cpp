@@ -1,6 +1,4 @@
-#include "barimpact/run/results_h5.hpp"
-
-#include "output_file.hpp"
+#include "results_h5_module.hpp"
 
 #include <fmt/format.h>
 #include <hdf5.h>
@@ -252,39 +250,31 @@ void write_history(const Writer& w, const RunResult& result) {
   }
 }
 
-void write_fields(const Writer& w, const Case& c, const Fields& f) {
+void write_fields(const Writer& w, int compression, const Fields& f) {
   const Id fields = w.group("fields");
   w.texts(fields, "columns", {"t", "x", "u", "v", "sigma", "eps_p", "body"});
   w.dataset(fields, "t", {f.count()}, f.t.data());
   w.dataset(fields, "x", {f.nodes()}, f.x.data());
   for (const auto& [name, values] :
        {std::pair{"u", &f.u}, std::pair{"v", &f.v}, std::pair{"sigma", &f.sigma}, std::pair{"eps_p", &f.eps_p}})
-    w.dataset(fields, name, {f.count(), f.nodes()}, values->data(), c.output.compression);
+    w.dataset(fields, name, {f.count(), f.nodes()}, values->data(), compression);
   std::vector<std::int32_t> body(f.body.begin(), f.body.end());
   body.resize(f.nodes());
   const Id set = w.dataset(fields, "body", {f.nodes()}, body.data(), 0, true);
   w.texts(set, "names", f.body_names);
 }
 
-}  // namespace
-
-void write_results_h5(const fs::path& path, const Case& c, const RunResult& result) {
-  std::vector<char> image;
-  {
-    const Session session;
-    Writer w(path);
-    w.text(w.file(), "case", c.to_toml());
-    w.text(w.file(), "units", c.units);
-    write_history(w, result);
-    write_fields(w, c, result.fields);
-    image = w.image();
-  }
-  detail::OutputFile out(path);
-  out.write(std::string_view(image.data(), image.size()));
-  out.close();
+std::vector<char> image(const fs::path& path, const detail::Hdf5Case& c, const RunResult& result) {
+  const Session session;
+  Writer w(path);
+  w.text(w.file(), "case", c.toml);
+  w.text(w.file(), "units", c.units);
+  write_history(w, result);
+  write_fields(w, c.compression, result.fields);
+  return w.image();
 }
 
-HistoryColumns read_results_h5_history(const fs::path& path) {
+HistoryColumns read_history(const fs::path& path) {
   const Session session;
   const std::string file_name = path.string();
   auto at = [&](std::string_view what) { return fmt::format("{}: {}", file_name, what); };
@@ -324,4 +314,11 @@ HistoryColumns read_results_h5_history(const fs::path& path) {
   return out;
 }
 
+}  // namespace
+
 }  // namespace barimpact
+
+extern "C" __attribute__((visibility("default"))) const barimpact::detail::Hdf5Module* barimpact_hdf5_module() {
+  static const barimpact::detail::Hdf5Module module{barimpact::image, barimpact::read_history};
+  return &module;
+}

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include "barimpact/schemes/penalty_links.hpp"
+#include "half_step_terms.hpp"
 
 namespace barimpact {
 
@@ -37,7 +39,7 @@ void LinePaper::assemble() {
 
   // S = lambda^2 M + K + lambda C + sum_i (k_i/2) h_i h_i^T, D = 2 lambda M + C.
   Tridiagonal S = Tridiagonal::combine(lambda_ * lambda_, mass_, 1.0, stiff_);
-  S = Tridiagonal::combine(1.0, S, lambda_, visc_);
+  S = Tridiagonal::combine(1.0, std::move(S), lambda_, visc_);
   for (const auto& l : line_.links) {
     if (l.law.kind == LawKind::smith) continue;  // soil_'s
     const double half = 0.5 * l.law.stiffness;
@@ -655,32 +657,61 @@ double LinePaper::velocity_at(std::size_t j) const {
   return (scale(n_ + 1) * next_[j] - scale(n_ - 1) * prev_[j]) / (2.0 * dt_);
 }
 
+namespace {
+
+// A run of equal bonds, nodes first..last: the levels (a, b) scaled by sa, sb,
+// the nodes' point masses, the bonds' mass / 3 and stiffness.
+struct BondRunTerms {
+  const double *za, *zb, *mass;
+  double sa, sb, inv_dt, extra, third, stiffness;
+  bool open;
+};
+
+// The run's kinetic and bond terms into the two sums, a block of nodes at a
+// time: the terms vectorised (half_step_terms.hpp), then summed node by node
+// (the same operations in the same order as the node loop: the same bits).
+BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum,
+                                     double& bond_sum) {
+  constexpr std::size_t block = detail::energy_block;
+  double kinetic = kinetic_sum, sum = bond_sum;  // in registers: the references may alias
+  double w[block + 1], m[block + 1], tp[block], tk[block], ts[block];
+  for (; first < last; first += block) {
+    const std::size_t count = std::min(block, last - first);
+    detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
+    for (std::size_t i = 0; i < count; ++i) {
+      tp[i] = r.mass[first + i] * w[i] * w[i];
+      tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+      const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
+      ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
+      kinetic += tk[i];
+      if (!r.open) sum += ts[i];
+    }
+  }
+  kinetic_sum = kinetic;
+  bond_sum = sum;
+}
+
+}  // namespace
+
 // (1/2)|w|_M^2, and (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 over the bar
 // elements and over the springs, w = (u^b - u^a)/dt, m = (u^b + u^a)/2: the
-// identity (7.1) makes their sum telescope (lambda = 0).
+// identity (7.1) makes their sum telescope (lambda = 0). Node by node as one
+// sum; a run of equal bonds takes its constants once.
 void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
   const std::size_t n = line_.nodes();
   const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;
+  const double* mass = line_.point_mass.data();
   double kinetic = 0.0, strain = 0.0, springs = 0.0;
-  auto w = [&](std::size_t j) { return (sb * zb[j] - sa * za[j]) * inv_dt; };
-  auto mid = [&](std::size_t j) { return 0.5 * (sb * zb[j] + sa * za[j]); };
-  // Node by node as one sum; a run of equal bonds takes its constants once
-  // (the same operations in the same order: the same bits).
   for (const BondRun& run : bond_runs_) {
     const Bond& b = line_.bonds[run.first];
-    const double third = b.mass / 3.0;
-    double& sum = b.kind == BondKind::element ? strain : springs;
-    for (std::size_t j = run.first; j < run.last; ++j) {
-      const double wj = w(j), wr = w(j + 1);
-      kinetic += line_.point_mass[j] * wj * wj;
-      kinetic += third * (wj * wj + wj * wr + wr * wr);
-      if (b.kind == BondKind::open) continue;
-      const double dm = mid(j + 1) - mid(j), dw = wr - wj;
-      sum += b.stiffness * (dm * dm + extra * dw * dw);
-    }
+    const BondRunTerms terms{za, zb, mass, sa, sb, inv_dt, extra, b.mass / 3.0, b.stiffness, b.kind == BondKind::open};
+    add_run(terms, run.first, run.last, kinetic, b.kind == BondKind::element ? strain : springs);
   }
-  const double wl = w(n - 1);
-  kinetic += line_.point_mass[n - 1] * wl * wl;
+  const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * inv_dt;
+  kinetic += mass[n - 1] * wl * wl;
   e[0] = 0.5 * kinetic;
   e[1] = 0.5 * strain;
   e[2] = 0.5 * springs;

@@ -1,12 +1,15 @@
 #include "barimpact/schemes/paper_scheme.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <type_traits>
 
 #include <fmt/format.h>
 
+#include "../model/huge_pages.hpp"
 #include "barimpact/case/line_builder.hpp"
 #include "barimpact/schemes/simd.hpp"
+#include "half_step_terms.hpp"
 #include "twisted_solve.hpp"
 
 namespace barimpact {
@@ -21,15 +24,43 @@ OneBar one_bar_of(const Case& c) {
   return *v;
 }
 
-// The element matrix [[p, q], [q, p]] assembled on `nodes` nodes of the
-// uniform mesh: the mass (p, q = rho h/3, rho h/6) or a stiffness (c/h, -c/h).
-Tridiagonal assemble(std::size_t nodes, double p, double q) {
-  Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes - 1, q)};
-  for (std::size_t e = 0; e + 1 < nodes; ++e) {
-    t.diag[e] += p;
-    t.diag[e + 1] += p;
+// The element matrix [[p, q], [q, p]] assembled on n nodes of the uniform
+// mesh (the mass: p, q = rho h/3, rho h/6), row j's diagonal as assembly
+// adds it up; its off-diagonal is q. The start's two uses below read it
+// without assembling it: at 10^6 nodes, megabytes the process would fault
+// in for one solve.
+double uniform_diagonal(std::size_t n, double p, std::size_t j) {
+  return j == 0 || j == n - 1 ? p : p + p;
+}
+
+// x^T A x, as Tridiagonal::quadratic_form sums it (the same bits).
+double uniform_quadratic_form(double p, double q, std::span<const double> x) {
+  const std::size_t n = x.size();
+  double s = 0.0;
+  for (std::size_t i = 0; i < n; ++i) s += uniform_diagonal(n, p, i) * x[i] * x[i];
+  for (std::size_t i = 0; i + 1 < n; ++i) s += 2.0 * q * x[i] * x[i + 1];
+  return s;
+}
+
+// x <- A^{-1} x as FactoredTridiagonal factors and solves it (the same
+// pivots; its couplings q / pivot formed again where used: the same bits),
+// the last row the identity when `fix_last`.
+void uniform_solve(double p, double q, bool fix_last, std::vector<double>& x) {
+  const std::size_t n = x.size();
+  std::vector<double> inv(n, 0.0);
+  inv[n - 1] = fix_last ? 0.0 : 1.0 / uniform_diagonal(n, p, n - 1);
+  for (std::size_t j = n - 1; j-- > 0;) {
+    if (j > 0 && j + 4 <= n && inv[j + 1] == inv[j + 2]) {  // inner rows at the fixed point: see factor()
+      std::fill(inv.begin() + 1, inv.begin() + static_cast<std::ptrdiff_t>(j + 1), inv[j + 1]);
+      j = 1;
+      continue;
+    }
+    inv[j] = 1.0 / (uniform_diagonal(n, p, j) - q * (q * inv[j + 1]));
   }
-  return t;
+  if (inv[n - 1] == 0.0) x[n - 1] = 0.0;
+  for (std::size_t j = n - 1; j-- > 0;) x[j] -= q * inv[j + 1] * x[j + 1];
+  x[0] *= inv[0];
+  for (std::size_t j = 1; j < n; ++j) x[j] = x[j] * inv[j] - q * inv[j] * x[j - 1];
 }
 
 // The same on three rows, the first, an inner and the last (the ends' p, the
@@ -113,15 +144,32 @@ void PaperScheme::factor(const std::array<double, 3>& rows) {
   // (see twisted_solve): pivots p_j from row 0 down to row k - 1 and from row
   // M up to row k + 1, with up_j = a_off / p_j, and row k = M/2's pivot last.
   const std::size_t last = n - 1, twist = last / 2;
-  inv_.assign(n, 0.0);
-  upper_.assign(n, 0.0);
+  detail::assign_huge(inv_, n, 0.0);
+  detail::assign_huge(upper_, n, 0.0);
+  // On the inner rows, all alike, each chain's pivot reaches its fixed point
+  // (exactly, in floating point) within a few dozen rows: two equal pivots
+  // in a row repeat to the twist, the same bits without the divisions.
   for (std::size_t j = 0; j < twist; ++j) {
+    if (j >= 3 && inv_[j - 1] == inv_[j - 2]) {
+      std::fill(inv_.begin() + static_cast<std::ptrdiff_t>(j), inv_.begin() + static_cast<std::ptrdiff_t>(twist),
+                inv_[j - 1]);
+      std::fill(upper_.begin() + static_cast<std::ptrdiff_t>(j), upper_.begin() + static_cast<std::ptrdiff_t>(twist),
+                upper_[j - 1]);
+      break;
+    }
     inv_[j] = 1.0 / (a_diag(j) - (j > 0 ? a_off_ * upper_[j - 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
   // Clamped: row M reads u_M = 0. A zero pivot inverse makes the sweeps give
   // exactly that, and its zero up removes the column's coupling.
   for (std::size_t j = last; j > twist; --j) {
+    if (j + 3 <= last && inv_[j + 1] == inv_[j + 2]) {
+      std::fill(inv_.begin() + static_cast<std::ptrdiff_t>(twist + 1),
+                inv_.begin() + static_cast<std::ptrdiff_t>(j + 1), inv_[j + 1]);
+      std::fill(upper_.begin() + static_cast<std::ptrdiff_t>(twist + 1),
+                upper_.begin() + static_cast<std::ptrdiff_t>(j + 1), upper_[j + 1]);
+      break;
+    }
     inv_[j] = clamped_ && j == last ? 0.0 : 1.0 / (a_diag(j) - (j < last ? a_off_ * upper_[j + 1] : 0.0));
     upper_[j] = a_off_ * inv_[j];
   }
@@ -142,9 +190,9 @@ void PaperScheme::respond_to_dashpot() {
 
 void PaperScheme::allocate(const Case& c, const OneBar& one) {
   const std::size_t n = line_.nodes();
-  for (auto& level : levels_) level.assign(n, 0.0);
-  u0_.assign(n, 0.0);
-  v0_.assign(n, 0.0);
+  for (auto& level : levels_) detail::assign_huge(level, n, 0.0);
+  detail::assign_huge(u0_, n, 0.0);
+  detail::assign_huge(v0_, n, 0.0);
 
   body_force_ = std::make_unique<Expression>(c.load.body_force);
   if (body_force_->is_zero()) {
@@ -193,7 +241,7 @@ void PaperScheme::start() {
   }
   n_ = 0;
   cached_ = {};
-  start_kinetic_ = 0.5 * assemble(n, density_ * h_ / 3.0, density_ * h_ / 6.0).quadratic_form(v0_);
+  start_kinetic_ = 0.5 * uniform_quadratic_form(density_ * h_ / 3.0, density_ * h_ / 6.0, v0_);
   start_strain_ = 0.5 * stiffness_form(a_, h_, u0_, u0_);
   book_first_half_step();
 }
@@ -231,7 +279,7 @@ std::vector<double> PaperScheme::initial_acceleration() const {
     a[j] = (load_mode_ == LoadMode::zero ? 0.0 : loads_[0][j]) - row(pa, qa, u0_, j) - row(pb, qb, v0_, j);
   a[0] += end_force(u0_[0], v0_[0]);
   if (clamped_) a[n - 1] = 0.0;
-  FactoredTridiagonal(assemble(n, density_ * h_ / 3.0, density_ * h_ / 6.0), clamped_).solve(a);
+  uniform_solve(density_ * h_ / 3.0, density_ * h_ / 6.0, clamped_, a);
   return a;
 }
 
@@ -480,6 +528,29 @@ struct HalfStepSums {
     m_left = m_right;
   }
 };
+
+// HalfStepSums of levels (a, b) on a unit stride, block by block: the
+// elements' terms vectorised, then summed in element order (the same
+// operations in the same order: the same bits).
+BARIMPACT_ENERGY_CLONES void unit_stride_sums(const double* za, double sa, const double* zb, double sb, std::size_t n,
+                                              HalfStepSums& s) {
+  constexpr std::size_t block = detail::energy_block;
+  double w[block + 1], m[block + 1], tw[block], tk[block], tm[block];
+  for (std::size_t first = 0; first + 1 < n; first += block) {
+    const std::size_t count = std::min(block, n - 1 - first);
+    detail::rates_and_means(za + first, sa, zb + first, sb, s.inv_dt, count, w, m);
+    for (std::size_t i = 0; i < count; ++i) {
+      tw[i] = 2.0 * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+      tk[i] = (w[i + 1] - w[i]) * (w[i + 1] - w[i]);
+      tm[i] = (m[i + 1] - m[i]) * (m[i + 1] - m[i]);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      s.wm += tw[i];
+      s.wk += tk[i];
+      s.mk += tm[i];
+    }
+  }
+}
 }  // namespace
 
 void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
@@ -501,6 +572,8 @@ void PaperScheme::half_step_energies(const double* za, double sa, const double* 
   };
   if (zc != nullptr)
     pass(std::true_type{});
+  else if (st == 1)  // a history row's one half step
+    unit_stride_sums(za, sa, zb, sb, n, ab);
   else
     pass(std::false_type{});
   const HalfStepSums* sums[2] = {&ab, &bc};

@@ -9,7 +9,7 @@ namespace barimpact {
 
 SoilIteration::SoilIteration(const Line& line, const Tridiagonal& a, const std::vector<std::size_t>& held, double c,
                              double r)
-    : a_(a), held_(held), c_(c), r_(r) {
+    : held_(held), c_(c), r_(r) {
   double capacity = 0.0;
   for (std::size_t i = 0; i < line.links.size(); ++i) {
     const Link& l = line.links[i];
@@ -31,6 +31,8 @@ SoilIteration::SoilIteration(const Line& line, const Tridiagonal& a, const std::
   for (auto* x : {&state_, &force_, &damping_, &iterate_, &trial_, &trial_damping_, &trial_state_, &tangent_, &spring_,
                   &spring_old_, &dashpot_, &state_reported_, &trial_spring_, &trial_dashpot_})
     x->assign(points_.size(), 0.0);
+  if (points_.empty()) return;  // no soil: its matrix and solve (line-sized) are never used
+  a_ = a;
   for (auto* x : {&diag_, &du_, &toe_du_}) x->assign(a.size(), 0.0);
   off_.assign(a.off.size(), 0.0);
 }

@@ -21,6 +21,9 @@ struct Tridiagonal {
   [[nodiscard]] double quadratic_form(std::span<const double> x) const;
   /// c1 A + c2 B (same size).
   [[nodiscard]] static Tridiagonal combine(double c1, const Tridiagonal& a, double c2, const Tridiagonal& b);
+  /// The same in A's storage: a line's matrices at 10^6 nodes are megabytes
+  /// each, and a chain of combinations need not fault in one per link.
+  [[nodiscard]] static Tridiagonal combine(double c1, Tridiagonal&& a, double c2, const Tridiagonal& b);
 };
 
 /// Solves A x = b in place by the Thomas algorithm, A symmetric tridiagonal

@@ -1,0 +1,77 @@
+#include <dlfcn.h>
+#include <fmt/format.h>
+
+#include <string>
+#include <vector>
+
+#include "output_file.hpp"
+#include "results_h5_module.hpp"
+
+namespace barimpact {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Where the module may be, relative to the file holding this code (the
+// command, the Python module, a test): beside it (the Python package),
+// python/barimpact below it (a build tree's command), the package from an
+// installed command's bin/ (as the command finds it for its figures); then
+// the build tree's and the install prefix's package, by absolute path
+// (tests, other programs).
+std::vector<fs::path> module_candidates() {
+  std::vector<fs::path> dirs;
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&module_candidates), &info) != 0 && info.dli_fname != nullptr) {
+    const fs::path here = fs::path(info.dli_fname).parent_path();
+    // Debian's pip names the package's place dist-packages.
+    std::string dist = BARIMPACT_PYTHON_FROM_BIN;
+    if (const auto at = dist.rfind("site-packages"); at != std::string::npos) dist.replace(at, 13, "dist-packages");
+    dirs = {here, here / "python" / "barimpact", here / BARIMPACT_PYTHON_FROM_BIN / "barimpact",
+            here / dist / "barimpact"};
+  }
+  dirs.emplace_back(BARIMPACT_MODULE_BUILD_DIR);
+  dirs.emplace_back(BARIMPACT_MODULE_INSTALL_DIR);
+  for (auto& d : dirs) d /= BARIMPACT_HDF5_MODULE;
+  return dirs;
+}
+
+const detail::Hdf5Module* load_module() {
+  std::string tried;
+  for (const fs::path& file : module_candidates()) {
+    if (std::error_code ec; !fs::exists(file, ec)) continue;
+    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);  // never closed: loaded once per process
+    if (handle == nullptr) {
+      tried = dlerror();
+      continue;
+    }
+    using Entry = const detail::Hdf5Module* (*)();
+    if (auto entry = reinterpret_cast<Entry>(dlsym(handle, detail::hdf5_module_entry))) return entry();
+    tried = fmt::format("{}: no {}", file.string(), detail::hdf5_module_entry);
+  }
+  throw Hdf5Error(
+      fmt::format("results.h5 needs the HDF5 module {} ({})", BARIMPACT_HDF5_MODULE,
+                  tried.empty() ? std::string("not found beside the program or its Python package") : tried));
+}
+
+// Loaded the first time a results.h5 is written or read; a failure is
+// reported each time (a thrown static initialisation is tried again).
+const detail::Hdf5Module& hdf5_module() {
+  static const detail::Hdf5Module* module = load_module();
+  return *module;
+}
+
+}  // namespace
+
+void write_results_h5(const fs::path& path, const Case& c, const RunResult& result) {
+  const std::vector<char> image = hdf5_module().image(path, {c.to_toml(), c.units, c.output.compression}, result);
+  detail::OutputFile out(path);
+  out.write(std::string_view(image.data(), image.size()));
+  out.close();
+}
+
+HistoryColumns read_results_h5_history(const fs::path& path) {
+  return hdf5_module().read_history(path);
+}
+
+}  // namespace barimpact
