@@ -71,15 +71,21 @@ constexpr int exit_bad_input = 2;
 constexpr int exit_non_finite = 3;
 constexpr int exit_warnings = 4;
 
-// SIGINT and SIGTERM end the step under way; the command then writes what
-// it has and exits 128 + the signal's number (it is not killed by it).
+// SIGINT and SIGTERM end the step under way once the work that polls for
+// them has begun (a run's time loop, a study's cases): the command then
+// writes what it has and exits 128 + the signal's number (it is not killed
+// by it). Before that (reading, building the line, factoring, check), which
+// writes nothing and does not poll, the handler ends the process at once
+// with the same status: within a second whatever the case's size.
 std::atomic<bool> interrupted{false};
+std::atomic<bool> polling{false};
 volatile std::sig_atomic_t received_signal = 0;
-static_assert(std::atomic<bool>::is_always_lock_free, "set from a signal handler");
+static_assert(std::atomic<bool>::is_always_lock_free, "set and read from a signal handler");
 
 extern "C" void on_signal(int signal) {
   received_signal = signal;
   interrupted.store(true);
+  if (!polling.load()) _exit(128 + signal);  // async-signal-safe; nothing to write yet
 }
 
 void install_signal_handlers() {
@@ -88,6 +94,12 @@ void install_signal_handlers() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+}
+
+// From here a signal is polled for: the work under way ends, then what is
+// done is written.
+void poll_signals() {
+  polling.store(true);
 }
 
 int exit_interrupted() {
@@ -124,15 +136,33 @@ void print_study_warnings(const Rows& rows) {
   if (printed > shown) fmt::print(stderr, "barimpact: warning: ... {} more\n", printed - shown);
 }
 
-int run_command(const std::string& case_path, const std::string& out_dir, const std::vector<std::string>& sets,
-                bool exact, const WriteFlags& flags) {
+// The case read and fitted to its scheme, refused beyond the memory before
+// fitting builds its line (its snapshots streamed, as run writes them).
+barimpact::FittedCase read_case(const std::string& case_path, const std::vector<std::string>& sets) {
   std::vector<barimpact::Case::Override> overrides;
   for (const auto& s : sets) overrides.push_back({s});
-  auto fitted = barimpact::fit_scheme(barimpact::Case::from_file(case_path, overrides));
+  auto read = barimpact::Case::from_file(case_path, overrides);
+  (void)barimpact::check_resources(read, true);
+  return barimpact::fit_scheme(std::move(read));
+}
+
+int run_command(const std::string& case_path, const std::string& out_dir, const std::vector<std::string>& sets,
+                bool exact, const WriteFlags& flags) {
+  auto fitted = read_case(case_path, sets);
   const barimpact::Case c = fitted.c;  // what the results are of: time.step as the scheme fitted it
-  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, {{c.source}, {}});
+  const std::string too_large = barimpact::check_resources(c, true);
+  const barimpact::CommandInputs inputs{{c.source}, {}};
+  // The output rule before any work; the staging directory only once the
+  // scheme is made (a signal while it is made leaves nothing behind).
+  (void)barimpact::check_output_directory(out_dir, flags.force, "--out", inputs);
+  std::unique_ptr<barimpact::Scheme> scheme;
+  if (!exact) scheme = barimpact::make_scheme(fitted);
+  barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, inputs);
   barimpact::RunOptions options;
   options.interrupt = &interrupted;
+  options.loop_begins = poll_signals;
+  options.fields = &dir.stream_fields(c);
+  if (!too_large.empty()) print_warnings({too_large});
   bool reported = false;
   if (isatty(STDERR_FILENO)) {
     // A run longer than about two seconds shows where it stands on a terminal.
@@ -147,7 +177,8 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
       return true;
     };
   }
-  const auto result = exact ? barimpact::run_exact(c, options) : barimpact::run(std::move(fitted), options);
+  const auto result =
+      exact ? barimpact::run_exact(c, options) : barimpact::run_scheme(c, *scheme, c.step_count(), options);
   if (reported) fmt::print(stderr, "\r\033[K");
   dir.commit(c, result);
   if (exact) fmt::print("exact solution: {}\n", result.summary.message);
@@ -279,6 +310,7 @@ int converge_command(ConvergeArgs& a) {
   auto o = barimpact::study_options(a.arguments);
   o.interrupt = &interrupted;
   const std::filesystem::path dir(a.out);
+  poll_signals();  // between runs and in their time loops
   const auto study = barimpact::write_convergence(c, o, dir, a.flags.force, a.command);
   fmt::print("{}\n", barimpact::study_markdown(study, a.command));
   auto count = [&](auto&& pred) { return std::count_if(study.runs.begin(), study.runs.end(), pred); };
@@ -302,13 +334,46 @@ int converge_command(ConvergeArgs& a) {
 // rank runs cases, rank 0 in a second thread (its main thread makes every
 // MPI call, MPI_THREAD_FUNNELED, and polls with short sleeps instead of
 // spinning on a core the cases need).
-constexpr int tag_request = 1, tag_case = 2, tag_row = 3;
+constexpr int tag_request = 1, tag_case = 2, tag_row = 3, tag_stop = 4;
+
+// A signal reaches one rank (the one a user or a batch system signalled)
+// or every rank (mpirun passes its SIGINT or SIGTERM on as SIGTERM): the
+// rank that has it passes it on, another rank to rank 0 and rank 0 to all,
+// so that every rank ends its runs within a few milliseconds of polling and
+// exits 128 + that signal (mpirun reports a rank's status; its own, when it
+// was the one signalled, is Open MPI's: 1).
+class SignalRelay {
+ public:
+  SignalRelay(int rank, int size) : rank_(rank), size_(size) {}
+  /// Passes a signal this rank received on, once; from the main thread.
+  void poll() {
+    if (passed_ || !interrupted.load()) return;
+    passed_ = true;
+    int signal = received_signal;
+    for (int r = rank_ == 0 ? 1 : 0; r < (rank_ == 0 ? size_ : 1); ++r)
+      MPI_Send(&signal, 1, MPI_INT, r, tag_stop, MPI_COMM_WORLD);
+  }
+  /// Takes a stop from `source`: this rank is interrupted as that one was.
+  void receive(int source) {
+    int signal = 0;
+    MPI_Recv(&signal, 1, MPI_INT, source, tag_stop, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (!interrupted.load()) received_signal = signal;
+    interrupted.store(true);
+    passed_ = rank_ != 0;  // rank 0 passes it on to the others
+  }
+
+ private:
+  int rank_, size_;
+  bool passed_ = false;
+};
 
 // Rank 0 hands out chunks of cases to the other ranks until each has been
 // told there are none left, and gathers their rows.
 template <class Take>
-void serve_ranks(int active, Take& take, std::vector<barimpact::SweepRow>& rows, std::mutex& mutex) {
+void serve_ranks(int active, Take& take, std::vector<barimpact::SweepRow>& rows, std::mutex& mutex,
+                 SignalRelay& relay) {
   while (active > 0) {
+    relay.poll();
     MPI_Status status;
     int arrived = 0;
     MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &arrived, &status);
@@ -316,7 +381,9 @@ void serve_ranks(int active, Take& take, std::vector<barimpact::SweepRow>& rows,
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
       continue;
     }
-    if (status.MPI_TAG == tag_request) {
+    if (status.MPI_TAG == tag_stop) {
+      relay.receive(status.MPI_SOURCE);
+    } else if (status.MPI_TAG == tag_request) {
       int dummy = 0;
       MPI_Recv(&dummy, 1, MPI_INT, status.MPI_SOURCE, tag_request, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       std::vector<long long> chunk;
@@ -335,10 +402,40 @@ void serve_ranks(int active, Take& take, std::vector<barimpact::SweepRow>& rows,
   }
 }
 
+// Runs `indices` in a second thread while this (MPI's) thread relays
+// signals with short sleeps; in this one without MPI_THREAD_FUNNELED.
+std::vector<barimpact::SweepRow> run_relaying(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
+                                              const std::vector<std::size_t>& indices,
+                                              const barimpact::SweepOptions& one, SignalRelay& relay, bool threads) {
+  if (!threads) return barimpact::run_sweep(plan, dir, indices, one);
+  std::vector<barimpact::SweepRow> rows;
+  std::exception_ptr error;
+  std::atomic<bool> finished{false};
+  std::thread worker([&] {
+    try {
+      rows = barimpact::run_sweep(plan, dir, indices, one);
+    } catch (...) {
+      error = std::current_exception();
+    }
+    finished.store(true);
+  });
+  while (!finished.load()) {
+    relay.poll();
+    int arrived = 0;
+    MPI_Iprobe(0, tag_stop, MPI_COMM_WORLD, &arrived, MPI_STATUS_IGNORE);
+    if (arrived) relay.receive(0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  worker.join();
+  if (error) std::rethrow_exception(error);
+  return rows;
+}
+
 // Another rank runs the chunks rank 0 hands out, sending each row back.
 void run_handed_out(const barimpact::SweepPlan& plan, const std::filesystem::path& dir,
-                    const barimpact::SweepOptions& one) {
+                    const barimpact::SweepOptions& one, SignalRelay& relay, bool threads) {
   while (true) {
+    relay.poll();
     int dummy = 0;
     MPI_Send(&dummy, 1, MPI_INT, 0, tag_request, MPI_COMM_WORLD);
     long long chunk[barimpact::PaperBatch::width];
@@ -349,7 +446,7 @@ void run_handed_out(const barimpact::SweepPlan& plan, const std::filesystem::pat
     MPI_Get_count(&status, MPI_LONG_LONG, &count);
     if (count == 0) break;
     std::vector<std::size_t> indices(chunk, chunk + count);
-    for (const auto& row : barimpact::run_sweep(plan, dir, indices, one)) {
+    for (const auto& row : run_relaying(plan, dir, indices, one, relay, threads)) {
       const std::string text = barimpact::row_to_json(row);
       MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_row, MPI_COMM_WORLD);
     }
@@ -376,6 +473,7 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
   std::vector<barimpact::SweepRow> rows;
   barimpact::SweepOptions one = o;
   one.jobs = 1;  // a rank is a core
+  SignalRelay relay(rank, size);
   if (rank == 0) {
     std::mutex mutex;  // guards next and rows
     std::size_t next = 0;
@@ -401,7 +499,7 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
     std::thread local = threads ? std::thread(run_here) : std::thread();
     int active = size - 1;
     try {
-      serve_ranks(active, take, rows, mutex);
+      serve_ranks(active, take, rows, mutex, relay);
     } catch (...) {
       abort_sweep(rank);
     }
@@ -409,7 +507,7 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
     if (local_error) std::rethrow_exception(local_error);
   } else {
     try {
-      run_handed_out(plan, dir, one);
+      run_handed_out(plan, dir, one, relay, threads);
     } catch (...) {
       abort_sweep(rank);
     }
@@ -455,6 +553,7 @@ std::optional<int> mpi_sweep_command(const std::string& sweep_path, const std::f
   MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   if (failure) std::rethrow_exception(failure);
   if (worst != 0) return worst;
+  poll_signals();  // between cases and in their time loops
   const auto done = mpi_sweep(*plan, dir, start.todo, o, rank, size, threads);
   if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
   outcome = barimpact::finish_sweep(*plan, dir, std::move(start), done);
@@ -490,7 +589,9 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   {
     barimpact::check_jobs(o.jobs);
     if (o.batch) (void)barimpact::simd_path();
-    outcome = barimpact::write_sweep(barimpact::SweepPlan::from_file(sweep_path), dir, o, flags.force);
+    const auto plan = barimpact::SweepPlan::from_file(sweep_path);
+    poll_signals();  // between cases and in their time loops
+    outcome = barimpact::write_sweep(plan, dir, o, flags.force);
   }
   const auto& rows = outcome.rows;
   auto count = [&](auto&& pred) { return std::count_if(rows.begin(), rows.end(), pred); };
@@ -522,6 +623,7 @@ int bearing_command(const BearingArgs& a) {
   for (const auto& s : a.sets) o.sets.push_back({s});
   const barimpact::BearingPlan plan(a.case_path, o);
   const std::filesystem::path dir(a.out);
+  poll_signals();  // between capacities and in their time loops
   const auto rows = barimpact::write_bearing(plan, dir, a.options, a.flags.force);
   std::vector<barimpact::SweepRow> runs;
   for (const auto& r : rows) runs.push_back(r.run);
@@ -660,11 +762,10 @@ int hopkinson_command(const std::string& setup_path, const std::string& out, boo
 
 // Validates a case and reports what to know before running it (run/check.hpp).
 int check_command(const std::string& case_path, const std::vector<std::string>& sets) {
-  std::vector<barimpact::Case::Override> overrides;
-  for (const auto& s : sets) overrides.push_back({s});
-  const auto c = barimpact::fit_scheme(barimpact::Case::from_file(case_path, overrides)).c;
-  const auto k = barimpact::check_case(c);
+  const auto c = read_case(case_path, sets).c;
+  const auto k = barimpact::check_case(c);  // refuses what exceeds the memory, as run does
   fmt::print("{}: valid\n{}", case_path, barimpact::check_text(c, k));
+  if (const auto w = barimpact::output_size_warning(c, k.resources); !w.empty()) print_warnings({w});
   if (!k.trouble.empty()) {
     fmt::print(stderr, "barimpact: {} (in the first {} steps)\n", k.trouble, k.timed_steps);
     return exit_non_finite;

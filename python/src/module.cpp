@@ -801,6 +801,8 @@ PYBIND11_MODULE(_core, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const MemoryRefusal& e) {
+      PyErr_SetString(out_of_memory.ptr(), e.what());  // refused before it was built
     } catch (const std::bad_alloc&) {
       PyErr_SetString(out_of_memory.ptr(),
                       "out of memory: the case needs more than there is (reduce its elements or bodies, or raise "

@@ -246,7 +246,10 @@ def test_bad_input_is_input_error_everywhere(tmp_path):
         barimpact.Case(EXAMPLES / "paper-example1.toml", set=5)
     one = barimpact.Case(EXAMPLES / "paper-example1.toml", set="bar.elements=7")  # one override as text
     assert "elements = 7" in one.to_toml()
-    # Out of memory: bad input too, and still a MemoryError (under a 1 GiB address-space limit).
+    # Refused before it is built (about 340 GB with its 101 snapshots held): the same error, naming the key.
+    with pytest.raises(barimpact.OutOfMemoryError, match=r"bar\.elements.*output\.fields_at"):
+        barimpact.run(EXAMPLES / "paper-example1.toml", set={"bar.elements": 100000000})
+    # Beyond a 1 GiB address-space limit: refused by the estimate, still a MemoryError.
     script = (
         "import resource, barimpact\n"
         "resource.setrlimit(resource.RLIMIT_AS, (1 << 30, 1 << 30))\n"
@@ -255,4 +258,4 @@ def test_bad_input_is_input_error_everywhere(tmp_path):
         "except barimpact.InputError as e:\n"
         "    print(type(e).__name__, isinstance(e, MemoryError), e)\n")
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=120)
-    assert out.stdout.startswith("OutOfMemoryError True out of memory:"), out.stdout + out.stderr
+    assert out.stdout.startswith("OutOfMemoryError True the run needs about"), out.stdout + out.stderr

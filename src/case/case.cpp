@@ -889,10 +889,29 @@ Case Case::from_file(const std::filesystem::path& path, const std::vector<Overri
   return c;
 }
 
+void refuse_blocking_input(const std::filesystem::path& path, std::string_view what) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path at = path;
+  // Through the links (at most 40, as the kernel follows): a shell's pipe
+  // ends at "pipe:[N]", which has its writer.
+  for (int hops = 0; hops < 40 && fs::symlink_status(at, ec).type() == fs::file_type::symlink; ++hops) {
+    const fs::path target = fs::read_symlink(at, ec);
+    if (ec || target.native().starts_with("pipe:")) return;
+    at = target.is_absolute() ? target : at.parent_path() / target;
+  }
+  const auto type = fs::symlink_status(at, ec).type();
+  if (!ec && (type == fs::file_type::fifo || type == fs::file_type::socket))
+    throw InputError(
+        fmt::format("{}: the {} is a named pipe or socket, which blocks until a writer comes; give a regular file",
+                    path.string(), what));
+}
+
 std::string read_input_file(const std::filesystem::path& path, std::string_view what) {
   // Read in chunks, not by stream insertion: an empty file is a valid (all
   // defaults) input, and a device or pipe that never ends must not exhaust memory.
   constexpr std::size_t limit = 64u << 20;
+  refuse_blocking_input(path, what);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the {}", path.string(), what));
   std::string text;

@@ -27,8 +27,8 @@ bool HistoryRecorder::observe(const Scheme& s) {
   return true;
 }
 
-FieldRecorder::FieldRecorder(const Case& c, const Line& line, std::vector<double> times)
-    : dt_(c.time.step), line_(&line), times_(std::move(times)) {
+FieldRecorder::FieldRecorder(const Case& c, const Line& line, std::vector<double> times, FieldSink* sink)
+    : dt_(c.time.step), line_(&line), times_(std::move(times)), sink_(sink) {
   if (times_.empty()) return;  // no snapshots: no rows to describe (and no memory per node)
   fields_.x.reserve(line.nodes());
   fields_.node.reserve(line.nodes());
@@ -50,19 +50,21 @@ void FieldRecorder::begin(const Scheme& /*scheme*/, long long steps) {
   for (double t : times_) steps_.push_back(std::clamp(std::llround(t / dt_), 0LL, steps));
   std::sort(steps_.begin(), steps_.end());
   steps_.erase(std::unique(steps_.begin(), steps_.end()), steps_.end());
-  const std::size_t n = fields_.nodes();
-  fields_.t.assign(steps_.size(), 0.0);
-  fields_.u.assign(steps_.size() * n, 0.0);
-  fields_.v.assign(steps_.size() * n, 0.0);
-  fields_.sigma.assign(steps_.size() * n, 0.0);
-  fields_.eps_p.assign(steps_.size() * n, 0.0);
+  const std::size_t n = fields_.nodes(),
+                    held = sink_ != nullptr ? std::min<std::size_t>(steps_.size(), 1) : steps_.size();
+  fields_.t.assign(held, 0.0);
+  fields_.u.assign(held * n, 0.0);
+  fields_.v.assign(held * n, 0.0);
+  fields_.sigma.assign(held * n, 0.0);
+  fields_.eps_p.assign(held * n, 0.0);
   taken_ = 0;
 }
 
 bool FieldRecorder::observe(const Scheme& s) {
   if (taken_ == steps_.size() || s.step() != steps_[taken_]) return true;
-  const std::size_t n = fields_.nodes(), at = taken_ * n;
-  fields_.t[taken_++] = s.time();
+  const std::size_t slot = sink_ != nullptr ? 0 : taken_, n = fields_.nodes(), at = slot * n;
+  fields_.t[slot] = s.time();
+  ++taken_;
   double* u = fields_.u.data() + at;
   double* v = fields_.v.data() + at;
   double* sigma = fields_.sigma.data() + at;
@@ -91,11 +93,12 @@ bool FieldRecorder::observe(const Scheme& s) {
     left = sig;
     left_ep = ep;
   }
-  return true;
+  return sink_ == nullptr || sink_->write(fields_);
 }
 
 Fields FieldRecorder::take() {
   const std::size_t n = fields_.nodes();
+  if (sink_ != nullptr) taken_ = 0;  // the snapshots went to the sink
   fields_.t.resize(taken_);
   fields_.u.resize(taken_ * n);
   fields_.v.resize(taken_ * n);

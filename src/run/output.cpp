@@ -3,6 +3,7 @@
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/run/results_h5.hpp"
 #include "barimpact/schemes/registry.hpp"
+#include "field_stream.hpp"
 #include "output_file.hpp"
 
 #include <fmt/format.h>
@@ -51,6 +52,7 @@ RunDirectory::RunDirectory(fs::path target, bool force, std::string command, boo
 }
 
 RunDirectory::~RunDirectory() {
+  fields_.reset();  // its file closed before the staging goes
   if (!committed_) {
     std::error_code ec;
     fs::remove_all(staging_, ec);
@@ -123,13 +125,25 @@ std::string_view history_file(OutputFormat format) {
   return format == OutputFormat::hdf5 ? results_h5_name : std::string_view("history.csv");
 }
 
+FieldSink& RunDirectory::stream_fields(const Case& c) {
+  fields_ = std::make_unique<detail::FieldStream>(staging_, c);
+  return *fields_;
+}
+
 void RunDirectory::commit(const Case& c, const RunResult& result) {
   commit([&](const fs::path& dir) {
+    if (fields_) fields_->finish();  // what the disk refused during the run, first
     if (c.output.format == OutputFormat::hdf5) {
-      write_results_h5(dir / results_h5_name, c, result);
+      StreamedSnapshots spool;
+      if (fields_)
+        spool = {&fields_->times(), [&](int q, std::size_t first, std::size_t count, double* out) {
+                   fields_->read(q, first, count, out);
+                 }};
+      write_results_h5(dir / results_h5_name, c, result, fields_ ? &spool : nullptr);
+      if (fields_) fields_->remove_spool();
     } else {
       write_history(dir / "history.csv", result);
-      write_fields(dir / "fields.csv", result);
+      if (!fields_) write_fields(dir / "fields.csv", result);  // else streamed there
     }
     write_text(dir / case_file_name, c.to_toml());
     write_text(dir / "summary.json", summary_json(c, result.summary));

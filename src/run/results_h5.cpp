@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -177,26 +178,31 @@ class Writer {
   // compressed.
   Id dataset(hid_t group, const std::string& name, std::vector<hsize_t> dims, const void* data, int level = 0,
              bool integers = false) const {
-    const Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, at(name));
-    const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, at(name));
-    check(H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER), at(name));
-    if (dims.size() == 2 && dims[0] > 0 && dims[1] > 0) {
-      const hsize_t row = dims[1] * sizeof(double);
-      const std::array<hsize_t, 2> chunk{std::clamp<hsize_t>(chunk_bytes / row, 1, dims[0]),
-                                         std::min<hsize_t>(dims[1], chunk_bytes / sizeof(double))};
-      check(H5Pset_chunk(dcpl, 2, chunk.data()), at(name));
-      if (level > 0) {
-        check(H5Pset_shuffle(dcpl), at(name));
-        check(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), at(name));
-      }
-    }
-    const hid_t file_type = integers ? H5T_STD_I32LE : H5T_IEEE_F64LE;
-    const hid_t memory_type = integers ? H5T_NATIVE_INT32 : H5T_NATIVE_DOUBLE;
-    Id set(H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose, at(name));
+    Id set = create(group, name, dims, level, integers);
     hsize_t size = 1;
     for (auto d : dims) size *= d;
+    const hid_t memory_type = integers ? H5T_NATIVE_INT32 : H5T_NATIVE_DOUBLE;
     if (size > 0) check(H5Dwrite(set, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), at(name));
     return set;
+  }
+
+  // The same 2-D float64 dataset written a chunk's rows at a time, each
+  // filled by `rows(first, count, out)`: whole chunks, in order, as one
+  // write of all of it lays them out.
+  void dataset_by_rows(hid_t group, const std::string& name, std::array<hsize_t, 2> dims, int level,
+                       const std::function<void(std::size_t, std::size_t, double*)>& rows) const {
+    const Id set = create(group, name, {dims[0], dims[1]}, level, false);
+    if (dims[0] == 0 || dims[1] == 0) return;
+    const hsize_t block = chunk_rows(dims[1], dims[0]);
+    std::vector<double> buffer(block * dims[1]);
+    const Id file_space(H5Dget_space(set), H5Sclose, at(name));
+    for (hsize_t first = 0; first < dims[0]; first += block) {
+      const std::array<hsize_t, 2> start{first, 0}, count{std::min(block, dims[0] - first), dims[1]};
+      rows(first, count[0], buffer.data());
+      check(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr), at(name));
+      const Id memory_space(H5Screate_simple(2, count.data(), nullptr), H5Sclose, at(name));
+      check(H5Dwrite(set, H5T_NATIVE_DOUBLE, memory_space, file_space, H5P_DEFAULT, buffer.data()), at(name));
+    }
   }
 
   /// The whole file's bytes, then the file closed (in memory: nothing to refuse but memory).
@@ -216,6 +222,28 @@ class Writer {
   [[nodiscard]] std::string at(std::string_view name) const {
     return name.empty() ? fmt::format("{}: cannot write it", path_) : fmt::format("{}: cannot write {}", path_, name);
   }
+  // Whole rows of `columns` doubles in a chunk of about chunk_bytes (at least one, at most `rows`).
+  static hsize_t chunk_rows(hsize_t columns, hsize_t rows) {
+    return std::clamp<hsize_t>(chunk_bytes / (columns * sizeof(double)), 1, rows);
+  }
+
+  Id create(hid_t group, const std::string& name, std::vector<hsize_t> dims, int level, bool integers) const {
+    const Id space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose, at(name));
+    const Id dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, at(name));
+    check(H5Pset_fill_time(dcpl, H5D_FILL_TIME_NEVER), at(name));
+    if (dims.size() == 2 && dims[0] > 0 && dims[1] > 0) {
+      const std::array<hsize_t, 2> chunk{chunk_rows(dims[1], dims[0]),
+                                         std::min<hsize_t>(dims[1], chunk_bytes / sizeof(double))};
+      check(H5Pset_chunk(dcpl, 2, chunk.data()), at(name));
+      if (level > 0) {
+        check(H5Pset_shuffle(dcpl), at(name));
+        check(H5Pset_deflate(dcpl, static_cast<unsigned>(level)), at(name));
+      }
+    }
+    const hid_t file_type = integers ? H5T_STD_I32LE : H5T_IEEE_F64LE;
+    return {H5Dcreate2(group, name.c_str(), file_type, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose, at(name)};
+  }
+
   [[nodiscard]] Id text_type() const {
     Id type(H5Tcopy(H5T_C_S1), H5Tclose, at("a text"));
     check(H5Tset_size(type, H5T_VARIABLE), at("a text"));
@@ -250,27 +278,34 @@ void write_history(const Writer& w, const RunResult& result) {
   }
 }
 
-void write_fields(const Writer& w, int compression, const Fields& f) {
+void write_fields(const Writer& w, int compression, const Fields& f, const StreamedSnapshots* streamed) {
   const Id fields = w.group("fields");
   w.texts(fields, "columns", {"t", "x", "u", "v", "sigma", "eps_p", "body"});
-  w.dataset(fields, "t", {f.count()}, f.t.data());
+  const std::vector<double>& t = streamed != nullptr ? *streamed->t : f.t;
+  w.dataset(fields, "t", {t.size()}, t.data());
   w.dataset(fields, "x", {f.nodes()}, f.x.data());
-  for (const auto& [name, values] :
-       {std::pair{"u", &f.u}, std::pair{"v", &f.v}, std::pair{"sigma", &f.sigma}, std::pair{"eps_p", &f.eps_p}})
-    w.dataset(fields, name, {f.count(), f.nodes()}, values->data(), compression);
+  const std::array<const char*, 4> names{"u", "v", "sigma", "eps_p"};
+  const std::array<const std::vector<double>*, 4> held{&f.u, &f.v, &f.sigma, &f.eps_p};
+  for (int q = 0; q < 4; ++q)
+    if (streamed == nullptr)
+      w.dataset(fields, names[q], {f.count(), f.nodes()}, held[q]->data(), compression);
+    else
+      w.dataset_by_rows(fields, names[q], {t.size(), f.nodes()}, compression,
+                        [&](std::size_t first, std::size_t count, double* out) { streamed->read(q, first, count, out); });
   std::vector<std::int32_t> body(f.body.begin(), f.body.end());
   body.resize(f.nodes());
   const Id set = w.dataset(fields, "body", {f.nodes()}, body.data(), 0, true);
   w.texts(set, "names", f.body_names);
 }
 
-std::vector<char> image(const fs::path& path, const detail::Hdf5Case& c, const RunResult& result) {
+std::vector<char> image(const fs::path& path, const detail::Hdf5Case& c, const RunResult& result,
+                        const StreamedSnapshots* streamed) {
   const Session session;
   Writer w(path);
   w.text(w.file(), "case", c.toml);
   w.text(w.file(), "units", c.units);
   write_history(w, result);
-  write_fields(w, c.compression, result.fields);
+  write_fields(w, c.compression, result.fields, streamed);
   return w.image();
 }
 

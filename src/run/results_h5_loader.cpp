@@ -63,8 +63,10 @@ const detail::Hdf5Module& hdf5_module() {
 
 }  // namespace
 
-void write_results_h5(const fs::path& path, const Case& c, const RunResult& result) {
-  const std::vector<char> image = hdf5_module().image(path, {c.to_toml(), c.units, c.output.compression}, result);
+void write_results_h5(const fs::path& path, const Case& c, const RunResult& result,
+                      const StreamedSnapshots* streamed) {
+  const std::vector<char> image =
+      hdf5_module().image(path, {c.to_toml(), c.units, c.output.compression}, result, streamed);
   detail::OutputFile out(path);
   out.write(std::string_view(image.data(), image.size()));
   out.close();

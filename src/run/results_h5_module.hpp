@@ -23,7 +23,8 @@ struct Hdf5Case {
 struct Hdf5Module {
   /// The bytes of the file write_results_h5 writes at `path` (which names it
   /// in errors); throws Hdf5Error.
-  std::vector<char> (*image)(const std::filesystem::path& path, const Hdf5Case& c, const RunResult& result);
+  std::vector<char> (*image)(const std::filesystem::path& path, const Hdf5Case& c, const RunResult& result,
+                            const StreamedSnapshots* streamed);
   /// read_results_h5_history.
   HistoryColumns (*read_history)(const std::filesystem::path& path);
 };

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <cmath>
+#include "barimpact/run/check.hpp"
 #include "barimpact/run/health.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/registry.hpp"
@@ -89,13 +90,13 @@ LoopResult simulate(Scheme& scheme, long long steps, std::span<Observer* const> 
   return simulate(one, steps, lane, interrupt).front();
 }
 
-RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
+RunRecorder::RunRecorder(const Case& c, const Scheme& scheme, FieldSink* fields)
     : case_(c),
       own_(scheme.line() ? std::nullopt : std::optional<Line>(build_line(c))),
       line_(scheme.line() ? *scheme.line() : *own_),
       probes_(c, line_),
       history_(c.output.every, &probes_),
-      fields_(c, line_, c.output.fields_at),
+      fields_(c, line_, c.output.fields_at, fields),
       contact_(line_, c.time.step),
       links_(line_),
       plastic_(line_, c.output.every) {
@@ -105,6 +106,7 @@ RunRecorder::RunRecorder(const Case& c, const Scheme& scheme)
 }
 
 RunResult run(const Case& c, const RunOptions& options) {
+  (void)check_resources(c, options.fields != nullptr);  // before fitting builds the line
   return run(fit_scheme(c), options);
 }
 
@@ -175,9 +177,10 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   const auto started = std::chrono::steady_clock::now();
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
-  RunRecorder rec(c, scheme_ref);
+  RunRecorder rec(c, scheme_ref, options.fields);
   std::vector<Observer*> observers = rec.observers();
   if (options.progress) observers.push_back(&progress);
+  if (options.loop_begins) options.loop_begins();
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
   return rec.finish(loop, steps, started, finite_rows);
 }

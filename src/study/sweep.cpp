@@ -242,6 +242,7 @@ SweepPlan SweepPlan::from_string(std::string_view text, std::string_view origin,
   const auto* c = root.get_as<std::string>("case");
   if (c == nullptr) throw InputError(fmt::format("{}: case = \"CASE.toml\" is required", source));
   plan.case_file_ = dir / c->get();
+  refuse_blocking_input(plan.case_file_, "case file");  // before any point opens it
   if (const auto* set = root.get_as<toml::table>("set")) {
     for (auto&& [section, keys] : *set) {
       if (!keys.is_table())

@@ -2,14 +2,7 @@
 # The command line's contract: files and columns, exit codes, one-line errors,
 # nothing written on bad input. Usage: cli_test.sh BARIMPACT EXAMPLES_DIR
 set -u
-bin=$1
-examples=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
+. "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 
 # A run writes the four files; history.csv starts with the contract's columns.
 if "$bin" run "$examples/paper-example1.toml" --out "$work/ex1" > "$work/stdout" 2> "$work/stderr"; then ok; else bad "example 1 exit $?"; fi

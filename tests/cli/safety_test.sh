@@ -4,14 +4,7 @@
 # warnings and --strict, interruption by SIGINT / SIGTERM and resumption,
 # exit 3 for studies with no result. Usage: safety_test.sh BARIMPACT EXAMPLES_DIR
 set -u
-bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-examples=$(cd "$2" && pwd)
-work=$(mktemp -d)
-trap 'chmod -R u+w "$work"; rm -rf "$work"' EXIT
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); }
-bad() { failed=$((failed + 1)); echo "FAIL: $*"; }
+. "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 check() {  # description, then a command that must succeed
   local what=$1
   shift

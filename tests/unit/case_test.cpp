@@ -2,12 +2,15 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "../support/pile.hpp"
 #include "../support/run_case.hpp"
+#include "../support/scratch_directory.hpp"
 #include "barimpact/schemes/registry.hpp"
 
 namespace barimpact {
@@ -44,6 +47,31 @@ TEST(Case, EmptyFileGivesTheDocumentedDefaults) {
   EXPECT_EQ(c.time.gamma, 0.5);
   EXPECT_EQ(c.time.theta, 0.5);
   EXPECT_EQ(c.time.restitution, 0.0);
+}
+
+TEST(Case, RefusesACaseFileThatIsNotARegularFileWithoutOpeningIt) {
+  // Opening a FIFO blocks until a writer comes: refused before.
+  const testing::ScratchDirectory dir("case-fifo");
+  const auto fifo = dir.path() / "case.fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    (void)Case::from_file(fifo);
+    ADD_FAILURE() << "accepted a FIFO";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("case.fifo: the case file is a named pipe"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Case, ReadsAShellsPipeWhichHasItsWriter) {
+  // `barimpact run <(generate-case)`: /dev/fd/N, an anonymous pipe.
+  int ends[2];
+  ASSERT_EQ(::pipe(ends), 0);
+  const std::string text = "[bar]\nelements = 7\n";
+  ASSERT_EQ(::write(ends[1], text.data(), text.size()), static_cast<ssize_t>(text.size()));
+  ::close(ends[1]);
+  const Case c = Case::from_file(fmt::format("/dev/fd/{}", ends[0]));
+  ::close(ends[0]);
+  EXPECT_EQ(c.bodies.front().elements, 7);
 }
 
 TEST(Case, UnitsSystemIsSIOrNoneAndIsWrittenBack) {

@@ -8,6 +8,7 @@
 
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/model/input_error.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/scheme.hpp"
 
@@ -160,6 +161,58 @@ TEST(Check, SaysWhenTheStepDoesNotResolveThePenalty) {
   EXPECT_NE(text.find("penalty: tau = 0.0001, dt/tau = 10 not resolved"), std::string::npos) << text;
   const Case resolved = case_from("[obstacle]\nstiffness = 1e4\n[time]\nstep = 5e-5\n");
   EXPECT_EQ(check_text(resolved, check_case(resolved)).find("not resolved"), std::string::npos);
+}
+
+TEST(Resources, CountTheNodesSnapshotsAndRowsOfTheRun) {
+  // 1000 elements: 1001 nodes; 3 times, two on one step: 2 snapshots; 100 steps, every 10: 10 + 2 rows.
+  const Case c = case_from(
+      "[bar]\nelements = 1000\n[time]\nstep = 0.01\nend = 1.0\n[output]\nevery = 10\nfields_at = [0.0, 0.5, 0.501]\n");
+  const ResourceEstimate held = estimate_resources(c, false), streamed = estimate_resources(c, true);
+  EXPECT_EQ(held.nodes, 1001u);
+  EXPECT_EQ(held.snapshots, 2u);
+  EXPECT_EQ(held.history_rows, 12);
+  // Streamed, the run holds one snapshot of 4 doubles a node, not two.
+  EXPECT_DOUBLE_EQ(held.memory_bytes - streamed.memory_bytes, 32.0 * 1001);
+  EXPECT_EQ(held.output_bytes, streamed.output_bytes);
+}
+
+TEST(Resources, RefusesWhatExceedsTheMemoryNamingTheKeys) {
+  const Case c = case_from("[bar]\nelements = 100000\n[time]\nstep = 0.01\nend = 1.0\n");
+  const ResourceEstimate e = estimate_resources(c, true);
+  EXPECT_NO_THROW(refuse_beyond_memory(c, e, 2 * e.memory_bytes));
+  try {
+    refuse_beyond_memory(c, e, e.memory_bytes / 2);
+    FAIL() << "not refused";
+  } catch (const InputError& err) {
+    const std::string what = err.what();
+    for (const char* key : {"bar.elements", "output.fields_at", "output.every", "time.end"})
+      EXPECT_NE(what.find(key), std::string::npos) << what;
+  }
+  EXPECT_GT(available_memory(), 0.0);
+}
+
+TEST(Resources, ALineNamesItsLargestBody) {
+  Case c = case_from(two_bars);
+  c.bodies[1].elements = 1000;
+  try {
+    refuse_beyond_memory(c, estimate_resources(c, true), 0.0);
+    FAIL() << "not refused";
+  } catch (const InputError& err) {
+    EXPECT_NE(std::string(err.what()).find("body.right.elements"), std::string::npos) << err.what();
+  }
+}
+
+TEST(Resources, WarnsOfOutputsAboveAGigabyte) {
+  Case c = case_from("[bar]\nelements = 100\n[time]\nstep = 0.01\nend = 1.0\n[output]\nfields_at = [0.5]\n");
+  EXPECT_EQ(output_size_warning(c, estimate_resources(c, true)), "");
+  c.bodies[0].elements = 100'000'000;
+  const std::string w = output_size_warning(c, estimate_resources(c, true));
+  EXPECT_NE(w.find("GB on disk"), std::string::npos) << w;
+  // HDF5: 8 bytes a value, snapshots of u, v, sigma, eps_p.
+  c.bodies[0].elements = 999;
+  c.output.format = OutputFormat::hdf5;
+  const auto e = estimate_resources(c, true);
+  EXPECT_DOUBLE_EQ(e.output_bytes, 8.0 * (102.0 * 11 + 4.0 * 1000 + 1000));
 }
 
 }  // namespace

@@ -17,6 +17,12 @@ TEST(InputError, ControlCharactersAreEscapedToKeepOneLine) {
   EXPECT_EQ(std::string(InputError("plain").what()), "plain");
 }
 
+TEST(MemoryRefusal, IsBadInputWithItsOneLine) {
+  const MemoryRefusal e("bar.elements: the run needs about 41 GB");
+  const InputError& as_input = e;
+  EXPECT_STREQ(as_input.what(), "bar.elements: the run needs about 41 GB");
+}
+
 TEST(OutputError, NamesTheFileAndTheSystemsReason) {
   const OutputError e("/tmp/out/history.csv", "No space left on device");
   EXPECT_EQ(std::string(e.what()), "cannot write /tmp/out/history.csv: No space left on device");

@@ -74,6 +74,49 @@ TEST(FieldRecorder, TakesTheNearestStepOncePerStep) {
   EXPECT_EQ(fields.sigma[1 * 3 + 1], 0.0);  // rigid: no strain
 }
 
+// Keeps what it is handed, as a run directory's files would.
+class KeptSnapshots final : public FieldSink {
+ public:
+  bool write(const Fields& snapshot) override {
+    held = snapshot.t.size() * 10 + snapshot.u.size();  // one snapshot: 1 t, one u per row
+    t.push_back(snapshot.t.front());
+    u.insert(u.end(), snapshot.u.begin(), snapshot.u.end());
+    return t.size() < stop_after;
+  }
+  std::vector<double> t, u;
+  std::size_t held = 0, stop_after = 100;
+};
+
+TEST(FieldRecorder, HandsEachSnapshotToASinkAndHoldsOne) {
+  const Case c = testing::case_from("[bar]\nelements = 2\n[time]\nstep = 0.1\nend = 1");
+  const Line line = build_line(c);
+  const std::vector<double> times{0.94, 0.26, 0.3, 0.0};
+  CosineScheme held_scheme(0.1), streamed_scheme(0.1);
+  FieldRecorder held(c, line, times);
+  KeptSnapshots sink;
+  FieldRecorder streamed(c, line, times, &sink);
+  simulate(held_scheme, 10, std::array<Observer*, 1>{&held});
+  simulate(streamed_scheme, 10, std::array<Observer*, 1>{&streamed});
+  const Fields all = held.take(), rows = streamed.take();
+  EXPECT_EQ(sink.t, all.t);
+  EXPECT_EQ(sink.u, all.u);
+  EXPECT_EQ(sink.held, 13u);  // 1 time and 3 rows at a time
+  EXPECT_EQ(rows.count(), 0u);
+  EXPECT_EQ(rows.x, all.x);
+}
+
+TEST(FieldRecorder, ASinkThatCannotKeepASnapshotStopsTheRun) {
+  const Case c = testing::case_from("[bar]\nelements = 2\n[time]\nstep = 0.1\nend = 1");
+  const Line line = build_line(c);
+  CosineScheme s(0.1);
+  KeptSnapshots sink;
+  sink.stop_after = 1;
+  FieldRecorder f(c, line, {0.0, 0.5, 1.0}, &sink);
+  const LoopResult r = simulate(s, 10, std::array<Observer*, 1>{&f});
+  EXPECT_EQ(r.status, RunStatus::stopped);
+  EXPECT_EQ(r.steps_done, 0);
+}
+
 // A bar of `nodes` nodes and unit elements against the ground at its near
 // end, by a link of law `kind` (stiffness 10).
 Line bar_on_near_link(std::size_t nodes, LawKind kind) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "../support/run_case.hpp"
+#include "barimpact/model/input_error.hpp"
 
 namespace barimpact {
 namespace {
@@ -24,6 +25,23 @@ TEST(Simulate, AnInterruptEndsTheRunAfterTheStepUnderWay) {
   EXPECT_FALSE(r.summary.complete);
   EXPECT_EQ(r.summary.steps_done, 1);
   EXPECT_EQ(r.history.size(), 2u);
+}
+
+TEST(Simulate, LoopBeginsIsCalledOnceTheSetUpIsDone) {
+  // The command ends set-up at once on a signal and polls from here on.
+  const auto c = testing::example("paper-example1.toml", {"output.fields_at=[]", "time.end=0.1"});
+  int calls = 0;
+  RunOptions options;
+  options.loop_begins = [&calls] { ++calls; };
+  const auto r = run(c, options);
+  EXPECT_EQ(calls, 1);
+  EXPECT_TRUE(r.summary.complete);
+}
+
+TEST(Simulate, RefusesARunBeyondTheAvailableMemoryBeforeBuildingIt) {
+  Case c = testing::example("paper-example1.toml", {"output.fields_at=[]"});
+  c.bodies[0].elements = 1'000'000'000;  // about 190 GB: more than any test machine has
+  EXPECT_THROW((void)run(c), InputError);
 }
 
 // A lane whose end moves as U = t and turns non-finite at step `bad` (never if 0).

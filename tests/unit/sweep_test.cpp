@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -146,6 +147,19 @@ TEST(SweepPlan, RefusesABadAxisNamingTheFileAndTheRule) {
   EXPECT_NE(scale.find("axis time.step: scale must be linear or log"), std::string::npos) << scale;
   const std::string log = refusal("key = \"obstacle.gap\"\nfrom = 0.0\nto = 0.1\ncount = 3\nscale = \"log\"\n");
   EXPECT_NE(log.find("axis obstacle.gap: a log range needs from, to > 0"), std::string::npos) << log;
+}
+
+TEST(SweepPlan, RefusesACaseFileThatIsNotARegularFile) {
+  // A FIFO would block every point's read until a writer came.
+  const testing::ScratchDirectory dir("sweep-fifo");
+  ASSERT_EQ(::mkfifo((dir.path() / "case.fifo").c_str(), 0600), 0);
+  try {
+    (void)SweepPlan::from_string("case = \"case.fifo\"\n[[axis]]\nkey = \"bar.length\"\nvalues = [1]\n", "sweep.toml",
+                                 dir.path());
+    ADD_FAILURE() << "accepted a FIFO";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("case.fifo: the case file is a named pipe"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

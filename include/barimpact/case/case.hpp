@@ -289,8 +289,14 @@ class BodyIndex {
 /// g the case's gravity or 9.81.
 void start_ram(Case& c, double stroke);
 
+/// Throws InputError naming `path` (`what`: "case file") when it is a named
+/// pipe (FIFO) or a socket, without opening it: the open would block until a
+/// writer came. A shell's pipe (`<(...)`, /dev/fd/N) has its writer: fine.
+void refuse_blocking_input(const std::filesystem::path& path, std::string_view what);
+
 /// The whole of an input file (`what`: "case file", "sweep file"); empty is
-/// fine. Throws InputError when it cannot be read or exceeds 64 MiB.
+/// fine. Throws InputError when it cannot be read, exceeds 64 MiB or is a
+/// named pipe (refuse_blocking_input).
 [[nodiscard]] std::string read_input_file(const std::filesystem::path& path, std::string_view what);
 
 /// A finite double as a TOML float that reads back to the same double (fmt's shortest form).

@@ -39,4 +39,12 @@ class OutputError : public InputError {
   std::string reason_;
 };
 
+/// A case that needs more memory than is available, refused before it is
+/// built (run/check.hpp): bad input, which Python also raises as a
+/// MemoryError (barimpact.OutOfMemoryError).
+class MemoryRefusal : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 }  // namespace barimpact

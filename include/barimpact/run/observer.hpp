@@ -89,13 +89,25 @@ struct Fields {
   [[nodiscard]] std::size_t nodes() const { return x.size(); }
 };
 
+/// Where field snapshots go as they are taken (the run directory's files,
+/// output.hpp), so that a run holds one at a time, not all of them.
+class FieldSink {
+ public:
+  virtual ~FieldSink() = default;
+  /// One snapshot: `snapshot` holds its rows and one t with its values.
+  /// False when it could not be kept (the sink holds the error): the run stops.
+  virtual bool write(const Fields& snapshot) = 0;
+};
+
 /// u, v and the stress sigma = (E A u_x + eta A v_x) / A at every row, at the
 /// steps nearest the requested times (each step once). Nodal sigma: the mean
 /// of the body's two elements beside the node, its end element at its ends.
 class FieldRecorder final : public Observer {
  public:
-  /// Snapshots of `line` (which must outlive the recorder) at the steps nearest `times`.
-  FieldRecorder(const Case& c, const Line& line, std::vector<double> times);
+  /// Snapshots of `line` (which must outlive the recorder) at the steps
+  /// nearest `times`: held until take(), or handed to `sink` one by one
+  /// (then take() has the rows and no snapshot).
+  FieldRecorder(const Case& c, const Line& line, std::vector<double> times, FieldSink* sink = nullptr);
   void begin(const Scheme& scheme, long long steps) override;
   bool observe(const Scheme& scheme) override;
   /// How many snapshots were recorded so far.
@@ -109,7 +121,8 @@ class FieldRecorder final : public Observer {
   std::vector<double> times_;
   std::vector<long long> steps_;  // sorted, unique
   std::size_t taken_ = 0;
-  Fields fields_;
+  FieldSink* sink_;
+  Fields fields_;  // every snapshot, or with a sink the one under way
 };
 
 /// A contact episode: U + g < 0 from `start` to `end` (crossing times

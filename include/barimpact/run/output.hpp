@@ -22,6 +22,9 @@
 namespace barimpact {
 
 class MadeParents;
+namespace detail {
+class FieldStream;
+}
 
 /// The run's resolved case: case.toml, or case.resolved.toml where
 /// case.toml is an input of the command (`run DIR/case.toml --out DIR
@@ -43,6 +46,11 @@ class RunDirectory {
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
 
+  /// Where the run of `c` puts its field snapshots as it takes them
+  /// (RunOptions::fields): fields.csv in staging, or a spool results.h5 is
+  /// made from, so that the run never holds them all. Call before the run;
+  /// `commit` then writes the rest.
+  FieldSink& stream_fields(const Case& c);
   /// Writes the files into staging (history.csv and fields.csv, or
   /// results.h5, as `c.output.format` says; case.toml, summary.json), then
   /// moves them into place.
@@ -69,7 +77,8 @@ class RunDirectory {
 
   std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
   CommandInputs inputs_;
-  std::unique_ptr<MadeParents> parents_;  // --out's missing parents, made for the staging
+  std::unique_ptr<MadeParents> parents_;         // --out's missing parents, made for the staging
+  std::unique_ptr<detail::FieldStream> fields_;  // the snapshots streamed, if any
   std::string command_;
   bool beside_ = false;  // --force on someone else's directory
   bool committed_ = false;

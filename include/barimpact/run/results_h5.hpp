@@ -28,6 +28,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -46,12 +47,23 @@ struct Hdf5Error : std::runtime_error {
 /// The file's name in a run directory.
 inline constexpr std::string_view results_h5_name = "results.h5";
 
-/// Writes `result`'s history and fields, and `c` as attributes, into a new
+/// Field snapshots a run streamed out instead of holding them in its
+/// RunResult (RunOptions::fields): their times, and `read(q, first, count,
+/// out)` filling `out` with quantity q's (0 u, 1 v, 2 sigma, 3 eps_p) values
+/// of snapshots first .. first + count - 1, snapshot-major.
+struct StreamedSnapshots {
+  const std::vector<double>* t = nullptr;
+  std::function<void(int q, std::size_t first, std::size_t count, double* out)> read;
+};
+
+/// Writes `result`'s history and fields (the snapshots from `streamed` when
+/// given: the same bytes), and `c` as attributes, into a new
 /// file at `path` (replaced if it exists): made in memory, then written as
 /// one image. Throws Hdf5Error (what HDF5 refused) or OutputError (what the
 /// file system refused: a full disk), naming the path; HDF5 holds no file
 /// open afterwards, and a file not written whole is removed.
-void write_results_h5(const std::filesystem::path& path, const Case& c, const RunResult& result);
+void write_results_h5(const std::filesystem::path& path, const Case& c, const RunResult& result,
+                      const StreamedSnapshots* streamed = nullptr);
 
 /// A history by column, as history.csv holds it.
 struct HistoryColumns {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -106,11 +107,21 @@ struct RunOptions {
   /// When it becomes true the run ends after the step under way, its rows
   /// so far kept, with RunStatus::interrupted. Null: never.
   const std::atomic<bool>* interrupt = nullptr;
+  /// Called once the run's set-up is done (its scheme and observers made),
+  /// just before its time loop: from then on `interrupt` is polled every
+  /// step. The command ends set-up at once on a signal until then (set-up
+  /// does not poll). Empty: nothing.
+  std::function<void()> loop_begins;
+  /// Field snapshots go there as they are taken (RunDirectory::stream_fields)
+  /// instead of into RunResult::fields, which then has the rows only. Null:
+  /// all held in the result.
+  FieldSink* fields = nullptr;
 };
 
 /// Runs `c` with its scheme and the history, field and contact observers:
 /// fits it to the scheme first (fit_scheme). Throws InputError when the case
-/// does not fit its scheme.
+/// does not fit its scheme, or needs more memory than is available
+/// (check_resources, check.hpp).
 [[nodiscard]] RunResult run(const Case& c, const RunOptions& options = {});
 /// The same for a case already fitted (the caller keeps fitted.c, the case
 /// the results are of); its line, if fitting kept one, is the run's.
@@ -124,7 +135,8 @@ struct RunOptions {
 /// outlive the recorder.
 class RunRecorder {
  public:
-  RunRecorder(const Case& c, const Scheme& scheme);
+  /// `fields`: where the snapshots go as they are taken (null: held).
+  RunRecorder(const Case& c, const Scheme& scheme, FieldSink* fields = nullptr);
   RunRecorder(const RunRecorder&) = delete;  // the observers point into it
   RunRecorder& operator=(const RunRecorder&) = delete;
 
