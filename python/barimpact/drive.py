@@ -20,17 +20,23 @@ def read_drive(directory):
 
 def _blow_counts(ax, rows, refusal):
     """Blow counts up to twice the refusal; counts beyond it (and set 0) at the axis' right edge."""
-    right = 2.0 * refusal
-    shown = [r for r in rows if r["blows_per_250mm"] <= right]
+    cap = 2.0 * refusal
+    shown = [r for r in rows if r["blows_per_250mm"] <= cap]
     ax.plot([r["blows_per_250mm"] for r in shown], [r["depth"] for r in shown], "o-", label="blow count")
-    beyond = [r for r in rows if r["blows_per_250mm"] > right]
+    right = 1.1 * max([r["blows_per_250mm"] for r in shown] + [refusal])
+    beyond = [r for r in rows if r["blows_per_250mm"] > cap]
     if beyond:
-        ax.plot([right] * len(beyond), [r["depth"] for r in beyond], ">", color="tab:gray",
-                label=f"beyond {right:g} (set 0: inf)")
+        right = 1.05 * cap
+        ax.plot([cap] * len(beyond), [r["depth"] for r in beyond], ">", color="tab:gray",
+                label=f"beyond {cap:g} (set 0: inf)")
+    unfinished = [r for r in shown if not r["finished"]]
+    if unfinished:
+        ax.plot([r["blows_per_250mm"] for r in unfinished], [r["depth"] for r in unfinished], "x", color="tab:red",
+                label="pile not yet at rest")
     ax.axvline(refusal, color="tab:red", ls=":", label=f"refusal ({refusal:g})")
     ax.set_xlabel("blows per 250 mm")
     ax.set_ylabel("penetration (m)")
-    ax.set_xlim(0, right * 1.05)
+    ax.set_xlim(0, right)
     ax.set_title("Blow count")
 
 
@@ -72,9 +78,18 @@ def plot_drive(directory, formats=("png", "svg")):
         axes[3].set_xlabel("stroke (m)")
         axes[3].set_title("Diesel hammer stroke")
     axes[0].invert_yaxis()  # depth downwards (the axes share it)
+    refusal_depth = summary.get("refusal_depth")
     for ax in axes:
+        if refusal_depth is not None:
+            ax.axhline(refusal_depth, color="tab:red", lw=0.8, ls="--",
+                       label=f"refusal at {refusal_depth:g} m" if ax is axes[0] else None)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize="small")
+    hammer = summary.get("hammer") or {}
+    pile = (summary.get("pile") or {}).get("name", "the pile")
+    driven = "" if summary.get("total_blows") is None else (
+        f": {summary['total_blows']:.0f} blows, {summary['driving_time']:.0f} min")
+    fig.suptitle(f"Drivability of {pile} with {hammer.get('model') or hammer.get('kind') or 'its hammer'}{driven}")
     written = []
     _save(fig, d, "drive", formats, written)
     return written

@@ -239,9 +239,13 @@ void read_bar(const Reader& r, OneBar& c) {
 void read_time(const Reader& r, Case& c) {
   TimeData& time = c.time;
   time.end = r.number("time", "end", time.end);
+  // A driven pile's defaults are the pile's scheme and its stable step: the
+  // paper's (dt = 0.01) would pass a meaningless blow off as one.
+  const bool driven = c.hammer || c.drive;
+  if (driven) time.scheme = "central-difference";
   const auto* step = r.node("time", "step");
-  time.step_auto = step != nullptr && step->is_string();
-  if (time.step_auto && step->as_string()->get() != "auto")
+  time.step_auto = (step != nullptr && step->is_string()) || (driven && step == nullptr);
+  if (step != nullptr && step->is_string() && step->as_string()->get() != "auto")
     r.fail("time", "step", fmt::format("must be a number or \"auto\" (got \"{}\")", step->as_string()->get()));
   if (!time.step_auto) time.step = r.number("time", "step", time.step);
   time.scheme = r.word("time", "scheme", time.scheme);
@@ -1216,6 +1220,20 @@ std::string Case::to_toml() const {
   const bool bar_spelling = near_end.gap < 0 && one;
   std::string out =
       bar_spelling ? bar_toml(*one, gauges) : "# barimpact resolved case: every key, defaults filled in\n\n";
+  if (drive)
+    out.insert(out.find("\n\n") + 1,
+               fmt::format("# The pile's shaft and toe are its [drive] profile's at a penetration "
+                           "of {} m.\n",
+                           drive->analysed_depth()));
+  if (hammer)
+    out.insert(out.find("\n\n") + 1,
+               fmt::format("# The hammer ({}{}) at a stroke of {} m: the ram's velocity.{}\n",
+                           hammer->model.empty() ? to_string(hammer->kind) : hammer->model,
+                           hammer->model.empty() ? ", by hand" : "", hammer->stroke,
+                           hammer->kind == HammerKind::diesel
+                               ? "\n# A diesel hammer's run repeats the blow until its stroke settles; this file "
+                                 "holds the first blow."
+                               : ""));
   for (const auto& b : v.bodies)
     if (!bar_spelling) write_body(out, b);
   for (const auto& j : v.joints) {

@@ -123,7 +123,10 @@ SoilSpring read_layer_soil(const Reader& r, const std::string& s, const char* qu
   soil.damping = r.number(s, damping, soil.damping);
   soil.damping_law = law;
   if (!(soil.quake > 0)) r.fail(s, quake, fmt::format("must be > 0 (got {})", soil.quake));
+  if (soil.quake > 0.1) r.fail(s, quake, fmt::format("= {}: mm? quakes are a few mm, in m (0.00254)", soil.quake));
   if (!(soil.damping >= 0)) r.fail(s, damping, fmt::format("must be >= 0 (got {})", soil.damping));
+  if (soil.damping > 5.0)
+    r.fail(s, damping, fmt::format("= {}: s/ft? Smith dampings are 0.1 to 1 s/m (0.16 sand, 0.65 clay)", soil.damping));
   return soil;
 }
 
@@ -148,6 +151,11 @@ LayerData read_layer(Reader& r, const toml::table& t, std::size_t i, double top)
   l.toe = r.number(s, "toe", 0.0);
   if (!(l.shaft_top >= 0 && l.shaft_bottom >= 0)) r.fail(s, "shaft", "must be >= 0 (Pa)");
   if (!(l.toe >= 0)) r.fail(s, "toe", fmt::format("must be >= 0 (Pa; got {})", l.toe));
+  // Unit resistances in kPa (or kN) are the likely slip: no soil resists so little
+  // (the softest clays: a few kPa along the shaft, some 50 kPa at the toe).
+  for (const double v : {l.shaft_top, l.shaft_bottom})
+    if (v > 0 && v < 500.0) r.fail(s, "shaft", fmt::format("= {}: kPa? unit resistances are in Pa (25e3)", v));
+  if (l.toe > 0 && l.toe < 10e3) r.fail(s, "toe", fmt::format("= {}: kPa? unit resistances are in Pa (6e6)", l.toe));
   const std::string law = r.word(s, "damping_law", "smith");
   if (law != "smith" && law != "viscous")
     r.fail(s, "damping_law", fmt::format("must be smith or viscous (got \"{}\")", law));
@@ -258,6 +266,13 @@ void read_stroke(const Reader& r, const Case& c, const BodyIndex& index, HammerD
              : h.entry->stroke > 0 ? h.entry->stroke
                                    : h.entry->energy / (mass * g);
   if (!(h.stroke > 0)) r.fail("hammer", energy ? "energy" : "stroke", fmt::format("must be > 0 (got {})", h.stroke));
+  const double rated = diesel    ? h.diesel.max_stroke
+                       : h.entry ? (h.entry->stroke > 0 ? h.entry->stroke : h.entry->energy / (mass * g))
+                                 : 10.0;  // m: no hammer falls further
+  if (h.stroke > rated * (1 + 1e-9))
+    r.fail("hammer", energy ? "energy" : "stroke",
+           fmt::format("gives a stroke of {} m, above the hammer's {} of {} m{}", h.stroke,
+                       h.entry || diesel ? "rated stroke" : "plausible", rated, h.stroke > 100 ? " (mm?)" : ""));
   if (diesel && !(h.stroke > h.diesel.compression_length))
     r.fail("hammer", energy ? "energy" : "stroke",
            fmt::format("gives a stroke of {} m, not above the ports (compression_length = {} m)", h.stroke,
@@ -342,12 +357,22 @@ void read_drive(Reader& r, Case& c, const BodyIndex& index) {
     throw InputError(fmt::format("{}: [drive] needs the soil as [[layer]] tables", r.where("drive", "")));
   DriveData d;
   const std::size_t pile = drive_pile(r, c, index, d.pile);
+  if (c.bodies.size() == 1)
+    throw InputError(
+        fmt::format("{}: [drive] needs a hammer: a [hammer] section, or the ram (and helmet) as bodies "
+                    "above the pile",
+                    r.where("drive", "")));
   const BodyData& b = c.bodies[pile];
   d.perimeter = r.number("drive", "perimeter", 0.0);
+  if (r.node("drive", "perimeter") == nullptr) r.fail("drive", "perimeter", "is required: the shaft's perimeter, m");
   if (!(d.perimeter > 0)) r.fail("drive", "perimeter", fmt::format("must be > 0 (m; got {})", d.perimeter));
+  if (d.perimeter > 50.0)
+    r.fail("drive", "perimeter", fmt::format("= {}: mm? a pile's perimeter in m is at most a few metres", d.perimeter));
   if (r.node("drive", "toe_area") != nullptr) {
     d.toe_area = r.number("drive", "toe_area", 0.0);
     if (!(*d.toe_area > 0)) r.fail("drive", "toe_area", fmt::format("must be > 0 (m2; got {})", *d.toe_area));
+    if (*d.toe_area > 20.0)
+      r.fail("drive", "toe_area", fmt::format("= {}: mm2? a pile's toe area in m2 is at most a few", *d.toe_area));
   }
   d.depths = read_depths(r, b.length);
   d.refusal = r.number("drive", "refusal", d.refusal);

@@ -73,13 +73,14 @@ double bytes_per_node(const Case& c) {
     std::string_view scheme;
     double elastic, plastic;  // bytes a node
   };
+  // Characteristic has no elastic-plastic bar: its plastic entry is never read.
   static constexpr std::array<Measured, 7> measured{{{"paper", 190, 590},
                                                      {"newmark", 400, 490},
                                                      {"central-difference", 280, 300},
-                                                     {"mass-redistribution", 280, 300},
-                                                     {"paoli-schatzman", 310, 330},
-                                                     {"moreau-jean", 290, 310},
-                                                     {"characteristic", 200, 220}}};
+                                                     {"mass-redistribution", 280, 350},
+                                                     {"paoli-schatzman", 310, 320},
+                                                     {"moreau-jean", 290, 360},
+                                                     {"characteristic", 200, 200}}};
   const bool plastic = std::any_of(c.bodies.begin(), c.bodies.end(), [](const BodyData& b) {
     return b.kind == BodyKind::bar && b.material.kind == MaterialKind::plastic;
   });

@@ -37,6 +37,13 @@ std::string depth_sweep(const fs::path& case_file, const DriveData& d) {
                      nlohmann::json(fs::absolute(case_file).string()).dump(), fmt::join(values, ", "));
 }
 
+// The study's own figures in its directory (`stem`.png, .svg), gone before
+// it writes its table: they would show another run's.
+void remove_figures(const fs::path& dir, const std::string& stem) {
+  std::error_code ec;
+  for (const char* ext : {".png", ".svg"}) fs::remove(dir / (stem + ext), ec);
+}
+
 // Blows to reach each depth from the first: trapezoidal in blows per metre
 // (infinite past a refusal, NaN past a depth with no blow).
 void accumulate(std::vector<DriveRow>& rows) {
@@ -95,6 +102,8 @@ DriveTotals drive_totals(const DrivePlan& plan, const std::vector<DriveRow>& row
   DriveTotals t;
   const DriveData& d = plan.drive();
   for (const auto& r : rows) {
+    if (t.refusal_depth) break;  // the pile is not driven past refusal
+    if (r.blows_per_250mm >= d.refusal) t.refusal_depth = r.depth;
     if (r.max_compression > t.max_compression) {
       t.max_compression = r.max_compression;
       t.max_compression_depth = r.depth;
@@ -107,7 +116,6 @@ DriveTotals drive_totals(const DrivePlan& plan, const std::vector<DriveRow>& row
   std::size_t last = rows.empty() ? 0 : rows.size() - 1;  // the deepest depth driven to
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (rows[i].blows_per_250mm >= d.refusal) {
-      t.refusal_depth = rows[i].depth;
       last = std::isfinite(rows[i].cumulative_blows) || i == 0 ? i : i - 1;
       break;
     }
@@ -158,6 +166,7 @@ std::string summary_json(const DrivePlan& plan, const std::vector<DriveRow>& row
 std::vector<DriveRow> write_drive(const DrivePlan& plan, const fs::path& dir, const SweepOptions& options, bool force) {
   prepare_sweep(dir, options, force, plan.sweep().inputs(), "drive",
                 {"runs", "drive.csv", "summary.json", "drive.png", "drive.svg"});
+  remove_figures(dir, "drive");  // a run with --no-plot leaves no figure of another
   auto rows = run_drive(plan, dir, options);
   replace_text(dir / "drive.csv", drive_csv(rows));
   replace_text(dir / "summary.json", summary_json(plan, rows));
@@ -219,6 +228,10 @@ InspectorPlan::InspectorPlan(const fs::path& case_file, const std::string& strok
   const Case c = fit_scheme(Case::from_file(case_file, sets)).c;  // --depth's rules, named
   if (!c.hammer)
     throw InputError(fmt::format("inspector: {} has no [hammer] (the stroke it varies)", case_file.string()));
+  if (c.hammer->kind == HammerKind::diesel)
+    throw InputError(fmt::format(
+        "inspector: {}'s hammer is a diesel hammer, whose stroke follows the soil (barimpact drive's stroke column)",
+        case_file.string()));
   for (const auto& b : c.bodies)
     if (b.name == c.hammer->ram)
       ram_weight_ = (b.kind == BodyKind::mass ? b.mass : b.density * b.area * b.length) * drive_gravity(c.load.gravity);
@@ -252,6 +265,7 @@ std::vector<InspectorRow> write_inspector(const InspectorPlan& plan, const fs::p
                                           bool force) {
   prepare_sweep(dir, options, force, plan.sweep().inputs(), "inspector",
                 {"runs", "inspector.csv", "inspector.png", "inspector.svg"});
+  remove_figures(dir, "inspector");
   const auto& points = plan.sweep().points();
   SweepStart start = resume_sweep(plan.sweep(), dir);
   for (auto& r : run_sweep(plan.sweep(), dir, start.todo, options))

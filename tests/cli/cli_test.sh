@@ -406,6 +406,7 @@ head -1 "$work/drive-diesel/runs/0000/history.csv" | grep -q "hammer.gas.pressur
 "$bin" inspector "$drv" --out "$work/inspector" --stroke 0.5:1.0:2 --depth 6 --no-plot --set time.end=0.02 > /dev/null 2>&1 && ok || bad "inspector exit"
 [ "$(head -1 "$work/inspector/inspector.csv" | cut -d, -f1-8)" = "stroke,energy,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru" ] && ok || bad "inspector columns"
 expect_refused "--depth is required" inspector "$drv" --out "$work/refused" --stroke 0.5:1.0:2
+expect_refused "diesel hammer, whose stroke follows the soil" inspector "$examples/pile/drive-concrete-diesel.toml" --out "$work/refused" --stroke 1.5:3.0:2 --depth 8
 expect_refused "no [hammer]" inspector "$pipe" --out "$work/refused" --stroke 0.5:1.0:2
 expect_refused "no [drive] section" drive "$pipe" --out "$work/refused"
 expect_refused "layer[1].top" drive "$drv" --out "$work/refused" --set layer.layer1.top=1.0

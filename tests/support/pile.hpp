@@ -41,7 +41,7 @@ modulus = 210e9
 density = 7850.0
 )";
 
-// A 2 t ram on a capblock above it (pile_toml's time).
+// A 2 t ram on a capblock above it.
 constexpr const char* ram_toml = R"(
 [[body]]
 name = "ram"
@@ -52,6 +52,10 @@ between = ["pile", "ram"]
 law = "cushion"
 stiffness = 2e9
 restitution = 0.8
+)";
+
+// A blow's time: central differences at their stable step.
+constexpr const char* blow_time_toml = R"(
 [time]
 end = 0.04
 step = "auto"

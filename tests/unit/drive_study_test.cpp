@@ -16,9 +16,9 @@ namespace barimpact {
 namespace {
 
 // The 10 m pile, the 2 t ram dropped 0.8 m by hand, clay over sand.
-const std::string drive_case = std::string(testing::driven_pile_toml) + testing::ram_toml + testing::drop_toml +
-                               "[drive]\nperimeter = 0.9\ndepths = [3.0, 7.0]\nblow_rate = 30.0\n" +
-                               testing::clay_over_sand_toml;
+const std::string drive_case =
+    std::string(testing::driven_pile_toml) + testing::ram_toml + testing::blow_time_toml + testing::drop_toml +
+    "[drive]\nperimeter = 0.9\ndepths = [3.0, 7.0]\nblow_rate = 30.0\n" + testing::clay_over_sand_toml;
 
 // The blow at 7 m with the profile's resistances written by hand: the sand
 // 0.9 x 30 kPa from the toe to x = 3, the clay 0.9 x (20 .. 10) kPa from
@@ -43,7 +43,7 @@ ultimate = 48e3
 quake = 0.004
 damping = 0.492
 damping_law = "viscous"
-)" + testing::ram_toml;
+)" + testing::ram_toml + testing::blow_time_toml;
 
 std::string text(const std::filesystem::path& p) {
   std::ifstream in(p);

@@ -28,7 +28,8 @@ using testing::case_from;
   } while (0)
 
 // The 10 m pile, the 2 t ram dropped 0.8 m by hand, clay over sand.
-const std::string pile = std::string(testing::driven_pile_toml) + testing::ram_toml + testing::drop_toml;
+const std::string pile =
+    std::string(testing::driven_pile_toml) + testing::ram_toml + testing::blow_time_toml + testing::drop_toml;
 const std::string profile =
     std::string("[drive]\nperimeter = 0.9\ndepths = \"3:9:4\"\n") + testing::clay_over_sand_toml;
 
@@ -160,6 +161,31 @@ TEST(DriveProfile, RefusesABrokenProfileNamingTheKey) {
   EXPECT_REFUSED(pile + layer(0, 10), "[[layer]] needs a [drive]");
 }
 
+TEST(DriveProfile, RefusesNumbersInAnotherUnitNamingTheUnit) {
+  const std::string head = pile + "[drive]\nperimeter = 1.0\ndepths = \"2:8:4\"\n";
+  const std::string layer = "[[layer]]\ntop = 0.0\nbottom = 10.0\n";
+  EXPECT_REFUSED(pile + "[drive]\nperimeter = 1420.0\ndepths = [4.0]\n" + layer + "shaft = 1e4\ntoe = 1e6\n",
+                 "drive.perimeter", "mm?");
+  EXPECT_REFUSED(head + layer + "shaft = [25.0, 50.0]\ntoe = 1e6\n", "layer[1].shaft", "kPa?");
+  EXPECT_REFUSED(head + layer + "shaft = 1e4\ntoe = 6000.0\n", "layer[1].toe", "kPa?");
+  EXPECT_REFUSED(head + layer + "shaft = 1e4\ntoe = 1e6\nshaft_quake = 2.5\n", "layer[1].shaft_quake", "mm?");
+  EXPECT_REFUSED(head + layer + "shaft = 1e4\ntoe = 1e6\ntoe_damping = 15.0\n", "layer[1].toe_damping", "s/ft?");
+  EXPECT_REFUSED(head + "toe_area = 16800.0\n" + layer + "shaft = 1e4\ntoe = 1e6\n", "drive.toe_area", "mm2?");
+  EXPECT_SET_REFUSED(pile, "hammer.stroke=1200.0", "hammer.stroke", "mm?");
+  // A pile alone has nothing to drive it.
+  EXPECT_REFUSED(std::string(testing::driven_pile_toml) + "[drive]\nperimeter = 1.0\ndepths = [4.0]\n" + layer +
+                     "shaft = 1e4\ntoe = 1e6\n",
+                 "[drive] needs a hammer");
+}
+
+TEST(DriveProfile, ADrivenPileWithoutTimeRunsOnThePilesSchemeAndStableStep) {
+  const std::string no_time = std::string(testing::driven_pile_toml) + testing::ram_toml + testing::drop_toml + profile;
+  const Case c = case_from(no_time);
+  EXPECT_EQ(c.time.scheme, "central-difference");
+  EXPECT_TRUE(c.time.step_auto);
+  EXPECT_LT(c.time.step, 1e-4);  // the stable step of a 0.25 m steel element, not the paper's 0.01
+}
+
 TEST(Hammer, ByHandTheRamStartsAtImpactAtTheSpeedOfItsFall) {
   const Case c = case_from(pile);
   ASSERT_TRUE(c.hammer);
@@ -224,6 +250,7 @@ TEST(Hammer, RefusesBadKeysNamingThem) {
   EXPECT_SET_REFUSED(pile, "hammer.efficiency=1.5", "hammer.efficiency", "(0, 1]");
   EXPECT_SET_REFUSED(pile, "hammer.ram=anvil", "hammer.ram", "names no body");
   EXPECT_SET_REFUSED(pile, "body.ram.velocity=-3.0", "body.ram.velocity", "set by [hammer]");
+  EXPECT_SET_REFUSED(pile, "hammer.stroke=11.0", "hammer.stroke", "plausible");
 }
 
 // A diesel hammer from the table on the 10 m pile, its toe in Smith's soil.
