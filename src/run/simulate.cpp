@@ -157,6 +157,11 @@ RunResult run_diesel(const FittedCase& fitted, const RunOptions& options) {
     stroke = next;
   }
   BlowSummary& b = *r.summary.blow;
+  // A diesel hammer's energy is its rated one, m g H (the gas works on the
+  // ram before impact and on the anvil after): ENTHRU's share of it is the
+  // transfer ratio analysers report.
+  for (const auto& body : fitted.c.bodies)
+    if (body.name == fitted.c.hammer->ram) b.hammer_energy = body.mass * drive_gravity(fitted.c.load.gravity) * stroke;
   b.stroke = stroke;
   b.first_set = first_set;
   b.blows_run = blows;
