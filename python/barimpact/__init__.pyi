@@ -13,7 +13,7 @@ from ._core import OutputError as OutputError
 from ._core import Result as Result
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "hopkinson", "plot", "load",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "plot", "load",
            "read_table", "exact_example1"]
 
 _PathArg = Union[str, os.PathLike[str]]

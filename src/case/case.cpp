@@ -710,6 +710,10 @@ void read_blow(const Reader& r, Case& c, const BodyIndex& body_index) {
   b.gauge = r.word("blow", "gauge", "");
   b.ram = r.word("blow", "ram", "");
   b.pile = r.word("blow", "pile", "");
+  if (r.node("blow", "rest_window") != nullptr) {
+    b.rest_window = r.number("blow", "rest_window", 0.0);
+    if (!(*b.rest_window > 0)) r.fail("blow", "rest_window", fmt::format("must be > 0 (s; got {})", *b.rest_window));
+  }
   if (!b.gauge.empty() &&
       std::none_of(c.gauges.begin(), c.gauges.end(), [&](const GaugeData& g) { return g.name == b.gauge; }))
     r.fail("blow", "gauge", fmt::format("names no [[gauge]] of the case (got \"{}\")", b.gauge));
@@ -1252,11 +1256,12 @@ std::string Case::to_toml() const {
     if (!bar_spelling)
       out += fmt::format("[[gauge]]\nname = {}\nbody = {}\nat = {}\n\n", toml_string(g.name), toml_string(g.body),
                          toml_float(g.at));
-  if (!blow.gauge.empty() || !blow.ram.empty() || !blow.pile.empty()) {
+  if (!blow.gauge.empty() || !blow.ram.empty() || !blow.pile.empty() || blow.rest_window) {
     out += "[blow]\n";
     for (const auto& [key, name] :
          {std::pair{"gauge", blow.gauge}, std::pair{"ram", blow.ram}, std::pair{"pile", blow.pile}})
       if (!name.empty()) out += fmt::format("{} = {}\n", key, toml_string(name));
+    if (blow.rest_window) out += fmt::format("rest_window = {}\n", toml_float(*blow.rest_window));
     out += "\n";
   }
   out +=

@@ -38,7 +38,7 @@ inline const std::array<SectionKeys, 12>& contract() {
        {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
       {"far_end",
        {"law", "stiffness", "viscosity", "restitution", "gap", "value", "ultimate", "quake", "damping", "damping_law"}},
-      {"blow", {"gauge", "ram", "pile"}},
+      {"blow", {"gauge", "ram", "pile", "rest_window"}},
       {"hammer",
        {"model", "table", "kind", "ram", "stroke", "energy", "efficiency", "pile_cushion", "ram_mass", "anvil_mass",
         "cylinder_area", "compression_length", "chamber_length", "combustion_pressure", "max_stroke",

@@ -71,6 +71,7 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
     const Bond& b = line.bonds[j];
     if (b.kind == BondKind::element) transit_ += b.h / std::sqrt(b.axial * b.h / b.mass);
   }
+  if (c.blow.rest_window) out_.rest_window = *c.blow.rest_window;
   start_ = out_;
   mass_ = line.lumped_mass();
   if (line.bodies[ram].is_mass)  // its own mass, not the half elements of a bar welded to it
@@ -81,7 +82,7 @@ void BlowMonitor::begin(const Scheme& /*scheme*/, long long /*steps*/) {
   out_ = start_;
   power_ = energy_ = 0.0;
   impacted_ = false;
-  at_rest_ = false;
+  at_rest_ = rested_ = false;
   slip_ = 0.0;
 }
 
@@ -160,24 +161,28 @@ void BlowMonitor::watch_stresses(const Scheme& s) {
 // moved it (before, the pile is still, not at rest).
 void BlowMonitor::watch_rest(const Scheme& s) {
   const double slip = s.soil_slip_work();
-  if (slip > slip_) {
+  if (slip > slip_ && !rested_) {
     slip_ = slip;
     at_rest_ = false;
   }
-  if (!impacted_ || at_rest_) return;
+  if (!impacted_ || rested_) return;
   if (s.time() < out_.impact_time + transit_ || !(out_.toe_penetration > 0.0)) return;
   const double limit = 0.01 * std::abs(out_.impact_velocity);
   for (std::size_t j = first_; j <= last_; ++j)
-    if (!(std::abs(s.velocity_at(j)) < limit)) return;
+    if (!(std::abs(s.velocity_at(j)) < limit)) {
+      at_rest_ = false;  // a node passing through zero while the pile rings is not rest
+      return;
+    }
+  if (!at_rest_) out_.rest_time = s.time();
   at_rest_ = true;
-  out_.rest_time = s.time();
+  rested_ = out_.rest_window > 0 && s.time() - out_.rest_time >= out_.rest_window;
 }
 
 BlowSummary BlowMonitor::summary() const {
   BlowSummary b = out_;
   b.impact = impacted_;
-  b.finished = at_rest_;
-  if (!at_rest_) b.rest_time = std::numeric_limits<double>::quiet_NaN();
+  b.finished = at_rest_ || rested_;
+  if (!b.finished) b.rest_time = std::numeric_limits<double>::quiet_NaN();
   b.set = std::max(0.0, b.toe_penetration - toe_quake_);
   if (toe_link_ == Link::ground && !line_.shaft.empty()) {  // no toe spring: the shaft's quake at the toe
     const std::size_t j = line_.shaft.nodes.front();

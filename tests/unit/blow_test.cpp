@@ -76,7 +76,8 @@ step = 0.001
 
 // The blow's results against what the history says, row by row (every step).
 TEST(SmithBlow, ResultsAgreeWithTheHistory) {
-  const Case c = testing::example("pile/steel-pipe-sand.toml", {"output.every=1"});
+  // Long enough for the pile to stop ringing (at 0.40 s).
+  const Case c = testing::example("pile/steel-pipe-sand.toml", {"output.every=1", "time.end=0.45"});
   const RunResult r = run(c);
   ASSERT_TRUE(r.summary.blow);
   const BlowSummary& b = *r.summary.blow;
@@ -127,6 +128,28 @@ TEST(SmithBlow, ResultsAgreeWithTheHistory) {
 
 // A hammer the soil does not let through: the toe stays within its quake,
 // set 0, blow counts infinite; a run too short to see the pile at rest warns.
+// At rest is below the rule from then on, not one instant where every node
+// passes through zero while the pile rings (the example's pile read "at
+// rest from 0.0786 s" and then moved at 0.66 m/s).
+TEST(SmithBlow, APileAtRestStaysBelowTheRuleToTheEnd) {
+  const RunResult ringing = run(testing::example("pile/steel-pipe-sand.toml", {"output.every=1"}));
+  ASSERT_TRUE(ringing.summary.blow);
+  EXPECT_FALSE(ringing.summary.blow->finished) << "still ringing at 0.12 s";
+  const RunResult r = run(testing::example("pile/steel-pipe-sand.toml", {"output.every=1", "time.end=0.45"}));
+  const BlowSummary& b = *r.summary.blow;
+  ASSERT_TRUE(b.finished);
+  const double limit = 0.01 * std::abs(b.impact_velocity);
+  for (std::size_t i = 0; i < r.history.size(); ++i)
+    if (r.history[i].t >= b.rest_time) {
+      ASSERT_LT(std::abs(column(r, "gauge.head.velocity", i)), limit) << "t = " << r.history[i].t;
+    }
+  // With a rest window, at rest once below the rule that long.
+  const RunResult w = run(testing::example("pile/steel-pipe-sand.toml", {"time.end=0.45", "blow.rest_window=0.02"}));
+  EXPECT_TRUE(w.summary.blow->finished);
+  EXPECT_EQ(w.summary.blow->rest_window, 0.02);
+  EXPECT_NEAR(w.summary.blow->rest_time, b.rest_time, 1e-12);
+}
+
 TEST(SmithBlow, RefusalAndAnUnfinishedBlow) {
   const RunResult r =
       run(testing::example("pile/steel-pipe-sand.toml", {"near_end.ultimate=2e8", "body.pile.shaft.ultimate=2e8"}));

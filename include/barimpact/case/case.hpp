@@ -141,6 +141,8 @@ struct BlowData {
   std::string gauge;  ///< the gauge ENTHRU is measured at (empty: the pile's top gauge, if any)
   std::string ram;    ///< the ram (empty: the outermost body)
   std::string pile;   ///< the pile (empty: the bar nearest x = 0)
+  /// s: the pile is at rest once below the rule this long (none: until the run's end)
+  std::optional<double> rest_window;
 };
 
 struct GaugeData {

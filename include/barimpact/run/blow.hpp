@@ -37,12 +37,15 @@ struct BlowSummary {
   double impact_time = 0.0, impact_velocity = 0.0;
   double hammer_energy = 0.0;  ///< the ram's kinetic energy at impact
   bool impact = false;         ///< the ram struck the pile (false: no set, no blow counts, no transfer)
-  /// The pile came to rest: every node below 1% of the impact velocity at a
-  /// step after the soil's last slip, once the wave has reached the toe and
-  /// moved it (a blow cut short before then is not finished).
+  /// The pile came to rest: every node below 1% of the impact velocity from
+  /// rest_time on, after the soil's last slip and once the wave has reached
+  /// the toe and moved it, and stayed so to the end of the run or, with
+  /// [blow] rest_window, for that long (a blow cut short before then, or
+  /// still ringing at its end, is not finished).
   bool finished = false;
   double rest_time = std::numeric_limits<double>::quiet_NaN();
-  double impedance = std::numeric_limits<double>::quiet_NaN();  ///< Z = A sqrt(E rho) at the gauge
+  double rest_window = std::numeric_limits<double>::quiet_NaN();  ///< [blow] rest_window, NaN: to the run's end
+  double impedance = std::numeric_limits<double>::quiet_NaN();    ///< Z = A sqrt(E rho) at the gauge
   /// The stress envelopes along the pile: per element its middle x and its
   /// largest compression and tension (>= 0) over every step.
   struct Envelope {
@@ -109,7 +112,8 @@ class BlowMonitor final : public Observer {
   bool impacted_ = false;
   double slip_ = 0.0;     // the soil's slip work at the last step
   double transit_ = 0.0;  // the wave's time from the pile's head to its toe
-  bool at_rest_ = false;  // resting since the last slip
+  bool at_rest_ = false;  // below the rule since out_.rest_time, after the last slip
+  bool rested_ = false;   // at rest for the whole rest window: finished, whatever follows
 };
 
 }  // namespace barimpact
