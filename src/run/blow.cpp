@@ -67,10 +67,14 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
   out_.envelope.tension.assign(out_.envelope.x.size(), 0.0);
   out_.max_compression.body = out_.max_tension.body = out_.pile;
   out_.max_compression.x = out_.max_tension.x = line.x[first_];
-  for (std::size_t j = first_; j < last_; ++j) {  // h / c per element, c = sqrt(E A h / (rho A h))
+  arrival_.assign(last_ - first_, 0.0);
+  for (std::size_t j = last_; j-- > first_;) {  // from the head down: h / c per element, c = sqrt(E A h / (rho A h))
     const Bond& b = line.bonds[j];
-    if (b.kind == BondKind::element) transit_ += b.h / std::sqrt(b.axial * b.h / b.mass);
+    const double h_c = b.kind == BondKind::element ? b.h / std::sqrt(b.axial * b.h / b.mass) : 0.0;
+    arrival_[j - first_] = transit_ - 1.5 * h_c;  // its middle's arrival, less two transits of margin
+    transit_ += h_c;
   }
+  out_.precursor.body = out_.pile;
   if (c.blow.rest_window) out_.rest_window = *c.blow.rest_window;
   start_ = out_;
   mass_ = line.lumped_mass();
@@ -152,6 +156,11 @@ void BlowMonitor::watch_stresses(const Scheme& s) {
       peak.value = std::abs(sigma);
       peak.x = 0.5 * (line_.x[j] + line_.x[j + 1]);
       peak.t = s.time();
+    }
+    if (impacted_ && sigma > out_.precursor.value && s.time() < out_.impact_time + arrival_[j - first_]) {
+      out_.precursor.value = sigma;
+      out_.precursor.x = 0.5 * (line_.x[j] + line_.x[j + 1]);
+      out_.precursor.t = s.time();
     }
   }
 }

@@ -471,6 +471,7 @@ nlohmann::json blow_json(const Summary& s) {
       {"finished", b->finished},
       {"rest_time", number_or_null(b->rest_time)},
       {"rest_window", number_or_null(b->rest_window)},
+      {"precursor", stress_peak_json(b->precursor)},
       {"impact", b->impact},
       {"impedance", number_or_null(b->impedance)},
       {"envelope", {{"x", b->envelope.x}, {"compression", b->envelope.compression}, {"tension", b->envelope.tension}}}};

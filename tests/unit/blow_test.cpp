@@ -150,6 +150,61 @@ TEST(SmithBlow, APileAtRestStaysBelowTheRuleToTheEnd) {
   EXPECT_NEAR(w.summary.blow->rest_time, b.rest_time, 1e-12);
 }
 
+// Issue 33's reproduction: a 100 m steel pipe, a steep front (a stiff
+// capblock) and a viscous toe. The true tension is 0 until the front
+// reaches the toe; newmark reports tension at the toe before it can arrive.
+constexpr const char* long_pipe = R"(
+[[body]]
+name = "pile"
+length = 100.0
+elements = 2000
+area = 0.0105
+modulus = 210e9
+density = 7850.0
+[[body]]
+name = "ram"
+kind = "mass"
+mass = 4000.0
+velocity = -4.43
+[[joint]]
+between = ["pile", "ram"]
+law = "cushion"
+stiffness = 1.5e9
+restitution = 0.8
+[near_end]
+law = "smith"
+ultimate = 1.5e6
+quake = 0.0025
+damping = 0.5
+damping_law = "viscous"
+[time]
+end = 0.03828
+step = 4.834e-6
+scheme = "newmark"
+[output]
+every = 1000
+)";
+
+TEST(SmithBlow, TensionAheadOfTheFrontWarnsOfSpuriousOscillation) {
+  auto has = [](const RunResult& r) {
+    return std::any_of(r.summary.warnings.begin(), r.summary.warnings.end(),
+                       [](const std::string& w) { return w.rfind("spurious-oscillation", 0) == 0; });
+  };
+  const RunResult nm = run(testing::case_from(long_pipe));
+  ASSERT_TRUE(nm.summary.blow);
+  EXPECT_GT(nm.summary.blow->max_tension.value, 1e6) << "newmark's oscillation behind the front";
+  EXPECT_GT(nm.summary.blow->precursor.value, 0.1 * nm.summary.blow->max_tension.value);
+  EXPECT_TRUE(has(nm)) << "newmark's max_tension is its oscillation";
+  const auto it = std::find_if(nm.summary.warnings.begin(), nm.summary.warnings.end(),
+                               [](const std::string& w) { return w.rfind("spurious-oscillation", 0) == 0; });
+  ASSERT_NE(it, nm.summary.warnings.end());
+  EXPECT_NE(it->find("central-difference"), std::string::npos) << *it;
+  // Central differences at their stable step keep the front sharp: no tension, no warning.
+  const RunResult cd = run(testing::case_from(long_pipe, {"time.scheme=central-difference", "time.step=auto"}));
+  EXPECT_LT(cd.summary.blow->max_tension.value, 0.5e6);
+  EXPECT_FALSE(has(cd));
+}
+
 TEST(SmithBlow, RefusalAndAnUnfinishedBlow) {
   const RunResult r =
       run(testing::example("pile/steel-pipe-sand.toml", {"near_end.ultimate=2e8", "body.pile.shaft.ultimate=2e8"}));

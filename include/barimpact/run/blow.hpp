@@ -45,7 +45,12 @@ struct BlowSummary {
   bool finished = false;
   double rest_time = std::numeric_limits<double>::quiet_NaN();
   double rest_window = std::numeric_limits<double>::quiet_NaN();  ///< [blow] rest_window, NaN: to the run's end
-  double impedance = std::numeric_limits<double>::quiet_NaN();    ///< Z = A sqrt(E rho) at the gauge
+  /// The largest tension (>= 0) in an element before the stress wave from
+  /// the head can have reached it (two element transits of margin): what a
+  /// scheme's oscillation ahead of a steep front puts there, 0 for a scheme
+  /// that keeps the front sharp. Its place and time in precursor.
+  StressPeak precursor;
+  double impedance = std::numeric_limits<double>::quiet_NaN();  ///< Z = A sqrt(E rho) at the gauge
   /// The stress envelopes along the pile: per element its middle x and its
   /// largest compression and tension (>= 0) over every step.
   struct Envelope {
@@ -110,10 +115,11 @@ class BlowMonitor final : public Observer {
   double dt_ = 0.0, power_ = 0.0, energy_ = 0.0;
   double ram_energy_ = 0.0, ram_velocity_ = 0.0;  // at the last step observed
   bool impacted_ = false;
-  double slip_ = 0.0;     // the soil's slip work at the last step
-  double transit_ = 0.0;  // the wave's time from the pile's head to its toe
-  bool at_rest_ = false;  // below the rule since out_.rest_time, after the last slip
-  bool rested_ = false;   // at rest for the whole rest window: finished, whatever follows
+  double slip_ = 0.0;            // the soil's slip work at the last step
+  double transit_ = 0.0;         // the wave's time from the pile's head to its toe
+  std::vector<double> arrival_;  // per element: the wave's time from the head, less two element transits
+  bool at_rest_ = false;         // below the rule since out_.rest_time, after the last slip
+  bool rested_ = false;          // at rest for the whole rest window: finished, whatever follows
 };
 
 }  // namespace barimpact
