@@ -155,13 +155,14 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   // The output rule before any work; the staging directory only once the
   // scheme is made (a signal while it is made leaves nothing behind).
   (void)barimpact::check_output_directory(out_dir, flags.force, "--out", inputs);
+  const bool repeated = !exact && barimpact::repeats_blows(c);  // several blows: run() makes each its scheme
   std::unique_ptr<barimpact::Scheme> scheme;
-  if (!exact) scheme = barimpact::make_scheme(fitted);
+  if (!exact && !repeated) scheme = barimpact::make_scheme(fitted);
   barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, inputs);
   barimpact::RunOptions options;
   options.interrupt = &interrupted;
   options.loop_begins = poll_signals;
-  options.fields = &dir.stream_fields(c);
+  if (!repeated) options.fields = &dir.stream_fields(c);  // else the last blow's, held
   if (!too_large.empty()) print_warnings({too_large});
   bool reported = false;
   if (isatty(STDERR_FILENO)) {
@@ -177,8 +178,9 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
       return true;
     };
   }
-  const auto result =
-      exact ? barimpact::run_exact(c, options) : barimpact::run_scheme(c, *scheme, c.step_count(), options);
+  const auto result = exact      ? barimpact::run_exact(c, options)
+                      : repeated ? barimpact::run(std::move(fitted), options)
+                                 : barimpact::run_scheme(c, *scheme, c.step_count(), options);
   if (reported) fmt::print(stderr, "\r\033[K");
   dir.commit(c, result);
   if (exact) fmt::print("exact solution: {}\n", result.summary.message);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <utility>
 
 #include "barimpact/model/input_error.hpp"
@@ -58,6 +59,17 @@ void start_ram(Case& c, double stroke) {
       diesel ? std::sqrt(2.0 * g * std::max(0.0, stroke - h.diesel.compression_length)) : h.impact_velocity(g);
   for (auto& b : c.bodies)
     if (b.name == h.ram) b.velocity = fmt::format("{}", -v);
+}
+
+std::vector<double> linear_range(double from, double to, long long count) {
+  std::vector<double> v;
+  for (long long i = 0; i < count; ++i) {
+    const double x = count == 1 ? from
+                                : (from * static_cast<double>(count - 1 - i) + to * static_cast<double>(i)) /
+                                      static_cast<double>(count - 1);
+    v.push_back(std::stod(fmt::format("{:.12g}", x)));
+  }
+  return v;
 }
 
 std::string_view to_string(HammerKind kind) {

@@ -101,10 +101,7 @@ std::vector<double> read_depths(const Reader& r, double length) {
         used != static_cast<int>(t.size()) || count < 1 || count > 100'000 || (count == 1 && from != to))
       r.fail("drive", "depths",
              fmt::format("= \"{}\": expected \"FROM:TO:COUNT\" (m, COUNT in [1, 100000]; 1 needs FROM = TO)", t));
-    for (long long i = 0; i < count; ++i)
-      d.push_back(count == 1 ? from
-                             : (from * static_cast<double>(count - 1 - i) + to * static_cast<double>(i)) /
-                                   static_cast<double>(count - 1));
+    d = linear_range(from, to, count);
   } else {
     d = r.numbers("drive", "depths");
   }
@@ -381,10 +378,10 @@ void read_drive(Reader& r, Case& c, const BodyIndex& index) {
   if (!(d.refusal > 0)) r.fail("drive", "refusal", fmt::format("must be > 0 (blows per 250 mm; got {})", d.refusal));
   if (!(d.blow_rate > 0)) r.fail("drive", "blow_rate", fmt::format("must be > 0 (per minute; got {})", d.blow_rate));
   if (blows < 1 || blows > 1000) r.fail("drive", "blows", fmt::format("must be in [1, 1000] (got {})", blows));
-  if (blows > 1)
+  if (blows > 1 && c.hammer && c.hammer->kind == HammerKind::diesel)
     r.fail("drive", "blows",
-           fmt::format("= {}: the residual stress analysis (blows > 1) is not in this version; each depth's blow "
-                       "starts from rest (blows = 1)",
+           fmt::format("= {}: a diesel hammer repeats its blows to find its stroke; with residual stresses too "
+                       "(blows > 1) it is not in this version",
                        blows));
   d.blows = static_cast<int>(blows);
   if (r.node("drive", "depth") != nullptr) {

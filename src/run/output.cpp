@@ -480,9 +480,12 @@ nlohmann::json blow_json(const Summary& s) {
     out["compression_work"] = b->compression_work;
     out["expansion_work"] = b->expansion_work;
     out["stroke"] = number_or_null(b->stroke);
+  }
+  if (b->diesel || b->blows_run > 1) {  // blows repeated at one soil: the first's set, how many
     out["first_set"] = number_or_null(b->first_set);
     out["blows_run"] = b->blows_run;
   }
+  if (!std::isnan(b->residual_toe_force)) out["residual_toe_force"] = b->residual_toe_force;
   return out;
 }
 

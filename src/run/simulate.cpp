@@ -12,6 +12,7 @@
 #include <cmath>
 #include "barimpact/run/check.hpp"
 #include "barimpact/run/health.hpp"
+#include "barimpact/run/residual.hpp"
 #include "barimpact/schemes/paper_scheme.hpp"
 #include "barimpact/schemes/registry.hpp"
 
@@ -132,12 +133,14 @@ RunResult run_diesel(const FittedCase& fitted, const RunOptions& options) {
   const DieselData& d = fitted.c.hammer->diesel;
   double stroke = fitted.c.hammer->stroke, first_set = 0.0, set = 0.0;
   RunResult r;
-  std::string stopped;  // why the iteration ended before it converged
+  RunOptions held = options;
+  held.fields = nullptr;  // each blow's snapshots held: only the last's are the result's
+  std::string stopped;    // why the iteration ended before it converged
   int blows = 1;
   for (;; ++blows) {
     Case c = fitted.c;
     start_ram(c, stroke);
-    r = run_one(fit_scheme(std::move(c)), options);
+    r = run_one(fit_scheme(std::move(c)), held);
     if (r.summary.status != RunStatus::complete || !r.summary.blow) return r;
     const BlowSummary& b = *r.summary.blow;
     if (blows == 1) first_set = b.set;
@@ -173,7 +176,12 @@ RunResult run_diesel(const FittedCase& fitted, const RunOptions& options) {
 
 }  // namespace
 
+bool repeats_blows(const Case& c) {
+  return (c.drive && c.drive->blows > 1) || (c.hammer && c.hammer->kind == HammerKind::diesel);
+}
+
 RunResult run(FittedCase fitted, const RunOptions& options) {
+  if (fitted.c.drive && fitted.c.drive->blows > 1) return run_residual(fitted, options);
   if (fitted.c.hammer && fitted.c.hammer->kind == HammerKind::diesel) return run_diesel(fitted, options);
   return run_one(std::move(fitted), options);
 }

@@ -246,6 +246,11 @@ void LineCentralDifference::start() {
   std::fill(c_max_.begin(), c_max_.end(), 0.0);
   std::fill(slip_.begin(), slip_.end(), 0.0);
   slip_work_ = soil_damping_work_ = 0.0;
+  if (resume_) {  // the previous blow's rest: its displacements, slips and locked-in forces
+    u0_ = resume_->u;
+    if (!slip_.empty()) slip_ = resume_->shaft_slip;
+    c_max_ = resume_->c_max;
+  }
   // u^1 = u^0 + dt v^0 + dt^2/2 a^0 (second order, exact for a rigid motion);
   // rates at t = 0 from v^0 through a level u^0 - dt v^0.
   std::vector<double> before(n);
@@ -358,6 +363,14 @@ Energies LineCentralDifference::energies() const {
   e.dissipation = budget_.dissipation();
   e.contact = budget_.contact() + link_hysteresis() + slip_work_;
   return e;
+}
+
+LineScheme::SoilRest LineCentralDifference::soil_rest() const {
+  SoilRest r;
+  r.u.assign(cur_, cur_ + line_.nodes());
+  r.shaft_slip = slip_.empty() ? std::vector<double>(line_.nodes(), 0.0) : slip_;
+  r.c_max = c_max_;
+  return r;
 }
 
 double LineCentralDifference::soil_slip_work() const {

@@ -204,12 +204,7 @@ std::vector<double> parse_strokes(const std::string& text) {
       !(from > 0 && to > 0 && std::isfinite(from) && std::isfinite(to)))
     throw InputError(fmt::format(
         "--stroke {}: expected FROM:TO:COUNT, strokes > 0 in m and COUNT in [1, 10000] (1 needs FROM = TO)", text));
-  std::vector<double> s;
-  for (long long i = 0; i < count; ++i)
-    s.push_back(count == 1 ? from
-                           : (from * static_cast<double>(count - 1 - i) + to * static_cast<double>(i)) /
-                                 static_cast<double>(count - 1));
-  return s;
+  return linear_range(from, to, count);
 }
 
 }  // namespace

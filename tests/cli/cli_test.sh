@@ -399,6 +399,10 @@ grep -q '"total_blows"' "$work/drive/summary.json" && grep -q '"refusal_depth"' 
 "$bin" run "$drv" --out "$work/drive-run" --set drive.depths=[3.0,8.0] --set time.end=0.02 > /dev/null 2>&1 && ok || bad "run of a drive case"
 grep -q '^\[\[body.shaft.profile\]\]$' "$work/drive-run/case.toml" && ok || bad "the run's case.toml spells the profile"
 "$bin" hammers | grep -q "Vulcan 010" && ok || bad "hammers lists the table"
+# Residual stresses: blows follow one another from the last one's rest.
+"$bin" run "$drv" --out "$work/residual" --set drive.blows=4 --set drive.depth=8 --set time.end=0.3 > /dev/null 2>&1 && ok || bad "residual run"
+grep -q '"residual_toe_force"' "$work/residual/summary.json" && grep -q '"blows_run"' "$work/residual/summary.json" && ok || bad "residual summary"
+expect_refused "runs on central-difference only" run "$drv" --out "$work/refused" --set drive.blows=3 --set time.scheme=newmark --set time.step=1e-5
 # A diesel hammer from the table: the stroke found at each depth, the gas's columns.
 "$bin" drive "$examples/pile/drive-concrete-diesel.toml" --out "$work/drive-diesel" --no-plot --set "drive.depths=[6.0,12.0]" > /dev/null 2>&1 && ok || bad "diesel drive exit"
 awk -F, 'NR > 1 && !($12 > 0.5) { bad = 1 } END { exit bad }' "$work/drive-diesel/drive.csv" && ok || bad "diesel strokes: $(cut -d, -f1,12 "$work/drive-diesel/drive.csv")"

@@ -84,7 +84,7 @@ timeout -k 1 5 "$bin" sweep "$work/fifo-sweep.toml" --out "$work/fifo-sweep" > /
 refused "sweep FIFO" $? "$work/err" "case.fifo" "named pipe"
 
 # Under mpirun (when built with MPI): a signal to one rank ends every rank
-# within 2 s (the other ran its cases on for as long as they took), and
+# within 5 s, about 0.1 s alone (the other ran its cases on for as long as they took), and
 # mpirun reports the signal's status. A signal to mpirun itself ends its
 # ranks the same way; mpirun's own status is then Open MPI's, 1.
 if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
@@ -94,15 +94,16 @@ if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
     OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout -k 5 60 "$BARIMPACT_MPIEXEC" -n 2 \
       --oversubscribe "$bin" sweep "$work/slow-sweep.toml" --out "$work/mpi-$signal" > /dev/null 2>&1 &
     pid=$!
-    sleep 3  # past MPI_Init and into the cases, on a loaded machine too
+    sleep 6  # past MPI_Init and into the cases, on a loaded machine too (3 s was not, beside a build)
     ranks=($(pgrep -P "$(pgrep -P $pid)" 2> /dev/null || true))
     [ ${#ranks[@]} -eq 2 ] || ranks=($(pgrep -f "sweep $work/slow-sweep.toml --out $work/mpi-$signal" | grep -vw $pid))
     kill -s $signal "${ranks[-1]}"
     start=$(date +%s%N)
     while kill -0 "${ranks[0]}" 2> /dev/null && ! grep -q '^State:.*Z' "/proc/${ranks[0]}/status" 2> /dev/null &&
-      [ $((($(date +%s%N) - start) / 1000000)) -lt 2000 ]; do sleep 0.01; done
+      [ $((($(date +%s%N) - start) / 1000000)) -lt 5000 ]; do sleep 0.01; done
     took=$((($(date +%s%N) - start) / 1000000))
-    [ $took -lt 2000 ] && ok || bad "mpirun: rank ${ranks[0]} still running 2 s after SIG$signal to rank ${ranks[-1]}"
+    # Alone it stops in about 0.1 s; the bound allows a loaded machine.
+    [ $took -lt 5000 ] && ok || bad "mpirun: rank ${ranks[0]} still running 5 s after SIG$signal to rank ${ranks[-1]}"
     wait $pid
     code=$?
     [ $code -eq $([ $signal = INT ] && echo 130 || echo 143) ] && ok || bad "mpirun after SIG$signal to a rank: exit $code"

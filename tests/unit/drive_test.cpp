@@ -12,6 +12,7 @@
 #include "../support/run_case.hpp"
 #include "barimpact/case/drive.hpp"
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/run/residual.hpp"
 #include "barimpact/run/simulate.hpp"
 
 namespace barimpact {
@@ -151,7 +152,6 @@ TEST(DriveProfile, RefusesABrokenProfileNamingTheKey) {
   EXPECT_REFUSED(pile + "[drive]\nperimeter = 1.0\ndepths = [4.0, 3.0]\n" + layer(0, 10), "drive.depths", "ascend");
   EXPECT_REFUSED(pile + "[drive]\nperimeter = 0.0\ndepths = [4.0]\n" + layer(0, 10), "drive.perimeter", "> 0");
   EXPECT_REFUSED(head + "blows = 0\n" + layer(0, 10), "drive.blows", "[1, 1000]");
-  EXPECT_REFUSED(head + "blows = 5\n" + layer(0, 10), "drive.blows", "residual stress analysis");
   EXPECT_REFUSED(head + layer(0, 10) + "shaft_quake = -1.0\n", "layer[1].shaft_quake", "> 0");
   EXPECT_REFUSED(head + layer(0, 10) + "toe_damping = -1.0\n", "layer[1].toe_damping", ">= 0");
   EXPECT_REFUSED(head + layer(0, 10) + "damping_law = \"linear\"\n", "layer[1].damping_law", "smith or viscous");
@@ -329,6 +329,49 @@ max_stroke = 3.0
   const Case c = case_from(hand + "cylinder_area = 0.08\n");
   EXPECT_EQ(c.bodies.back().mass, 1800.0);
   EXPECT_EQ(c.hammer->stroke, 3.0);
+}
+
+// Residual stresses: the pile at static rest between blows, the forces it
+// locks into the toe and the shaft in balance.
+TEST(ResidualStress, TheLockedInForcesBalance) {
+  const Case c = case_from(pile + profile, {"drive.depth=7.0"});
+  const Line line = build_line(c);
+  const std::size_t first = line.bodies[0].first, last = line.bodies[0].last;
+  LineScheme::SoilRest rest;
+  rest.u.assign(line.nodes(), 0.0);
+  for (std::size_t j = first; j <= last; ++j) rest.u[j] = -0.004 - 0.002 * line.x[j] / 10.0;  // driven, compressed
+  rest.shaft_slip.assign(line.nodes(), 0.0);
+  for (std::size_t j = first; j <= last; ++j) rest.shaft_slip[j] = std::max(0.0, -rest.u[j] - 0.003);
+  rest.c_max.assign(line.links.size(), 0.0);
+  rest.c_max[0] = 0.0045;  // the toe slipped 1.5 mm past its quake's 3 mm... then 0.5 mm more
+  const double capacity = c.near_end.soil.ultimate + c.bodies[0].shaft->soil.ultimate;
+  const double toe = settle(line, first, last, 0, rest, 1e-6 * capacity);
+  EXPECT_GE(toe, 0.0);
+  EXPECT_LE(toe, c.near_end.soil.ultimate);
+  double shaft = 0.0;  // the shaft's forces on the pile at rest, up
+  for (std::size_t j : line.shaft.nodes) {
+    const double r = line.shaft.stiffness[j] * (-rest.u[j] - rest.shaft_slip[j]);
+    EXPECT_LE(std::abs(r), line.shaft.ultimate[j] * (1 + 1e-12)) << j;
+    shaft += r;
+  }
+  EXPECT_NEAR(toe + shaft, 0.0, 1e-5 * capacity) << "toe " << toe << ", shaft " << shaft;
+}
+
+TEST(ResidualStress, BlowsFromTheLastOnesRestSettle) {
+  const Case one = case_from(pile + profile, {"drive.depth=7.0", "time.end=0.3"});
+  const Case many = case_from(pile + profile, {"drive.depth=7.0", "time.end=0.3", "drive.blows=8"});
+  const RunResult a = run(one), b = run(many);
+  ASSERT_TRUE(a.summary.blow && b.summary.blow);
+  const BlowSummary& r = *b.summary.blow;
+  EXPECT_EQ(r.first_set, a.summary.blow->set) << "the first blow starts from rest";
+  EXPECT_GE(r.blows_run, 2);
+  EXPECT_LE(r.blows_run, 8);
+  EXPECT_GT(r.set, 0.0);
+  EXPECT_FALSE(std::isnan(r.residual_toe_force));
+  EXPECT_NE(r.set, r.first_set) << "the locked-in forces change the blow";
+  // A scheme that keeps no soil state is refused.
+  EXPECT_THROW((void)run(case_from(pile + profile, {"drive.blows=3", "time.scheme=newmark", "time.step=1e-5"})),
+               InputError);
 }
 
 TEST(HammerTable, ShipsAtLeastTwentyHammersEachWithItsSource) {

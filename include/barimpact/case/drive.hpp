@@ -137,6 +137,10 @@ struct HammerData {
   [[nodiscard]] double impact_velocity(double g) const { return std::sqrt(2.0 * g * stroke * efficiency); }
 };
 
+/// FROM:TO:COUNT as values spaced linearly, from and to included, each to 12
+/// significant digits (0.4, not 0.39999999999999997, as a user types it).
+[[nodiscard]] std::vector<double> linear_range(double from, double to, long long count);
+
 /// The acceleration of gravity the pile contract uses: the case's, else 9.81 m/s2.
 [[nodiscard]] inline double drive_gravity(double case_gravity) {
   return case_gravity > 0.0 ? case_gravity : 9.81;

@@ -71,6 +71,9 @@ struct BlowSummary {
   double stroke = std::numeric_limits<double>::quiet_NaN();
   double first_set = std::numeric_limits<double>::quiet_NaN();
   int blows_run = 1;
+  /// A residual stress analysis's ([drive] blows > 1): the toe's force
+  /// locked in before this blow (compression > 0); NaN for one blow.
+  double residual_toe_force = std::numeric_limits<double>::quiet_NaN();
 
   /// Blows per metre: infinite at refusal (set 0 after a finished blow), NaN
   /// when the ram never struck.

@@ -118,6 +118,11 @@ struct RunOptions {
   FieldSink* fields = nullptr;
 };
 
+/// Whether a run of `c` is several blows at one soil, the last its result:
+/// a diesel hammer's stroke iteration, [drive] blows > 1's residual stresses.
+/// run() runs them; run_scheme() runs one.
+[[nodiscard]] bool repeats_blows(const Case& c);
+
 /// Runs `c` with its scheme and the history, field and contact observers:
 /// fits it to the scheme first (fit_scheme). Throws InputError when the case
 /// does not fit its scheme, or needs more memory than is available

@@ -36,6 +36,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "barimpact/schemes/line_scheme.hpp"
@@ -60,8 +61,12 @@ class LineCentralDifference final : public LineScheme {
   }
   [[nodiscard]] double plastic_work(std::size_t body) const override { return plastic_.body_work(body); }
   [[nodiscard]] double soil_slip_work() const override;
+  [[nodiscard]] bool keeps_soil_rest() const override { return true; }
+  [[nodiscard]] SoilRest soil_rest() const override;
+  void resume_soil(SoilRest rest) override { resume_ = std::move(rest); }
 
  private:
+  std::optional<SoilRest> resume_;  // where the next start() begins
   /// next = 2 cur - prev + dt^2 r / m on the free nodes (`taylor`: the start's
   /// cur + dt v0 + dt^2 r / 2m), r the forces at level `cur`.
   void predict(const double* um, const double* u, double* up, double t, bool taylor);

@@ -80,6 +80,18 @@ class LineScheme : public Scheme {
   [[nodiscard]] std::string failure() const override;
   [[nodiscard]] const PlasticIteration& plastic_iteration() const { return plastic_iteration_; }
 
+  /// The state a pile-driving blow leaves in the soil and the next blow
+  /// starts from (residual stresses): every node's displacement, the shaft
+  /// springs' slips (line order, 0 without soil), each link's largest
+  /// compression. Only a scheme that overrides these keeps it.
+  struct SoilRest {
+    std::vector<double> u, shaft_slip, c_max;
+  };
+  [[nodiscard]] virtual bool keeps_soil_rest() const { return false; }
+  [[nodiscard]] virtual SoilRest soil_rest() const { return {}; }
+  /// The next start() begins from `rest` (at rest: the case's velocities).
+  virtual void resume_soil(SoilRest /*rest*/) {}
+
  protected:
   LineScheme(const Case& c, Line line);
 
