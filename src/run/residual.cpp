@@ -16,73 +16,102 @@ namespace barimpact {
 
 namespace {
 
-// The springs' forces on the pile's nodes (+x up) at `u` from the committed
-// state in `rest`, their tangents, and the trial slips they would commit.
-struct SoilForces {
-  std::vector<double> force, tangent, slip;
-  double toe_force = 0.0, toe_c_max = 0.0, toe_tangent = 0.0;
+// The forces on nodes 0..n-1 (+x up) at rest.u from the committed state in
+// `rest`: gravity, the bonds, the unilateral links among those nodes and
+// with the ground, Smith's shaft; and their tangent (K du = r's matrix).
+// The trial slips and largest compressions they would commit go in `trial`.
+struct Forces {
+  std::vector<double> r, diag, off;
+  LineScheme::SoilRest trial;
+  double toe_force = 0.0;
 };
 
-SoilForces soil_forces(const Line& line, std::size_t first, std::size_t last, std::size_t toe,
-                       const LineScheme::SoilRest& rest) {
-  const std::size_t n = last - first + 1;
-  SoilForces f{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), rest.shaft_slip, 0.0, 0.0, 0.0};
+void add_bonds(const Line& line, std::size_t n, const std::vector<double>& u, Forces& f) {
+  for (std::size_t j = 0; j + 1 < n; ++j) {
+    const Bond& b = line.bonds[j];
+    if (b.kind == BondKind::open) continue;            // a link carries it, if anything
+    const double t = b.stiffness * (u[j + 1] - u[j]);  // tension pulls its ends together
+    f.r[j] += t;
+    f.r[j + 1] -= t;
+    f.diag[j] += b.stiffness;
+    f.diag[j + 1] += b.stiffness;
+    f.off[j] -= b.stiffness;
+  }
+}
+
+void add_links(const Line& line, std::size_t n, const LineScheme::SoilRest& rest, Forces& f) {
+  for (std::size_t i = 0; i < line.links.size(); ++i) {
+    const Link& l = line.links[i];
+    const bool a_in = l.a == Link::ground || l.a < n;
+    if (!a_in || l.b == Link::ground || l.b >= n || l.law.rigid()) continue;
+    const double ua = l.a == Link::ground ? 0.0 : rest.u[l.a];
+    const double c = -(rest.u[l.b] - ua + l.gap);
+    const double c_max = std::max(rest.c_max[i], c);
+    f.trial.c_max[i] = c_max;
+    const double p = l.law.static_force(c, c_max);
+    double k = 0.0;  // d p / d c: the branch the compression is on (touching faces: closed)
+    if (c >= 0.0) {
+      const bool loading = c >= rest.c_max[i];
+      k = l.law.kind == LawKind::cushion && !loading ? l.law.largest_stiffness() : l.law.stiffness;
+      if (l.law.kind == LawKind::smith && p >= l.law.soil.ultimate) k = 0.0;  // slipping
+    }
+    if (l.is_end && l.law.kind == LawKind::smith) f.toe_force = p;
+    f.r[l.b] += p;
+    f.diag[l.b] += k;
+    if (l.a != Link::ground) {
+      f.r[l.a] -= p;
+      f.diag[l.a] += k;
+      f.off[l.a] -= k;  // neighbours: a + 1 = b
+    }
+  }
+}
+
+void add_shaft(const Line& line, std::size_t n, const LineScheme::SoilRest& rest, Forces& f) {
   const Shaft& s = line.shaft;
-  for (std::size_t j = first; j <= last && !s.ultimate.empty(); ++j) {
+  for (std::size_t j = 0; j < n && j < s.ultimate.size(); ++j) {
     if (!(s.ultimate[j] > 0.0)) continue;
     const double w = -rest.u[j];  // penetration, down
     const double slip = smith_slip(rest.shaft_slip[j], w, s.quake[j]);
-    f.slip[j] = slip;
-    f.force[j - first] = s.stiffness[j] * (w - slip);
-    f.tangent[j - first] = slip == rest.shaft_slip[j] ? s.stiffness[j] : 0.0;  // elastic, or slipping
+    f.trial.shaft_slip[j] = slip;
+    f.r[j] += s.stiffness[j] * (w - slip);
+    f.diag[j] += slip == rest.shaft_slip[j] ? s.stiffness[j] : 0.0;  // elastic, or slipping
   }
-  if (toe != Link::ground) {
-    const Link& link = line.links[toe];
-    const double c = -(rest.u[first] + link.gap), q = link.law.soil.quake;
-    f.toe_c_max = std::max(rest.c_max[toe], c);
-    const double slipped = std::max(0.0, f.toe_c_max - q);
-    f.toe_force = link.law.static_force(c, f.toe_c_max);
-    f.toe_tangent = c > slipped && !(c >= rest.c_max[toe] && c > q) ? link.law.stiffness : 0.0;
-    f.force[0] += f.toe_force;
-    f.tangent[0] += f.toe_tangent;
-  }
+}
+
+Forces forces(const Line& line, std::size_t n, const std::vector<double>& weight, const LineScheme::SoilRest& rest) {
+  Forces f{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0), std::vector<double>(n > 1 ? n - 1 : 0, 0.0), rest,
+           0.0};
+  for (std::size_t j = 0; j < n; ++j) f.r[j] = -weight[j];
+  add_bonds(line, n, rest.u, f);
+  add_links(line, n, rest, f);
+  add_shaft(line, n, rest, f);
   return f;
 }
 
 }  // namespace
 
-double settle(const Line& line, std::size_t first, std::size_t last, std::size_t toe, LineScheme::SoilRest& rest,
-              double tolerance) {
-  const std::size_t n = last - first + 1;
-  std::vector<double> diag(n), off(n > 1 ? n - 1 : 0), r(n);
+double settle(const Line& line, std::size_t count, double gravity, LineScheme::SoilRest& rest, double tolerance) {
+  std::vector<double> weight = line.lumped_mass();
+  weight.resize(count);
+  for (double& w : weight) w *= gravity;
   double stiffest = 0.0;
-  for (std::size_t j = first; j < last; ++j) stiffest = std::max(stiffest, line.bonds[j].stiffness);
+  for (const Bond& b : line.bonds) stiffest = std::max(stiffest, b.stiffness);
   for (int iteration = 0; iteration < 200; ++iteration) {
-    const SoilForces f = soil_forces(line, first, last, toe, rest);
+    Forces f = forces(line, count, weight, rest);
     double worst = 0.0;
-    std::fill(diag.begin(), diag.end(), 0.0);
-    for (std::size_t i = 0; i < n; ++i) r[i] = f.force[i];
-    for (std::size_t j = first; j < last; ++j) {  // the bar's tension pulls its ends together
-      const double k = line.bonds[j].stiffness, t = k * (rest.u[j + 1] - rest.u[j]);
-      r[j - first] += t;
-      r[j + 1 - first] -= t;
-      diag[j - first] += k;
-      diag[j + 1 - first] += k;
-      off[j - first] = -k;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-      worst = std::max(worst, std::abs(r[i]));
-      diag[i] += f.tangent[i] + 1e-12 * stiffest;  // a pile with every spring slipping still has a step
+    for (std::size_t i = 0; i < count; ++i) {
+      worst = std::max(worst, std::abs(f.r[i]));
+      f.diag[i] += 1e-12 * stiffest;  // a line with every spring slipping still has a step
     }
     if (worst <= tolerance) {
-      rest.shaft_slip = f.slip;
-      if (toe != Link::ground) rest.c_max[toe] = f.toe_c_max;
+      rest.shaft_slip = f.trial.shaft_slip;
+      rest.c_max = f.trial.c_max;
       return f.toe_force;
     }
-    solve_tangent(diag, off, {}, r);  // K du = r: forces(u + du) ~ forces(u) - K du = 0
-    for (std::size_t i = 0; i < n; ++i) rest.u[first + i] += r[i];
+    solve_tangent(f.diag, f.off, {}, f.r);  // K du = r: forces(u + du) ~ forces(u) - K du = 0
+    for (std::size_t i = 0; i < count; ++i) rest.u[i] += f.r[i];
   }
-  throw std::runtime_error(fmt::format("the pile's static rest between blows did not converge to {:.3g} N", tolerance));
+  throw std::runtime_error(fmt::format("the pile's static rest did not converge to {:.3g} N", tolerance));
 }
 
 namespace {
@@ -91,12 +120,42 @@ bool within_percent(double a, double b) {
   return std::abs(a - b) <= 0.01 * std::abs(b);
 }
 
-// The hammer's nodes (every node above the pile) back on the pile head.
-void touch_head(LineScheme::SoilRest& rest, std::size_t last) {
-  for (std::size_t j = last + 1; j < rest.u.size(); ++j) rest.u[j] = rest.u[last];
+// The ram: [hammer]'s, else [blow]'s, else the outermost body.
+std::size_t ram_body(const Case& c) {
+  const std::string& name = c.hammer ? c.hammer->ram : c.blow.ram;
+  for (std::size_t i = 0; i < c.bodies.size() && !name.empty(); ++i)
+    if (c.bodies[i].name == name) return i;
+  return c.bodies.size() - 1;
+}
+
+// The nodes below the ram: what rests on the soil before a blow.
+std::size_t below_ram(const Case& c, const Line& line) {
+  return line.bodies[ram_body(c)].first;
+}
+
+// The ram (and whatever is above it) touching the body below, at its start.
+void touch_ram(const Case& c, const Line& line, LineScheme::SoilRest& rest) {
+  const std::size_t first = below_ram(c, line);
+  for (std::size_t j = first; first > 0 && j < rest.u.size(); ++j) rest.u[j] = rest.u[first - 1];
 }
 
 }  // namespace
+
+bool start_at_rest(const Case& c, Scheme& scheme) {
+  auto* line_scheme = dynamic_cast<LineScheme*>(&scheme);
+  if (line_scheme == nullptr || !line_scheme->keeps_soil_rest()) return false;
+  if (line_scheme->resuming()) return true;  // a residual analysis's blow: its rest is set
+  const Line& line = *scheme.line();
+  LineScheme::SoilRest rest{std::vector<double>(line.nodes(), 0.0), std::vector<double>(line.nodes(), 0.0),
+                            std::vector<double>(line.links.size(), 0.0)};
+  const std::size_t count = below_ram(c, line);
+  const std::vector<double> mass = line.lumped_mass();
+  const double weight = line.gravity * std::accumulate(mass.begin(), mass.begin() + static_cast<long>(count), 0.0);
+  (void)settle(line, count, line.gravity, rest, 1e-9 * std::max(weight, 1.0));  // the weight's balance to 1e-9
+  touch_ram(c, line, rest);
+  line_scheme->resume_soil(std::move(rest));
+  return true;
+}
 
 RunResult run_residual(const FittedCase& fitted, const RunOptions& options) {
   const Case& c = fitted.c;
@@ -119,7 +178,7 @@ RunResult run_residual(const FittedCase& fitted, const RunOptions& options) {
         if (c.bodies[i].name == c.drive->pile) return i;
       return std::size_t{0};
     }();
-    const std::size_t first = line.bodies[pile].first, last = line.bodies[pile].last;
+    const std::size_t last = line.bodies[pile].last;  // the pile head
     const std::size_t toe = !line.links.empty() && line.links.front().name == "near_end" ? 0 : Link::ground;
     const double slip_before =
         rest && toe != Link::ground ? std::max(0.0, rest->c_max[toe] - line.links[toe].law.soil.quake) : 0.0;
@@ -137,9 +196,10 @@ RunResult run_residual(const FittedCase& fitted, const RunOptions& options) {
     if ((blows > 1 && within_percent(this_set, set)) || blows == most) break;
     set = this_set;
     for (std::size_t i = 0; i < end.c_max.size(); ++i)
-      if (i != toe) end.c_max[i] = 0.0;  // the hammer's cushions unloaded
-    locked_toe = settle(line, first, last, toe, end, 1e-6 * std::max(capacity, 1.0));
-    touch_head(end, last);
+      if (i != toe) end.c_max[i] = 0.0;                                            // the hammer's cushions unloaded
+    for (std::size_t j = last + 1; j < end.u.size(); ++j) end.u[j] = end.u[last];  // its bodies on the pile head
+    locked_toe = settle(line, below_ram(c, line), line.gravity, end, 1e-6 * std::max(capacity, 1.0));
+    touch_ram(c, line, end);
     rest = std::move(end);
   }
   BlowSummary& b = *r.summary.blow;

@@ -188,6 +188,9 @@ RunResult run(FittedCase fitted, const RunOptions& options) {
 
 RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const RunOptions& options, bool finite_rows) {
   const auto started = std::chrono::steady_clock::now();
+  // A pile under gravity starts at rest on its soil (issue 33: else its own
+  // weight is a load that moves the set).
+  const bool unsettled = c.load.gravity > 0.0 && c.smith_soil() && !start_at_rest(c, scheme_ref);
   ProgressMonitor progress(options.progress, static_cast<double>(steps) * c.time.step, options.progress_interval,
                            options.progress_delay);
   RunRecorder rec(c, scheme_ref, options.fields);
@@ -195,7 +198,13 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   if (options.progress) observers.push_back(&progress);
   if (options.loop_begins) options.loop_begins();
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
-  return rec.finish(loop, steps, started, finite_rows);
+  RunResult r = rec.finish(loop, steps, started, finite_rows);
+  if (unsettled)
+    r.summary.warnings.push_back(fmt::format(
+        "gravity-start: time.scheme = \"{}\" starts the pile where the case puts it, not at rest on its soil under "
+        "gravity (central-difference does): its own weight loads the soil during the blow",
+        c.time.scheme));
+  return r;
 }
 
 namespace {

@@ -10,16 +10,21 @@
 
 namespace barimpact {
 
-/// Brings the pile (the line's nodes first..last, its toe at `first` on the
-/// near end's Smith link `toe`, or none) to static rest on its soil, from
-/// `rest`: Newton's iteration on the bar's stiffness and the springs'
+/// Brings the line's nodes 0..count-1 (the pile and what rests on it below
+/// the ram) to static rest on their soil under `gravity`, from `rest`:
+/// Newton's iteration on the bonds' stiffness, the links' and the springs'
 /// elastic-plastic forces (each spring slipping on from its state in
 /// `rest`), until every node's forces balance to `tolerance` (N). Updates
-/// `rest` (displacements, slips, the toe's largest compression) and returns
-/// the toe's locked-in force (compression > 0). Throws std::runtime_error
+/// `rest` (displacements, slips, the links' largest compressions) and
+/// returns the toe's force (compression > 0). Throws std::runtime_error
 /// when the iteration does not converge.
-double settle(const Line& line, std::size_t first, std::size_t last, std::size_t toe, LineScheme::SoilRest& rest,
-              double tolerance);
+double settle(const Line& line, std::size_t count, double gravity, LineScheme::SoilRest& rest, double tolerance);
+
+/// A pile line under gravity starts from static equilibrium: the pile's
+/// weight on the soil, the helmet and cushions on the pile; the ram takes
+/// no part (it starts touching the body below, at its velocity). Sets the
+/// scheme's start; false when the scheme cannot start from a given state.
+bool start_at_rest(const Case& c, Scheme& scheme);
 
 /// The blows of a case with [drive] blows = N > 1 at its depth: the first
 /// from rest, each next from the static rest of the previous (the hammer's

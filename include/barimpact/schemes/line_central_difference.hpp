@@ -64,6 +64,7 @@ class LineCentralDifference final : public LineScheme {
   [[nodiscard]] bool keeps_soil_rest() const override { return true; }
   [[nodiscard]] SoilRest soil_rest() const override;
   void resume_soil(SoilRest rest) override { resume_ = std::move(rest); }
+  [[nodiscard]] bool resuming() const override { return resume_.has_value(); }
 
  private:
   std::optional<SoilRest> resume_;  // where the next start() begins

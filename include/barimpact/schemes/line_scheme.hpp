@@ -91,6 +91,8 @@ class LineScheme : public Scheme {
   [[nodiscard]] virtual SoilRest soil_rest() const { return {}; }
   /// The next start() begins from `rest` (at rest: the case's velocities).
   virtual void resume_soil(SoilRest /*rest*/) {}
+  /// Whether a rest was given (resume_soil) for start() to begin from.
+  [[nodiscard]] virtual bool resuming() const { return false; }
 
  protected:
   LineScheme(const Case& c, Line line);
