@@ -15,10 +15,11 @@ namespace {
 
 // Where the module may be, relative to the file holding this code (the
 // command, the Python module, a test): beside it (the Python package),
-// python/barimpact below it (a build tree's command), the package from an
-// installed command's bin/ (as the command finds it for its figures); then
-// the build tree's and the install prefix's package, by absolute path
-// (tests, other programs).
+// python/barimpact below it (a build tree's command) or beside it (a build
+// tree's tests/ and bench/), the package from an installed command's bin/
+// (as the command finds it for its figures); then the install prefix's
+// package, by absolute path (other programs). No path of the build tree is
+// compiled in: an installed library must not reach back into it.
 std::vector<fs::path> module_candidates() {
   std::vector<fs::path> dirs;
   Dl_info info{};
@@ -27,10 +28,9 @@ std::vector<fs::path> module_candidates() {
     // Debian's pip names the package's place dist-packages.
     std::string dist = BARIMPACT_PYTHON_FROM_BIN;
     if (const auto at = dist.rfind("site-packages"); at != std::string::npos) dist.replace(at, 13, "dist-packages");
-    dirs = {here, here / "python" / "barimpact", here / BARIMPACT_PYTHON_FROM_BIN / "barimpact",
-            here / dist / "barimpact"};
+    dirs = {here, here / "python" / "barimpact", here.parent_path() / "python" / "barimpact",
+            here / BARIMPACT_PYTHON_FROM_BIN / "barimpact", here / dist / "barimpact"};
   }
-  dirs.emplace_back(BARIMPACT_MODULE_BUILD_DIR);
   dirs.emplace_back(BARIMPACT_MODULE_INSTALL_DIR);
   for (auto& d : dirs) d /= BARIMPACT_HDF5_MODULE;
   return dirs;
