@@ -24,7 +24,12 @@ std::vector<fs::path> module_candidates() {
   std::vector<fs::path> dirs;
   Dl_info info{};
   if (dladdr(reinterpret_cast<void*>(&module_candidates), &info) != 0 && info.dli_fname != nullptr) {
-    const fs::path here = fs::path(info.dli_fname).parent_path();
+    // The main program's name is as it was started (relative to a working
+    // directory the process may since have left): its own link names it whole.
+    fs::path file(info.dli_fname);
+    std::error_code ec;
+    if (file.is_relative()) file = fs::read_symlink("/proc/self/exe", ec);
+    const fs::path here = file.parent_path();
     // Debian's pip names the package's place dist-packages.
     std::string dist = BARIMPACT_PYTHON_FROM_BIN;
     if (const auto at = dist.rfind("site-packages"); at != std::string::npos) dist.replace(at, 13, "dist-packages");
