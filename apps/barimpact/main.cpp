@@ -609,44 +609,62 @@ int sweep_command(const std::string& sweep_path, const std::string& out_dir, con
   return study_exit({"cases", "sweep.csv", rows.size(), complete, stopped, warned}, flags);
 }
 
-struct BearingArgs {
-  std::string case_path, out, capacity;
-  std::vector<std::string> sets;
-  std::optional<double> toe_share;
-  bool no_plot = false;
-  barimpact::SweepOptions options;
-  WriteFlags flags;
-};
-
-int bearing_command(const BearingArgs& a) {
-  barimpact::BearingOptions o;
-  barimpact::parse_capacity(a.capacity, o);
-  o.toe_share = a.toe_share;
-  for (const auto& s : a.sets) o.sets.push_back({s});
-  const barimpact::BearingPlan plan(a.case_path, o);
-  const std::filesystem::path dir(a.out);
-  poll_signals();  // between capacities and in their time loops
-  const auto rows = barimpact::write_bearing(plan, dir, a.options, a.flags.force);
-  std::vector<barimpact::SweepRow> runs;
-  for (const auto& r : rows) runs.push_back(r.run);
-  auto count = [&](auto&& pred) { return std::count_if(runs.begin(), runs.end(), pred); };
-  const auto complete = count([](const auto& r) { return r.status == "complete"; });
-  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
-  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
-  const bool plotted = !a.no_plot && stopped == 0 && complete > 0 && run_python({"bearing-plot", dir.string()});
-  fmt::print("{} capacities from {:.4g} to {:.4g} N (toe share {:.3g}): {} complete; bearing.csv{} in {}\n",
-             rows.size(), o.from, o.to, plan.toe_share(), complete, plotted ? " and bearing.png" : "", a.out);
-  print_study_warnings(runs);
-  return study_exit({"cases", "bearing.csv", rows.size(), complete, stopped, warned}, a.flags);
-}
-
-struct DriveArgs {
+// A pile study's command line (bearing, drive, inspector): its case, --out,
+// --set for every run, --jobs, --no-plot and the write flags.
+struct PileStudyArgs {
   std::string case_path, out;
   std::vector<std::string> sets;
   bool no_plot = false;
   barimpact::SweepOptions options;
   WriteFlags flags;
 };
+
+struct BearingArgs : PileStudyArgs {
+  std::string capacity;
+  std::optional<double> toe_share;
+};
+
+// How a pile study's runs ended, and its figure drawn by the Python package
+// (`figure`: its plot subcommand) when every run is done and one completed.
+struct PileStudyEnd {
+  std::vector<barimpact::SweepRow> runs;
+  long complete = 0, stopped = 0, warned = 0;
+  bool plotted = false;
+};
+
+template <class Row>
+PileStudyEnd end_pile_study(const std::vector<Row>& rows, const PileStudyArgs& a, const char* figure) {
+  PileStudyEnd e;
+  for (const auto& r : rows) {
+    e.runs.push_back(r.run);
+    e.complete += r.run.status == "complete" ? 1 : 0;
+    e.stopped += r.run.status == "interrupted" ? 1 : 0;
+    e.warned += r.run.warnings.empty() ? 0 : 1;
+  }
+  e.plotted = !a.no_plot && e.stopped == 0 && e.complete > 0 && run_python({figure, a.out});
+  return e;
+}
+
+std::vector<barimpact::Case::Override> overrides(const std::vector<std::string>& sets) {
+  std::vector<barimpact::Case::Override> o;
+  for (const auto& s : sets) o.push_back({s});
+  return o;
+}
+
+int bearing_command(const BearingArgs& a) {
+  barimpact::BearingOptions o;
+  barimpact::parse_capacity(a.capacity, o);
+  o.toe_share = a.toe_share;
+  o.sets = overrides(a.sets);
+  const barimpact::BearingPlan plan(a.case_path, o);
+  poll_signals();  // between capacities and in their time loops
+  const auto rows = barimpact::write_bearing(plan, a.out, a.options, a.flags.force);
+  const PileStudyEnd e = end_pile_study(rows, a, "bearing-plot");
+  fmt::print("{} capacities from {:.4g} to {:.4g} N (toe share {:.3g}): {} complete; bearing.csv{} in {}\n",
+             rows.size(), o.from, o.to, plan.toe_share(), e.complete, e.plotted ? " and bearing.png" : "", a.out);
+  print_study_warnings(e.runs);
+  return study_exit({"cases", "bearing.csv", rows.size(), e.complete, e.stopped, e.warned}, a.flags);
+}
 
 // The drive's outcome in one line: how deep, in how many blows and minutes, the largest stresses.
 void print_drive(const barimpact::DrivePlan& plan, const std::vector<barimpact::DriveRow>& rows, bool plotted,
@@ -667,50 +685,30 @@ void print_drive(const barimpact::DrivePlan& plan, const std::vector<barimpact::
       plotted ? " and drive.png" : "", out);
 }
 
-int drive_command(const DriveArgs& a) {
-  std::vector<barimpact::Case::Override> sets;
-  for (const auto& s : a.sets) sets.push_back({s});
-  const barimpact::DrivePlan plan(a.case_path, sets);
-  const std::filesystem::path dir(a.out);
-  const auto rows = barimpact::write_drive(plan, dir, a.options, a.flags.force);
-  std::vector<barimpact::SweepRow> runs;
-  for (const auto& r : rows) runs.push_back(r.run);
-  auto count = [&](auto&& pred) { return std::count_if(runs.begin(), runs.end(), pred); };
-  const auto complete = count([](const auto& r) { return r.status == "complete"; });
-  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
-  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
-  const bool plotted = !a.no_plot && stopped == 0 && complete > 0 && run_python({"drive-plot", dir.string()});
-  print_drive(plan, rows, plotted, a.out);
-  print_study_warnings(runs);
-  return study_exit({"depths", "drive.csv", rows.size(), complete, stopped, warned}, a.flags);
+int drive_command(const PileStudyArgs& a) {
+  const barimpact::DrivePlan plan(a.case_path, overrides(a.sets));
+  poll_signals();  // between depths and in their time loops
+  const auto rows = barimpact::write_drive(plan, a.out, a.options, a.flags.force);
+  const PileStudyEnd e = end_pile_study(rows, a, "drive-plot");
+  print_drive(plan, rows, e.plotted, a.out);
+  print_study_warnings(e.runs);
+  return study_exit({"depths", "drive.csv", rows.size(), e.complete, e.stopped, e.warned}, a.flags);
 }
 
-struct InspectorArgs {
-  std::string case_path, out, stroke;
+struct InspectorArgs : PileStudyArgs {
+  std::string stroke;
   std::optional<double> depth;
-  std::vector<std::string> sets;
-  bool no_plot = false;
-  barimpact::SweepOptions options;
-  WriteFlags flags;
 };
 
 int inspector_command(const InspectorArgs& a) {
-  std::vector<barimpact::Case::Override> sets;
-  for (const auto& s : a.sets) sets.push_back({s});
-  const barimpact::InspectorPlan plan(a.case_path, a.stroke, a.depth, sets);
-  const std::filesystem::path dir(a.out);
-  const auto rows = barimpact::write_inspector(plan, dir, a.options, a.flags.force);
-  std::vector<barimpact::SweepRow> runs;
-  for (const auto& r : rows) runs.push_back(r.run);
-  auto count = [&](auto&& pred) { return std::count_if(runs.begin(), runs.end(), pred); };
-  const auto complete = count([](const auto& r) { return r.status == "complete"; });
-  const auto stopped = count([](const auto& r) { return r.status == "interrupted"; });
-  const auto warned = count([](const auto& r) { return !r.warnings.empty(); });
-  const bool plotted = !a.no_plot && stopped == 0 && complete > 0 && run_python({"inspector-plot", dir.string()});
-  fmt::print("{} strokes: {} complete; inspector.csv{} in {}\n", rows.size(), complete,
-             plotted ? " and inspector.png" : "", a.out);
-  print_study_warnings(runs);
-  return study_exit({"strokes", "inspector.csv", rows.size(), complete, stopped, warned}, a.flags);
+  const barimpact::InspectorPlan plan(a.case_path, a.stroke, a.depth, overrides(a.sets));
+  poll_signals();  // between strokes and in their time loops
+  const auto rows = barimpact::write_inspector(plan, a.out, a.options, a.flags.force);
+  const PileStudyEnd e = end_pile_study(rows, a, "inspector-plot");
+  fmt::print("{} strokes: {} complete; inspector.csv{} in {}\n", rows.size(), e.complete,
+             e.plotted ? " and inspector.png" : "", a.out);
+  print_study_warnings(e.runs);
+  return study_exit({"strokes", "inspector.csv", rows.size(), e.complete, e.stopped, e.warned}, a.flags);
 }
 
 // hammers: the shipped table, one hammer a line.
@@ -882,59 +880,58 @@ Command add_sweep(CLI::App& app) {
           }};
 }
 
-Command add_bearing(CLI::App& app) {
-  auto a = std::make_shared<BearingArgs>();
-  auto* c = app.add_subcommand(
-      "bearing", "Bearing graph of a pile-driving case: the blow count against the static capacity (bearing.csv)");
-  c->add_option("case", a->case_path, "Case file (TOML) with Smith's soil")->required();
-  c->add_option("--out", a->out, "Output directory: a new or empty one, or a bearing's (resumes)")->required();
-  c->add_option("--capacity", a->capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")->required();
-  c->add_option("--toe-share", a->toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
-  c->add_option("--set", a->sets, "Override a key of the case for every capacity: section.key=value (repeatable)");
+// A pile study's subcommand: its case and own options (`extra`), then --out,
+// --set, --jobs, --no-plot and the write flags; run on central differences
+// (Smith's soil), a signal ending it between runs.
+template <class Args, class Extra>
+Command add_pile_study(CLI::App& app, const char* name, const char* help, const char* case_help, const char* each,
+                       Extra extra, int (*command)(const Args&)) {
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand(name, help);
+  c->add_option("case", a->case_path, case_help)->required();
+  c->add_option("--out", a->out,
+                fmt::format("Output directory: a new or empty one, or one barimpact {} wrote (resumes)", name))
+      ->required();
+  extra(c, *a);
+  c->add_option("--set", a->sets,
+                fmt::format("Override a key of the case for every {}: section.key=value (repeatable)", each));
   c->add_option("--jobs", a->options.jobs, jobs_help);
-  c->add_flag("--no-plot", a->no_plot, "Skip bearing.png");
+  c->add_flag("--no-plot", a->no_plot, fmt::format("Skip {}.png", name));
   add_write_flags(c, a->flags);
-  return {c, [a] {
+  return {c, [a, command] {
             a->options.interrupt = &interrupted;
             a->options.batch = false;  // Smith's soil runs on central differences
-            return bearing_command(*a);
+            return command(*a);
           }};
+}
+
+Command add_bearing(CLI::App& app) {
+  return add_pile_study<BearingArgs>(
+      app, "bearing", "Bearing graph of a pile-driving case: the blow count against the static capacity (bearing.csv)",
+      "Case file (TOML) with Smith's soil", "capacity",
+      [](CLI::App* c, BearingArgs& a) {
+        c->add_option("--capacity", a.capacity, "FROM:TO:COUNT static capacities R_toe + R_shaft, in N")->required();
+        c->add_option("--toe-share", a.toe_share, "R_toe / capacity, 0 .. 1 (default: the case's)");
+      },
+      bearing_command);
 }
 
 Command add_drive(CLI::App& app) {
-  auto a = std::make_shared<DriveArgs>();
-  auto* c = app.add_subcommand(
-      "drive", "Drivability of a pile case with [drive]: blow counts, stresses and capacity against depth (drive.csv)");
-  c->add_option("case", a->case_path, "Case file (TOML) with [drive] and [[layer]]")->required();
-  c->add_option("--out", a->out, "Output directory: a new or empty one, or a drive's (resumes)")->required();
-  c->add_option("--set", a->sets, "Override a key of the case for every depth: section.key=value (repeatable)");
-  c->add_option("--jobs", a->options.jobs, jobs_help);
-  c->add_flag("--no-plot", a->no_plot, "Skip drive.png");
-  add_write_flags(c, a->flags);
-  return {c, [a] {
-            a->options.interrupt = &interrupted;
-            a->options.batch = false;  // Smith's soil runs on central differences
-            return drive_command(*a);
-          }};
+  return add_pile_study<PileStudyArgs>(
+      app, "drive",
+      "Drivability of a pile case with [drive]: blow counts, stresses and capacity against depth (drive.csv)",
+      "Case file (TOML) with [drive] and [[layer]]", "depth", [](CLI::App*, PileStudyArgs&) {}, drive_command);
 }
 
 Command add_inspector(CLI::App& app) {
-  auto a = std::make_shared<InspectorArgs>();
-  auto* c = app.add_subcommand(
-      "inspector", "Inspector's chart: blow count and stresses against the hammer's stroke (inspector.csv)");
-  c->add_option("case", a->case_path, "Case file (TOML) with a [hammer] and Smith's soil or [drive]")->required();
-  c->add_option("--out", a->out, "Output directory: a new or empty one, or an inspector's (resumes)")->required();
-  c->add_option("--stroke", a->stroke, "FROM:TO:COUNT strokes, in m")->required();
-  c->add_option("--depth", a->depth, "The penetration (m) of a [drive] case's profile to chart at");
-  c->add_option("--set", a->sets, "Override a key of the case for every stroke: section.key=value (repeatable)");
-  c->add_option("--jobs", a->options.jobs, jobs_help);
-  c->add_flag("--no-plot", a->no_plot, "Skip inspector.png");
-  add_write_flags(c, a->flags);
-  return {c, [a] {
-            a->options.interrupt = &interrupted;
-            a->options.batch = false;  // Smith's soil runs on central differences
-            return inspector_command(*a);
-          }};
+  return add_pile_study<InspectorArgs>(
+      app, "inspector", "Inspector's chart: blow count and stresses against the hammer's stroke (inspector.csv)",
+      "Case file (TOML) with a [hammer] and Smith's soil or [drive]", "stroke",
+      [](CLI::App* c, InspectorArgs& a) {
+        c->add_option("--stroke", a.stroke, "FROM:TO:COUNT strokes, in m")->required();
+        c->add_option("--depth", a.depth, "The penetration (m) of a [drive] case's profile to chart at");
+      },
+      inspector_command);
 }
 
 Command add_hammers(CLI::App& app) {

@@ -1218,26 +1218,34 @@ std::string bar_toml(const OneBar& c, const std::vector<GaugeData>& gauges) {
 
 }  // namespace
 
+namespace {
+
+// What the resolved case holds of the sections it does not spell: the ram's
+// start from [hammer], the soil of [drive] at its depth (comments).
+std::string derived_from(const Case& c) {
+  std::string out;
+  if (const auto& h = c.hammer)
+    out += fmt::format("# The hammer ({}{}) at a stroke of {} m: the ram's velocity.{}\n",
+                       h->model.empty() ? to_string(h->kind) : h->model, h->model.empty() ? ", by hand" : "", h->stroke,
+                       h->kind == HammerKind::diesel
+                           ? "\n# A diesel hammer's run repeats the blow until its stroke settles; this file "
+                             "holds the first blow."
+                           : "");
+  if (c.drive)
+    out += fmt::format("# The pile's shaft and toe are its [drive] profile's at a penetration of {} m.\n",
+                       c.drive->analysed_depth());
+  return out;
+}
+
+}  // namespace
+
 std::string Case::to_toml() const {
   const Case& v = *this;
   const std::optional<OneBar> one = bar_view(*this);
   const bool bar_spelling = near_end.gap < 0 && one;
   std::string out =
       bar_spelling ? bar_toml(*one, gauges) : "# barimpact resolved case: every key, defaults filled in\n\n";
-  if (drive)
-    out.insert(out.find("\n\n") + 1,
-               fmt::format("# The pile's shaft and toe are its [drive] profile's at a penetration "
-                           "of {} m.\n",
-                           drive->analysed_depth()));
-  if (hammer)
-    out.insert(out.find("\n\n") + 1,
-               fmt::format("# The hammer ({}{}) at a stroke of {} m: the ram's velocity.{}\n",
-                           hammer->model.empty() ? to_string(hammer->kind) : hammer->model,
-                           hammer->model.empty() ? ", by hand" : "", hammer->stroke,
-                           hammer->kind == HammerKind::diesel
-                               ? "\n# A diesel hammer's run repeats the blow until its stroke settles; this file "
-                                 "holds the first blow."
-                               : ""));
+  out.insert(out.find("\n\n") + 1, derived_from(*this));
   for (const auto& b : v.bodies)
     if (!bar_spelling) write_body(out, b);
   for (const auto& j : v.joints) {
