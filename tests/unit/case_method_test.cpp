@@ -63,6 +63,28 @@ TEST(CaseMethod, MaximaAndStressesAgreeWithHandComputation) {
   EXPECT_NEAR(r.tsx, w.drop * P / w.area, 1e-9 * P / w.area);
 }
 
+// With [[segment]]s, tension is stress in the section it passes: the drop's
+// reflection (0.2 P of tension at the gauges from 4 to 6 ms) meets depths
+// 0 to 5 m; below 3 m the section is half the area, so TSX = 0.4 P / A
+// there. Z, 2L/c and beta (its depth by the segments' travel times) are the
+// uniform pile's.
+TEST(CaseMethod, TensionStressUsesTheSectionAtItsDepth) {
+  const KnownWaves w;
+  testing::ScratchDirectory dir("pda-segments");
+  w.write(dir.path());
+  const auto r = analyse_pda(PileRecord::from_string(
+      "[[segment]]\nlength = 3.0\narea = 0.01\nmodulus = 200e9\ndensity = 8000.0\n[[segment]]\nlength = 17.0\n"
+      "area = 0.005\nmodulus = 200e9\ndensity = 8000.0\n[record]\nfile = \"blow.csv\"\nforce = [\"F1\", \"F2\"]\n"
+      "velocity = [\"V1\", \"V2\"]\n",
+      dir.path(), "record.toml"));
+  EXPECT_NEAR(r.tsx, 2.0 * w.drop * w.peak / w.area, 1e-9 * w.peak / w.area);
+  EXPECT_GE(r.tsx_depth, 3.0);
+  EXPECT_LE(r.tsx_depth, 5.0 + 1e-9);
+  EXPECT_NEAR(r.t2, 0.011, 1e-15);
+  ASSERT_TRUE(r.bta_depth);
+  EXPECT_NEAR(*r.bta_depth, 7.5, 1e-9);
+}
+
 // RSP at t1: (1 - J) P + (1 + J) 0.3 P; RMX the largest of
 // (1 - J) Wd(t) + (1 + J) Wu(t + 2L/c) at the samples within 30 ms of t1,
 // found here from the formulas, at 3.4 ms (the late reflection lifts it).
