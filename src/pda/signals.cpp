@@ -120,7 +120,8 @@ PileSignals read_pile_signals(const PileRecord& rec) {
     if (rec.acceleration) c = integral(s.t, c);
   }
   check_channels(rec, s.force_channels, rec.force_columns, rec.strain ? "strain" : "force", s);
-  check_channels(rec, s.velocity_channels, rec.velocity_columns, rec.acceleration ? "acceleration" : "velocity", s);
+  check_channels(rec, s.velocity_channels, rec.velocity_columns,
+                 rec.acceleration ? "acceleration (integrated)" : "velocity", s);
   s.force = average(s.force_channels);
   s.velocity = average(s.velocity_channels);
   check_proportional(rec, s);
