@@ -48,21 +48,24 @@ void find_tsx(CaseMethodResult& r) {
   for (const auto& s : rec.segments) joints.push_back(joints.back() + s.length);
   r.tsx = 0.0;
   for (std::size_t k = r.signals.impact; k < t.size() && t[k] <= r.t2; ++k) {
-    auto consider = [&](double tau, double area) {
-      if (t[k] + tau > t.back()) return;
-      const double stress = -(r.waves.down[k] + r.waves.up_at(t[k] + tau)) / area;
+    auto consider = [&](double tau, double up, double area) {
+      const double stress = -(r.waves.down[k] + up) / area;
       if (stress > r.tsx) {
         r.tsx = stress;
         r.tsx_time = t[k];
         r.tsx_depth = rec.depth_at(tau);
       }
     };
+    // Only the uniform pile's area is known without a depth (the common case).
+    const bool uniform = rec.segments.size() == 1;
     for (std::size_t j = k; j < t.size() && t[j] - t[k] <= T; ++j)
-      consider(t[j] - t[k], rec.segment_at(rec.depth_at(t[j] - t[k])).area);
+      consider(t[j] - t[k], r.waves.up[j], uniform ? rec.area() : rec.segment_at(rec.depth_at(t[j] - t[k])).area);
     for (std::size_t i = 0; i < joints.size(); ++i) {
       const double tau = rec.two_way_time(joints[i]);
-      if (i > 0) consider(tau, rec.segments[i - 1].area);
-      if (i < rec.segments.size()) consider(tau, rec.segments[i].area);
+      if (t[k] + tau > t.back()) continue;
+      const double up = r.waves.up_at(t[k] + tau);
+      if (i > 0) consider(tau, up, rec.segments[i - 1].area);
+      if (i < rec.segments.size()) consider(tau, up, rec.segments[i].area);
     }
   }
 }
