@@ -48,6 +48,10 @@ void find_impact(const PileRecord& rec, const std::vector<double>& t, const std:
                             rec.strain ? "strain" : "force", columns));
   s.foot = static_cast<std::size_t>(
       std::find_if(f.begin(), f.end(), [&](double v) { return v > foot_fraction * peak; }) - f.begin());
+  if (s.foot == 0)
+    refuse(rec, fmt::format("no impact: the averaged {} ({}) is above 5% of its peak from the first sample at t = {} "
+                            "s (no baseline before a rise)",
+                            rec.strain ? "strain" : "force", columns, t.front()));
   s.impact = s.foot;
   while (s.impact + 1 < f.size() && !(f[s.impact + 1] < f[s.impact])) ++s.impact;
   if (s.impact + 1 == f.size())

@@ -160,6 +160,9 @@ TEST(PileRecord, RefusesRecordsThatCannotBeAnalysed) {
   w.drop = w.toe = w.late = w.force_offset = 0.0;
   EXPECT_RECORD_REFUSED(refusal(toml, w), "blow.csv: record: no impact");
   w = {};
+  w.start = -0.0005;  // the blow under way at the first sample
+  EXPECT_RECORD_REFUSED(refusal(toml, w), "record: no impact", "above 5% of its peak from the first sample");
+  w = {};
   w.samples = 105;  // to 10.4 ms, t2 = 11 ms
   EXPECT_RECORD_REFUSED(refusal(toml, w), "record: ends at t = 0.0104", "before t2 = t1 + 2L/c = 0.011");
   w = {};
