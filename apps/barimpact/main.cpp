@@ -47,6 +47,7 @@
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
+#include "barimpact/pda/case_method.hpp"
 #include "barimpact/run/check.hpp"
 #include "barimpact/run/figure_names.hpp"
 #include "barimpact/run/output.hpp"
@@ -760,6 +761,33 @@ int hopkinson_command(const std::string& setup_path, const std::string& out, boo
   return 0;
 }
 
+// pda: the analysis first (a record it refuses writes nothing), then pda.csv,
+// summary.json and the figures, moved into place together.
+int pda_command(const std::string& record_path, const std::string& out, bool no_plot, const WriteFlags& flags) {
+  const auto record = barimpact::PileRecord::from_file(record_path);
+  const auto r = barimpact::analyse_pda(record);
+  barimpact::RunDirectory dir(out, flags.force, "pda", true, barimpact::pda_inputs(record));
+  bool plotted = false;
+  dir.commit([&](const std::filesystem::path& staging) {
+    barimpact::write_text(staging / "pda.csv", barimpact::pda_csv(r));
+    barimpact::write_text(staging / "summary.json", barimpact::pda_summary_json(r));
+    plotted = !no_plot && run_python({"pda-plot", staging.string(), "--as", out});
+  });
+  fmt::print("pda: {} samples; t1 = {:.6g} s, t2 = {:.6g} s (2L/c = {:.4g} s), F / (Z v) at t1 = {:.3f}\n",
+             r.signals.t.size(), r.t1, r.t2, r.record.travel_time(), r.ratio_at_impact);
+  fmt::print("  FMX {:.4g} kN, VMX {:.4g} m/s, EMX {:.4g} kJ, DMX {:.4g} mm\n", 1e-3 * r.fmx, r.vmx, 1e-3 * r.emx,
+             1e3 * r.dmx);
+  fmt::print("  CSX {:.4g} MPa, TSX {:.4g} MPa\n", 1e-6 * r.csx, 1e-6 * r.tsx);
+  fmt::print("  RMX {:.4g} kN at t = {:.6g} s, RSP {:.4g} kN (J_c = {:g})\n", 1e-3 * r.rmx, r.rmx_time, 1e-3 * r.rsp,
+             r.record.damping);
+  if (r.bta_depth)
+    fmt::print("  BTA {:.3f} at {:.3g} m below the gauges\n", r.bta, *r.bta_depth);
+  else
+    fmt::print("  BTA 1 (no drop of the wave up above 1% of the wave down)\n");
+  fmt::print("  pda.csv, summary.json{} in {}\n", plotted ? " and figures" : "", dir.target().string());
+  return 0;
+}
+
 // Validates a case and reports what to know before running it (run/check.hpp).
 int check_command(const std::string& case_path, const std::vector<std::string>& sets) {
   const auto c = read_case(case_path, sets).c;
@@ -955,6 +983,24 @@ Command add_hopkinson(CLI::App& app) {
   return {c, [a] { return hopkinson_command(a->setup, a->out, a->no_plot, a->flags); }};
 }
 
+Command add_pda(CLI::App& app) {
+  struct Args {
+    std::string record, out;
+    bool no_plot = false;
+    WriteFlags flags;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand(
+      "pda",
+      "Analyse a measured blow on a pile: the waves, the Case method, energy, stresses, BTA (pda.csv, summary.json)");
+  c->add_option("record", a->record, "Record file (TOML): the pile below the gauges, the CSV record and its columns")
+      ->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")->required();
+  c->add_flag("--no-plot", a->no_plot, "Skip the figures");
+  add_write_flags(c, a->flags);
+  return {c, [a] { return pda_command(a->record, a->out, a->no_plot, a->flags); }};
+}
+
 // converge records the command line that made it (convergence.md).
 Command add_converge(CLI::App& app, int argc, char** argv) {
   auto a = std::make_shared<ConvergeArgs>();
@@ -1059,14 +1105,22 @@ int main(int argc, char** argv) {
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text);
-  const std::vector<Command> commands{
-      add_run(app, false), add_check(app),     add_run(app, true), add_sweep(app),     add_bearing(app),
-      add_drive(app),      add_inspector(app), add_hammers(app),   add_hopkinson(app), add_converge(app, argc, argv),
-      add_plot(app)};
+  const std::vector<Command> commands{add_run(app, false),
+                                      add_check(app),
+                                      add_run(app, true),
+                                      add_sweep(app),
+                                      add_bearing(app),
+                                      add_drive(app),
+                                      add_inspector(app),
+                                      add_hammers(app),
+                                      add_hopkinson(app),
+                                      add_pda(app),
+                                      add_converge(app, argc, argv),
+                                      add_plot(app)};
   if (!known_command(argc, argv, commands)) {
     fmt::print(stderr,
                "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, "
-               "drive, inspector, hammers, hopkinson, plot; see barimpact --help)\n",
+               "drive, inspector, hammers, hopkinson, pda, plot; see barimpact --help)\n",
                argv[1]);
     return exit_bad_input;
   }

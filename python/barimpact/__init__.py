@@ -18,11 +18,12 @@ as keywords (--toe-share is toe_share=...):
     barimpact sweep SWEEP --out DIR     barimpact.sweep(sweep, out=DIR, jobs=4)
     barimpact bearing CASE --out DIR    barimpact.bearing(case, DIR, capacity=(1e6, 5e7, 10))
     barimpact hopkinson SETUP --out DIR barimpact.hopkinson(setup, out=DIR)
+    barimpact pda RECORD --out DIR      barimpact.pda(record, out=DIR)
     barimpact plot DIR                  barimpact.plot(DIR)
 
 They write the same files by the same rules (the output directory, resuming,
 --force), return the table the command writes (convergence.csv, sweep.csv,
-bearing.csv, hopkinson.csv) as a `Table`, release the GIL while they run,
+bearing.csv, hopkinson.csv, pda.csv) as a `Table`, release the GIL while they run,
 and stop on Ctrl-C after writing what is done, as the command does. The
 health checks' warnings are `HealthWarning`s; strict=True raises
 `StrictError` after writing, where the command exits 4.
@@ -47,6 +48,7 @@ from . import bearing as _bearing_figures
 from . import drive as _drive_figures
 from . import convergence as _convergence_figures
 from . import hopkinson as _hopkinson_figures
+from . import pda as _pda_figures
 from . import plot as _figures
 from . import _core
 from ._core import Case, InputError, OutOfMemoryError, OutputError, Result
@@ -57,7 +59,8 @@ OutOfMemoryError.__module__ = "barimpact"
 from .plot import RunData, load
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "plot", "load",
+           "PdaTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "plot", "load",
            "read_table", "exact_example1"]
 
 
@@ -147,6 +150,12 @@ class HopkinsonTable(Table):
     `summary`, summary.json as a dict."""
 
 
+class PdaTable(Table):
+    """pda.csv's columns by name (numpy arrays), and `summary`, summary.json
+    as a dict (t1, t2, fmx, vmx, emx, dmx, csx, tsx, rmx, rmx_time, rsp, bta,
+    bta_depth, ...)."""
+
+
 # The columns whose type the name fixes; the others (a sweep's axes,
 # convergence's value, hopkinson's) are numbers when every cell is one.
 _INTEGER = frozenset({"level", "elements", "contact_episodes", "steps_done", "contacts"})
@@ -178,24 +187,25 @@ def _table_from_csv(text, summary=None, table=Table):
     return table({name: _column(name, c) for name, c in zip(header, cells)}, summary)
 
 
-_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "drive.csv", "hopkinson.csv")
+_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "drive.csv", "hopkinson.csv", "pda.csv")
 
 
 def read_table(path):
     """A table the command wrote, as a `Table`: `path` a CSV file or a
     directory holding one (convergence.csv, sweep.csv, bearing.csv,
-    hopkinson.csv). A Hopkinson directory's table is a `HopkinsonTable` with
-    summary.json as `summary`."""
+    hopkinson.csv, pda.csv). A Hopkinson or pda directory's table is a
+    `HopkinsonTable` or `PdaTable` with summary.json as `summary`."""
     p = _Path(os.fspath(path))
     if p.is_dir():
         found = [p / name for name in _TABLES if (p / name).is_file()]
         if not found:
             raise InputError(f"{path}: holds none of {', '.join(_TABLES)} (give a directory barimpact wrote)")
         p = found[0]
-    if p.name == "hopkinson.csv":
+    kind = {"hopkinson.csv": HopkinsonTable, "pda.csv": PdaTable}.get(p.name)
+    if kind is not None:
         summary_file = p.with_name("summary.json")
         summary = json.loads(summary_file.read_text()) if summary_file.is_file() else None
-        return _table_from_csv(p.read_text(), summary, HopkinsonTable)
+        return _table_from_csv(p.read_text(), summary, kind)
     return _table_from_csv(p.read_text())
 
 
@@ -548,6 +558,23 @@ def hopkinson(setup, out=None, *, no_plot=False, force=False, strict=False):
     _warn(lines)
     _strict(strict, lines, result, "the analysis")
     return result
+
+
+def pda(record, out=None, *, no_plot=False, force=False):
+    """The analysis of a measured blow on a pile (`barimpact pda RECORD --out
+    DIR`): `record` a record file's path, or the same as a dict of sections
+    ({"pile": {...}, "record": {...}, "case_method": {...}}; relative paths
+    then from the working directory). Returns pda.csv's table (t, force,
+    velocity_z, wave_down, wave_up, displacement, velocity, energy) with
+    `summary`, summary.json as a dict (t1, t2, fmx, vmx, emx, dmx, csx, tsx,
+    rmx, rmx_time, rsp, bta, bta_depth, ...). With `out`, writes pda.csv,
+    summary.json and (unless no_plot) the figures there, moved into place
+    together by the command's output rule (`force` as --force); without it
+    nothing is written. InputError (one line) for a record it cannot analyse."""
+    draw = None if no_plot or out is None else (
+        lambda staging: _pda_figures.plot_pda_into(staging, _out(out)))
+    csv, summary = _core._pda(record, _out(out), bool(force), draw)
+    return _table_from_csv(csv, json.loads(summary), PdaTable)
 
 
 def plot(dir, out=None, *, force=False, formats=("png", "svg")):

@@ -13,7 +13,8 @@ from ._core import OutputError as OutputError
 from ._core import Result as Result
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "plot", "load",
+           "PdaTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "plot", "load",
            "read_table", "exact_example1"]
 
 _PathArg = Union[str, os.PathLike[str]]
@@ -73,6 +74,9 @@ class Table(dict[str, npt.NDArray[Any]]):
 class HopkinsonTable(Table):
     """hopkinson.csv's columns, with summary.json as `summary`."""
 
+class PdaTable(Table):
+    """pda.csv's columns, with summary.json as `summary`."""
+
 def run(case: _CaseLike, progress: _Progress | None = None, *, out: _PathArg | None = None, set: _Overrides = None,
         force: bool = False, strict: bool = False) -> Result:
     """barimpact run CASE [--out DIR] [--set ...] [--force] [--strict]."""
@@ -116,6 +120,10 @@ def hammers() -> Table:
 def hopkinson(setup: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,
               force: bool = False, strict: bool = False) -> HopkinsonTable:
     """barimpact hopkinson SETUP [--out DIR] [--no-plot] [--force] [--strict]: hopkinson.csv's table."""
+
+def pda(record: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,
+        force: bool = False) -> PdaTable:
+    """barimpact pda RECORD [--out DIR] [--no-plot] [--force]: pda.csv's table."""
 
 def plot(dir: _PathArg | Result | RunData, out: _PathArg | None = None, *, force: bool = False,
          formats: Sequence[str] = ("png", "svg")) -> list[Path]:

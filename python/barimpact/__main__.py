@@ -42,6 +42,10 @@ def _run(args):
         from .hopkinson import plot_hopkinson_into
         plot_hopkinson_into(args.dir, args.shown or args.dir)
         return []  # into the staging directory: its paths would mislead
+    if args.command == "pda-plot":
+        from .pda import plot_pda_into
+        plot_pda_into(args.dir, args.shown or args.dir)
+        return []  # into the staging directory
     if args.command == "converge-plot":
         from .convergence import plot_study
         return plot_study(args.dir)
@@ -74,11 +78,15 @@ def main(argv=None):
     h.add_argument("dir")
     h.add_argument("--as", dest="shown", default=None,
                    help="the directory the figures are moved to (DIR is its staging), which errors name")
+    d = sub.add_parser("pda-plot", help="draw the figures of a barimpact pda directory")
+    d.add_argument("dir")
+    d.add_argument("--as", dest="shown", default=None,
+                   help="the directory the figures are moved to (DIR is its staging), which errors name")
     args = parser.parse_args(argv)
     try:
         written = _run(args)
     except (OSError, ValueError, ImportError) as e:  # ImportError: results.h5 without h5py
-        # The command the user gave: plot, converge, bearing, drive, inspector, hopkinson. Exit 2, as the command's own refusals.
+        # The command the user gave: plot, converge, bearing, drive, inspector, hopkinson, pda. Exit 2, as the command's own refusals.
         print(f"barimpact: error: {args.command.removesuffix('-plot')}: {_message(e)}", file=sys.stderr)
         return 2
     for path in written:

@@ -1,24 +1,14 @@
 """The figures of a `barimpact hopkinson` directory (hopkinson.csv, summary.json):
 the aligned waves, the stress-strain curves of the three analyses, the strain
 rate against strain, and the specimen's equilibrium against time."""
-import json
-from pathlib import Path
-
 import numpy as np
 
-from .plot import _figure, _save, study_directory
+from .plot import _figure, _save, draw_into, read_table_summary, study_directory
 
 
 def read_hopkinson(directory):
     """hopkinson.csv as a dict of numpy arrays (nan where a cell is missing), and summary.json."""
-    d = Path(directory)
-    with open(d / "hopkinson.csv") as f:
-        names = f.readline().strip().split(",")
-    data = np.loadtxt(d / "hopkinson.csv", delimiter=",", skiprows=1, ndmin=2)
-    table = {name: data[:, i] for i, name in enumerate(names)}
-    with open(d / "summary.json") as f:
-        summary = json.load(f)
-    return table, summary
+    return read_table_summary(directory, "hopkinson.csv")
 
 
 def _waves_figure(h, out, formats, written):
@@ -107,11 +97,5 @@ def plot_hopkinson(directory, formats=("png", "svg")):
 
 def plot_hopkinson_into(staging, shown, formats=("png", "svg")):
     """plot_hopkinson into the staging directory of `shown`, the directory
-    the results are moved to once whole: an OSError (a full disk) names the
-    figure there, not in the staging directory, which is gone by then."""
-    try:
-        return plot_hopkinson(staging, formats)
-    except OSError as e:
-        if e.filename is None or Path(e.filename).parent != Path(staging):
-            raise
-        raise OSError(e.errno, e.strerror, str(Path(shown) / Path(e.filename).name)) from e
+    the results are moved to once whole (see draw_into)."""
+    return draw_into(plot_hopkinson, staging, shown, formats)

@@ -825,6 +825,31 @@ def study_directory(directory, command):
     return Path(directory)
 
 
+def read_table_summary(directory, name):
+    """A command's table NAME (hopkinson.csv, pda.csv) as a dict of numpy
+    arrays (nan where a cell is missing), and its summary.json."""
+    d = Path(directory)
+    with open(d / name) as f:
+        names = f.readline().strip().split(",")
+    data = np.loadtxt(d / name, delimiter=",", skiprows=1, ndmin=2)
+    table = {column: data[:, i] for i, column in enumerate(names)}
+    with open(d / "summary.json") as f:
+        summary = json.load(f)
+    return table, summary
+
+
+def draw_into(draw, staging, shown, formats=("png", "svg")):
+    """draw(staging, formats) into the staging directory of `shown`, the
+    directory the results are moved to once whole: an OSError (a full disk)
+    names the figure there, not in the staging directory, which is gone by then."""
+    try:
+        return draw(staging, formats)
+    except OSError as e:
+        if e.filename is None or Path(e.filename).parent != Path(staging):
+            raise
+        raise OSError(e.errno, e.strerror, str(Path(shown) / Path(e.filename).name)) from e
+
+
 # --- entry points ---------------------------------------------------------------------
 
 def _data_of(source):

@@ -21,6 +21,7 @@
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/exact/tabulate.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
+#include "barimpact/pda/case_method.hpp"
 #include "barimpact/run/check.hpp"
 #include "barimpact/run/figure_names.hpp"
 #include "barimpact/run/output.hpp"
@@ -438,6 +439,36 @@ py::tuple hopkinson_binding(const py::object& setup, const std::optional<std::st
   return py::make_tuple(table, hopkinson_summary_json(r), warnings);
 }
 
+PileRecord pile_record(const py::object& record) {
+  if (py::isinstance<py::dict>(record)) {
+    std::ostringstream text;  // the file's reader checks a dict too
+    text << toml::toml_formatter(table_from_dict(record.cast<py::dict>()));
+    return PileRecord::from_string(text.str(), std::filesystem::current_path(), "record");
+  }
+  return PileRecord::from_file(fspath(record));
+}
+
+// The record's analysis, then (with `out`) pda.csv, summary.json and what
+// `draw(staging)` adds, moved into place together as the command does.
+py::tuple pda_binding(const py::object& record, const std::optional<std::string>& out, bool force,
+                      const py::object& draw) {
+  const PileRecord rec = pile_record(record);
+  CaseMethodResult r;
+  {
+    py::gil_scoped_release release;
+    r = analyse_pda(rec);
+  }
+  if (out) {
+    RunDirectory dir(*out, force, "pda", true, pda_inputs(rec));
+    dir.commit([&](const std::filesystem::path& staging) {
+      write_text(staging / "pda.csv", pda_csv(r));
+      write_text(staging / "summary.json", pda_summary_json(r));
+      if (!draw.is_none()) draw(staging.string());
+    });
+  }
+  return py::make_tuple(pda_csv(r), pda_summary_json(r));
+}
+
 py::list history_names(const PyResult& p) {
   py::list names;
   for (const char* c : columns) names.append(py::str(c));
@@ -703,6 +734,9 @@ void bind_studies(py::module_& m) {
         "write_inspector (the inspector command without its figure); use barimpact.inspector");
   m.def("_hammers_csv", &hammers_csv, "The shipped hammers as CSV; use barimpact.hammers");
 
+  m.def("_pda", &pda_binding, py::arg("record"), py::arg("out") = py::none(), py::arg("force") = false,
+        py::arg("draw") = py::none(),
+        "The analysis of a pile's record, and with `out` its directory; use barimpact.pda");
   m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,
         py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");
 }

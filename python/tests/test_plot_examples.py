@@ -10,8 +10,8 @@ import pytest
 import barimpact
 from conftest import CLI, EXAMPLES
 
-# Sweep files and Hopkinson setups lie among the examples: not cases.
-NOT_A_CASE = {"case", "axis", "zip", "incident", "transmitted"}
+# Sweep files, Hopkinson setups and pile records lie among the examples: not cases.
+NOT_A_CASE = {"case", "axis", "zip", "incident", "transmitted", "record"}
 CASES = sorted(p.relative_to(EXAMPLES).as_posix() for p in EXAMPLES.rglob("*.toml")
                if not NOT_A_CASE & set(tomllib.loads(p.read_text())))
 PAPER = ("paper-example1.toml", "paper-example1-rigid.toml", "paper-example2.toml", "paper-example2-rigid.toml")

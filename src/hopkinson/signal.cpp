@@ -16,13 +16,7 @@ namespace barimpact {
 
 namespace {
 
-// The columns a channel reads from one file, as numbers, with the file's line
-// of each sample (for messages).
-struct FileColumns {
-  std::vector<double> t;
-  std::vector<std::vector<double>> data;  // one per named column
-  std::vector<long> lines;
-};
+using FileColumns = CsvColumns;
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -53,8 +47,9 @@ bool blank(std::string_view line) {
 
 class ColumnReader {
  public:
-  ColumnReader(const ChannelSetup& ch, std::filesystem::path file, std::vector<std::string> names)
-      : ch_(ch), file_(std::move(file)), names_(std::move(names)) {}
+  ColumnReader(const CsvLayout& ch, std::filesystem::path file, std::vector<std::string> names,
+               std::vector<std::string> keys)
+      : ch_(ch), file_(std::move(file)), names_(std::move(names)), keys_(std::move(keys)) {}
 
   FileColumns read() {
     std::ifstream in(file_);
@@ -109,7 +104,7 @@ class ColumnReader {
       return static_cast<std::size_t>(it - header.begin());
     };
     if (!ch_.time_column.empty()) time_index_ = index(ch_.time_column, "time");
-    for (const auto& n : names_) data_index_.push_back(index(n, ch_.volts ? "volts" : "strain"));
+    for (std::size_t i = 0; i < names_.size(); ++i) data_index_.push_back(index(names_[i], keys_[i]));
   }
 
   double cell(const std::vector<std::string_view>& cells, std::size_t i, long line, const std::string& name) const {
@@ -140,9 +135,9 @@ class ColumnReader {
     out.lines.push_back(number);
   }
 
-  const ChannelSetup& ch_;
+  const CsvLayout& ch_;
   std::filesystem::path file_;
-  std::vector<std::string> names_;
+  std::vector<std::string> names_, keys_;
   std::size_t time_index_ = 0;
   std::vector<std::size_t> data_index_;
 };
@@ -212,6 +207,11 @@ void check_same_clock(const ChannelSetup& ch, const std::vector<double>& first, 
 
 }  // namespace
 
+CsvColumns read_csv_columns(const CsvLayout& layout, const std::filesystem::path& file,
+                            const std::vector<std::string>& names, const std::vector<std::string>& keys) {
+  return ColumnReader(layout, file, names, keys).read();
+}
+
 GaugeSignal read_gauge_signal(const ChannelSetup& ch) {
   GaugeSignal s;
   s.simulated = !ch.run.empty();
@@ -220,8 +220,11 @@ GaugeSignal read_gauge_signal(const ChannelSetup& ch) {
   for (std::size_t i = 0; i < ch.files.size(); ++i) {
     std::vector<std::string> names = ch.strain_columns;
     if (ch.files.size() > 1 && names.size() == ch.files.size()) names = {ch.strain_columns[i]};
-    auto f = !ch.run.empty() && ch.files[i].filename() == results_h5_name ? read_run_results(ch, ch.files[i], names)
-                                                                          : ColumnReader(ch, ch.files[i], names).read();
+    const CsvLayout layout{ch.section, ch.time_column, ch.header, ch.sample_interval, ch.delimiter, ch.skip_rows};
+    const std::vector<std::string> keys(names.size(), ch.volts ? "volts" : "strain");
+    auto f = !ch.run.empty() && ch.files[i].filename() == results_h5_name
+                 ? read_run_results(ch, ch.files[i], names)
+                 : read_csv_columns(layout, ch.files[i], names, keys);
     if (ch.full_scale)
       for (std::size_t c = 0; c < names.size(); ++c) check_clipping(ch, ch.files[i], names[c], f, f.data[c]);
     if (i == 0)

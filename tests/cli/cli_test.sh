@@ -43,18 +43,6 @@ grep -q '^format = "hdf5"$' "$work/h5/case.toml" && ok || bad "output.format not
   [ ! -e "$work/h5/results.h5" ] && ok || bad "a csv run does not replace an hdf5 one whole"
 
 # Bad input: exit 2, one line on stderr naming the key or option, nothing written.
-expect_refused() {  # expected-substring, then the arguments
-  local want=$1
-  shift
-  "$bin" "$@" > "$work/out" 2> "$work/err"
-  local code=$?
-  if [ $code -ne 2 ]; then bad "exit $code, not 2, for: $*"; return; fi
-  if [ "$(wc -l < "$work/err")" -ne 1 ]; then bad "not one line for: $*: $(cat "$work/err")"; return; fi
-  grep -qF -- "$want" "$work/err" || { bad "'$want' not in: $(cat "$work/err")"; return; }
-  [ -e "$work/refused" ] && { bad "output written for: $*"; return; }
-  ls -a "$work" | grep -q partial && { bad "staging left for: $*"; return; }
-  ok
-}
 ex1="$examples/paper-example1.toml"
 expect_refused "bar.stiffness" run "$ex1" --out "$work/refused" --set bar.stiffness=0
 expect_refused "bar.density" run "$ex1" --out "$work/refused" --set bar.density=-1

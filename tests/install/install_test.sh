@@ -50,6 +50,8 @@ mkdir -p "$work/user" && cd "$work/user"
 printf '[bar]\nmodulus = 200e9\ndensity = 7850\ndiameter = 0.02\n[specimen]\nbody = "specimen"\n[incident]\nrun = "out/hopkinson"\ngauge = "incident"\n[transmitted]\nrun = "out/hopkinson"\ngauge = "transmitted"\n' > setup.toml
 "$bin" hopkinson setup.toml --out runs/analysis > /dev/null 2>&1 && [ -s runs/analysis/hopkinson.csv ] && ok ||
   bad "installed hopkinson: $("$bin" hopkinson setup.toml --out runs/analysis2 2>&1 | tail -1)"
+"$bin" pda "$examples/pda/steel-pipe.toml" --out runs/pda > /dev/null 2>&1 && [ -s runs/pda/pda.csv ] &&
+  [ -s runs/pda/waves.png ] && ok || bad "installed pda (with its figures)"
 PYTHONPATH="$site" MPLBACKEND=Agg "$python" -c "
 import barimpact
 r = barimpact.run('$examples/paper-example1.toml')
