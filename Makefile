@@ -13,7 +13,7 @@ PACKAGES := cmake g++ make libtomlplusplus-dev libmuparser-dev libcli11-dev libf
             libopenmpi-dev openmpi-bin python3-scipy \
             clang-14 libclang-rt-14-dev python3-hypothesis \
             python3-venv python3-pip python3-setuptools python3-wheel python3-build python3-pandas python3-mypy \
-            libhdf5-dev python3-h5py
+            libhdf5-dev python3-h5py libceres-dev
 PYTHON := /usr/bin/python3
 JOBS ?= $(shell nproc)
 EXAMPLES := paper-example1 paper-example2

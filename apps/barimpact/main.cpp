@@ -56,6 +56,7 @@
 #include "barimpact/study/convergence.hpp"
 #include "barimpact/study/drive.hpp"
 #include "barimpact/study/executor.hpp"
+#include "barimpact/study/match.hpp"
 #include "barimpact/study/sweep.hpp"
 
 #ifdef BARIMPACT_HAVE_MPI
@@ -788,6 +789,45 @@ int pda_command(const std::string& record_path, const std::string& out, bool no_
   return 0;
 }
 
+// match: the fit first (a record it refuses writes nothing), then match.csv,
+// soil.csv, static.csv, summary.json and the figures, moved into place together.
+int match_command(const std::string& record_path, const std::string& out, bool no_plot, int jobs,
+                  const WriteFlags& flags) {
+  const auto record = barimpact::PileRecord::from_file(record_path);
+  barimpact::check_jobs(jobs);
+  barimpact::RunDirectory dir(out, flags.force, "match", true, barimpact::pda_inputs(record));
+  const auto r = barimpact::match_pile(record, jobs);
+  poll_signals();
+  bool plotted = false;
+  dir.commit([&](const std::filesystem::path& staging) {
+    barimpact::write_text(staging / "match.csv", barimpact::match_csv(r));
+    barimpact::write_text(staging / "soil.csv", barimpact::soil_csv(r));
+    barimpact::write_text(staging / "static.csv", barimpact::static_csv(r));
+    barimpact::write_text(staging / "summary.json", barimpact::match_summary_json(r));
+    plotted = !no_plot && run_python({"match-plot", staging.string(), "--as", out});
+  });
+  const auto& s = r.soil;
+  fmt::print("match: {} samples from t = {:.6g} s to t2 + {:.4g} s; {} starts, {} iterations, {} blows in {:.3g} s\n",
+             r.computed.size(), r.pda.t_foot, r.window, r.starts.size(), r.iterations, r.evaluations, r.seconds);
+  fmt::print("  capacity {:.4g} kN: shaft {:.4g} kN, toe {:.4g} kN (Case method RMX {:.4g} kN)\n", 1e-3 * s.capacity(),
+             1e-3 * s.shaft_total(), 1e-3 * s.toe, 1e-3 * r.pda.rmx);
+  fmt::print("  quakes {:.3g} mm (shaft), {:.3g} mm (toe); dampings {:.3g} s/m (shaft), {:.3g} s/m (toe), {}\n",
+             1e3 * s.shaft_quake, 1e3 * s.toe_quake, s.shaft_damping, s.toe_damping,
+             s.law == barimpact::DampingLaw::smith ? "Smith" : "viscous");
+  double lo = s.capacity(), hi = lo;
+  for (const auto& st : r.starts) {
+    lo = std::min(lo, st.soil.capacity());
+    hi = std::max(hi, st.soil.capacity());
+  }
+  fmt::print(
+      "  match quality {:.3g}% (rms force difference over the largest force); the starts' capacities span {:.3g} kN\n",
+      100.0 * r.quality, 1e-3 * (hi - lo));
+  fmt::print("  static load test: the capacity reached at {:.3g} mm\n", 1e3 * r.static_test.s_c);
+  fmt::print("  match.csv, soil.csv, static.csv, summary.json{} in {}\n", plotted ? " and figures" : "",
+             dir.target().string());
+  return 0;
+}
+
 // Validates a case and reports what to know before running it (run/check.hpp).
 int check_command(const std::string& case_path, const std::vector<std::string>& sets) {
   const auto c = read_case(case_path, sets).c;
@@ -1001,6 +1041,26 @@ Command add_pda(CLI::App& app) {
   return {c, [a] { return pda_command(a->record, a->out, a->no_plot, a->flags); }};
 }
 
+Command add_match(CLI::App& app) {
+  struct Args {
+    std::string record, out;
+    bool no_plot = false;
+    int jobs = 0;
+    WriteFlags flags;
+  };
+  auto a = std::make_shared<Args>();
+  auto* c = app.add_subcommand("match",
+                               "Signal matching: the soil resistance whose computed force at the gauges matches the "
+                               "record's ([match]; match.csv, soil.csv, static.csv, summary.json)");
+  c->add_option("record", a->record, "Record file (TOML): the pile below the gauges, the CSV record, [match]")
+      ->required();
+  c->add_option("--out", a->out, "Output directory: a new or empty one, or one barimpact wrote (replaced)")->required();
+  c->add_flag("--no-plot", a->no_plot, "Skip the figures");
+  c->add_option("--jobs", a->jobs, "Threads for the fit's blows (0: all cores)");
+  add_write_flags(c, a->flags);
+  return {c, [a] { return match_command(a->record, a->out, a->no_plot, a->jobs, a->flags); }};
+}
+
 // converge records the command line that made it (convergence.md).
 Command add_converge(CLI::App& app, int argc, char** argv) {
   auto a = std::make_shared<ConvergeArgs>();
@@ -1105,22 +1165,15 @@ int main(int argc, char** argv) {
   CLI::App app{"barimpact: a visco-elastic bar hitting obstacles (Do, Raupp & Feijoo 1979)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", version_text);
-  const std::vector<Command> commands{add_run(app, false),
-                                      add_check(app),
-                                      add_run(app, true),
-                                      add_sweep(app),
-                                      add_bearing(app),
-                                      add_drive(app),
-                                      add_inspector(app),
-                                      add_hammers(app),
-                                      add_hopkinson(app),
-                                      add_pda(app),
-                                      add_converge(app, argc, argv),
+  const std::vector<Command> commands{add_run(app, false), add_check(app),   add_run(app, true),
+                                      add_sweep(app),      add_bearing(app), add_drive(app),
+                                      add_inspector(app),  add_hammers(app), add_hopkinson(app),
+                                      add_pda(app),        add_match(app),   add_converge(app, argc, argv),
                                       add_plot(app)};
   if (!known_command(argc, argv, commands)) {
     fmt::print(stderr,
                "barimpact: error: unknown command \"{}\" (commands: run, check, exact, sweep, converge, bearing, "
-               "drive, inspector, hammers, hopkinson, pda, plot; see barimpact --help)\n",
+               "drive, inspector, hammers, hopkinson, pda, match, plot; see barimpact --help)\n",
                argv[1]);
     return exit_bad_input;
   }

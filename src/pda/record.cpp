@@ -18,6 +18,10 @@ const std::vector<std::string_view> pile_keys{"length", "area", "modulus", "dens
 const std::vector<std::string_view> record_keys{"file",     "time",         "force",     "strain",
                                                 "velocity", "acceleration", "delimiter", "skip_rows"};
 
+const std::vector<std::string_view> match_keys{"segments",    "embedded",    "window",    "damping_law",
+                                               "unknowns",    "shaft_quake", "toe_quake", "shaft_damping",
+                                               "toe_damping", "starts",      "low_pass",  "smoothing"};
+
 // [[segment]] tables become sections "segment[1]", "segment[2]", ... of the
 // root (moved, so that messages keep their lines); returns how many.
 std::size_t number_segments(toml::table& root, const std::string& origin) {
@@ -38,7 +42,8 @@ std::size_t number_segments(toml::table& root, const std::string& origin) {
 
 // The contract's sections; `names` holds the segments' section names.
 std::vector<SectionKeys> record_contract(const std::vector<std::string>& names) {
-  std::vector<SectionKeys> c{{"pile", pile_keys}, {"record", record_keys}, {"case_method", {"damping"}}};
+  std::vector<SectionKeys> c{
+      {"pile", pile_keys}, {"record", record_keys}, {"case_method", {"damping"}}, {"match", match_keys}};
   for (const auto& name : names) c.push_back({name, pile_keys});
   return c;
 }
@@ -113,7 +118,83 @@ void read_record_section(const SetupReader& r, PileRecord& rec, const std::files
   read_channels(r, rec);
 }
 
+// A whole number in [lo, hi].
+int read_count(const SetupReader& r, std::string_view key, int lo, int hi, int fallback) {
+  const auto v = r.number("match", key);
+  if (!v) return fallback;
+  if (!(*v >= lo && *v <= hi && std::floor(*v) == *v))
+    r.fail("match", key, fmt::format("must be a whole number in [{}, {}] (got {})", lo, hi, *v));
+  return static_cast<int>(*v);
+}
+
+// A value inside the fit's bounds.
+std::optional<double> read_bounded(const SetupReader& r, std::string_view key, double lo, double hi,
+                                   std::string_view what) {
+  const auto v = r.number("match", key);
+  if (v && !(*v >= lo && *v <= hi))
+    r.fail("match", key, fmt::format("must be in [{}, {}] {} (got {})", lo, hi, what, *v));
+  return v;
+}
+
+void read_match(const SetupReader& r, PileRecord& rec) {
+  MatchSettings& m = rec.match;
+  m.segments = read_count(r, "segments", 1, 50, m.segments);
+  m.starts = read_count(r, "starts", 1, 32, m.starts);
+  if ((m.embedded = r.number("match", "embedded")) && !(*m.embedded > 0.0 && *m.embedded <= rec.length() * (1 + 1e-12)))
+    r.fail("match", "embedded",
+           fmt::format("must be in (0, {}] m, the pile's length below the gauges (got {})", rec.length(), *m.embedded));
+  if ((m.window = r.number("match", "window")) && !(*m.window > 0.0))
+    r.fail("match", "window", fmt::format("must be > 0 s after t2 (got {})", *m.window));
+  if (const auto law = r.word("match", "damping_law")) {
+    if (*law == "smith")
+      m.damping_law = DampingLaw::smith;
+    else if (*law == "viscous")
+      m.damping_law = DampingLaw::viscous;
+    else
+      r.fail("match", "damping_law", fmt::format("must be \"smith\" or \"viscous\" (got \"{}\")", *law));
+  }
+  if (r.has("match", "unknowns")) {
+    m.unknowns = r.words("match", "unknowns");
+    if (m.unknowns.empty()) r.fail("match", "unknowns", "must name at least one unknown");
+    const auto& all = MatchSettings::all_unknowns();
+    for (std::size_t i = 0; i < m.unknowns.size(); ++i) {
+      const auto& u = m.unknowns[i];
+      if (std::find(all.begin(), all.end(), u) == all.end())
+        r.fail("match", "unknowns",
+               fmt::format("names \"{}\": the unknowns are shaft, toe, shaft_quake, toe_quake, shaft_damping, "
+                           "toe_damping",
+                           u));
+      if (std::find(m.unknowns.begin(), m.unknowns.begin() + static_cast<std::ptrdiff_t>(i), u) !=
+          m.unknowns.begin() + static_cast<std::ptrdiff_t>(i))
+        r.fail("match", "unknowns", fmt::format("names \"{}\" twice", u));
+    }
+  }
+  const char* quake = "m (the fit's bounds on a quake: 0.5 to 15 mm)";
+  const char* damping = "s/m (the fit's bounds on a damping)";
+  if (const auto q = read_bounded(r, "shaft_quake", 0.0005, 0.015, quake)) m.shaft_quake = *q;
+  if (const auto q = read_bounded(r, "toe_quake", 0.0005, 0.015, quake)) m.toe_quake = *q;
+  if (const auto f = r.number("match", "low_pass")) {
+    if (!(*f >= 0.0)) r.fail("match", "low_pass", fmt::format("must be >= 0 Hz (0: no filter; got {})", *f));
+    m.low_pass = *f;
+  }
+  if (const auto w = r.number("match", "smoothing")) {
+    if (!(*w >= 0.0)) r.fail("match", "smoothing", fmt::format("must be >= 0 (0: no penalty; got {})", *w));
+    m.smoothing = *w;
+  }
+  m.shaft_damping = read_bounded(r, "shaft_damping", 0.0, 2.5, damping);
+  m.toe_damping = read_bounded(r, "toe_damping", 0.0, 2.5, damping);
+}
+
 }  // namespace
+
+const std::vector<std::string>& MatchSettings::all_unknowns() {
+  static const std::vector<std::string> u{"shaft", "toe", "shaft_quake", "toe_quake", "shaft_damping", "toe_damping"};
+  return u;
+}
+
+bool MatchSettings::fits(std::string_view unknown) const {
+  return std::find(unknowns.begin(), unknowns.end(), unknown) != unknowns.end();
+}
 
 double PileRecord::length() const {
   double l = 0.0;
@@ -179,6 +260,7 @@ PileRecord PileRecord::from_string(const std::string& toml, const std::filesyste
       r.fail("case_method", "damping", fmt::format("must be in [0, 1]: the Case damping J_c (got {})", *j));
     rec.damping = *j;
   }
+  read_match(r, rec);
   return rec;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "barimpact/model/input_error.hpp"
 #include "barimpact/pda/record.hpp"
@@ -101,14 +102,55 @@ void check_proportional(const PileRecord& rec, const PileSignals& s) {
                             ratio, s.t1(), f, zv, rec.impedance()));
 }
 
+// A zero-phase low-pass: Butterworth's second-order section (bilinear
+// transform, prewarped to `cutoff`) run forward and then backward, so that
+// the record is not delayed and the response is |H|^2, fourth order, -6 dB
+// at the cutoff. Each pass starts at rest at its first sample's value.
+void low_pass(std::vector<double>& x, double cutoff, double dt) {
+  const double k = std::tan(std::numbers::pi * cutoff * dt), norm = 1.0 / (1.0 + std::numbers::sqrt2 * k + k * k);
+  const double b0 = k * k * norm, b1 = 2.0 * b0, a1 = 2.0 * (k * k - 1.0) * norm;
+  const double a2 = (1.0 - std::numbers::sqrt2 * k + k * k) * norm;
+  auto pass = [&](auto first, auto last) {
+    const double rest = *first;
+    double x1 = 0.0, x2 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (auto it = first; it != last; ++it) {
+      const double in = *it - rest, out = b0 * (in + x2) + b1 * x1 - a1 * y1 - a2 * y2;
+      x2 = x1;
+      x1 = in;
+      y2 = y1;
+      y1 = out;
+      *it = out + rest;
+    }
+  };
+  pass(x.begin(), x.end());
+  pass(x.rbegin(), x.rend());
+}
+
+// Every channel low-passed at `cutoff` (none at 0, or at or above 0.45 of the
+// sampling rate: the record is band-limited already). The filter needs
+// uniform samples: a record whose steps differ by more than 1% is refused.
+bool filter_channels(const PileRecord& rec, const std::vector<double>& t, CsvColumns& columns, double cutoff) {
+  if (cutoff <= 0.0 || t.size() < 3) return false;
+  const double dt = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
+  if (cutoff >= 0.45 / dt) return false;
+  for (std::size_t k = 1; k < t.size(); ++k)
+    if (std::abs(t[k] - t[k - 1] - dt) > 0.01 * dt)
+      refuse(rec, fmt::format("the samples are not evenly spaced (at t = {} s the step is {} s, the mean {} s): "
+                              "match.low_pass needs a uniform record (set low_pass = 0 to match it unfiltered)",
+                              t[k - 1], t[k] - t[k - 1], dt));
+  for (auto& c : columns.data) low_pass(c, cutoff, dt);
+  return true;
+}
+
 }  // namespace
 
-PileSignals read_pile_signals(const PileRecord& rec) {
+PileSignals read_pile_signals(const PileRecord& rec, double cutoff) {
   std::vector<std::string> names = rec.force_columns, keys(rec.force_columns.size(), rec.strain ? "strain" : "force");
   names.insert(names.end(), rec.velocity_columns.begin(), rec.velocity_columns.end());
   keys.resize(names.size(), rec.acceleration ? "acceleration" : "velocity");
   CsvColumns columns = read_csv_columns(rec.layout, rec.csv, names, keys);
   PileSignals s;
+  s.filtered = filter_channels(rec, columns.t, columns, cutoff);
   s.t = std::move(columns.t);
   const auto forces = static_cast<std::ptrdiff_t>(rec.force_columns.size());
   s.force_channels.assign(columns.data.begin(), columns.data.begin() + forces);

@@ -29,6 +29,8 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
     near_value_ = std::make_unique<Expression>(line_.near.value);
   if (line_.far.kind == EndKind::force || line_.far.kind == EndKind::velocity)
     far_value_ = std::make_unique<Expression>(line_.far.value);
+  if (line_.near.history) near_history_ = HistoryReader(line_.near.history);
+  if (line_.far.history) far_history_ = HistoryReader(line_.far.history);
   u0_ = line_.initial(0);
   v0_ = line_.initial(1);
   // A held end starts as its condition says: at rest at 0 (clamped; the case

@@ -141,6 +141,53 @@ TEST(PileRecord, RefusesBadKeys) {
                         "pile.length = 25 m, but the segments' lengths add up to 20 m");
 }
 
+// [match]: signal matching's keys, their defaults and rules.
+TEST(PileRecord, ReadsMatchSettings) {
+  testing::ScratchDirectory dir("pda-match");
+  KnownWaves{}.write(dir.path());
+  const auto defaults = PileRecord::from_string(std::string(pile) + channels, dir.path()).match;
+  EXPECT_EQ(defaults.segments, 10);
+  EXPECT_FALSE(defaults.embedded);
+  EXPECT_FALSE(defaults.window);
+  EXPECT_EQ(defaults.damping_law, DampingLaw::smith);
+  EXPECT_EQ(defaults.unknowns, MatchSettings::all_unknowns());
+  EXPECT_EQ(defaults.starts, 4);
+  const auto m = PileRecord::from_string(std::string(pile) + channels +
+                                             "[match]\nsegments = 6\nembedded = 18.0\nwindow = 0.01\n"
+                                             "damping_law = \"viscous\"\nunknowns = [\"shaft\", \"toe\"]\n"
+                                             "toe_quake = 0.004\nshaft_damping = 0.3\nstarts = 2\nlow_pass = 0\n"
+                                             "smoothing = 0\n",
+                                         dir.path())
+                     .match;
+  EXPECT_EQ(m.segments, 6);
+  EXPECT_EQ(m.embedded, 18.0);
+  EXPECT_EQ(m.window, 0.01);
+  EXPECT_EQ(m.damping_law, DampingLaw::viscous);
+  EXPECT_TRUE(m.fits("toe"));
+  EXPECT_FALSE(m.fits("toe_quake"));
+  EXPECT_EQ(m.toe_quake, 0.004);
+  EXPECT_EQ(m.shaft_damping, 0.3);
+  EXPECT_EQ(m.starts, 2);
+  EXPECT_EQ(m.low_pass, 0.0);
+  EXPECT_EQ(m.smoothing, 0.0);
+}
+
+TEST(PileRecord, RefusesBadMatchSettings) {
+  const std::string base = std::string(pile) + channels + "[match]\n";
+  EXPECT_RECORD_REFUSED(refusal(base + "segments = 0\n"), "match.segments must be a whole number in [1, 50]");
+  EXPECT_RECORD_REFUSED(refusal(base + "segments = 2.5\n"), "match.segments");
+  EXPECT_RECORD_REFUSED(refusal(base + "embedded = 21\n"), "match.embedded must be in (0, 20] m");
+  EXPECT_RECORD_REFUSED(refusal(base + "window = -1\n"), "match.window must be > 0");
+  EXPECT_RECORD_REFUSED(refusal(base + "damping_law = \"coulomb\"\n"), "match.damping_law", "coulomb");
+  EXPECT_RECORD_REFUSED(refusal(base + "unknowns = [\"shaft\", \"skin\"]\n"), "match.unknowns names \"skin\"");
+  EXPECT_RECORD_REFUSED(refusal(base + "unknowns = [\"toe\", \"toe\"]\n"), "names \"toe\" twice");
+  EXPECT_RECORD_REFUSED(refusal(base + "toe_quake = 0.02\n"), "match.toe_quake must be in [0.0005, 0.015]");
+  EXPECT_RECORD_REFUSED(refusal(base + "shaft_damping = 3\n"), "match.shaft_damping must be in [0, 2.5]");
+  EXPECT_RECORD_REFUSED(refusal(base + "starts = 0\n"), "match.starts");
+  EXPECT_RECORD_REFUSED(refusal(base + "low_pass = -5\n"), "match.low_pass must be >= 0");
+  EXPECT_RECORD_REFUSED(refusal(base + "colour = 1\n"), "match.colour");
+}
+
 TEST(PileRecord, RefusesBadFiles) {
   EXPECT_RECORD_REFUSED(
       refusal(std::string(pile) + "[record]\nfile = \"none.csv\"\nforce = \"F1\"\nvelocity = \"V1\"\n"),

@@ -14,12 +14,14 @@
 
 #include <cstddef>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "barimpact/model/contact_law.hpp"
 #include "barimpact/model/material.hpp"
+#include "barimpact/model/sampled_history.hpp"
 #include "barimpact/model/tridiagonal.hpp"
 
 namespace barimpact {
@@ -64,6 +66,9 @@ struct End {
   EndKind kind = EndKind::free;
   std::size_t node = 0;
   std::string value = "0";  ///< force (along +x) or velocity, an expression in t
+  /// A sampled force or velocity, used instead of `value` when set (a
+  /// measured record; shared, never copied per scheme).
+  std::shared_ptr<const SampledHistory> history;
 };
 
 /// A bar body: the nodes first..last (inclusive) and its bonds first..last-1.

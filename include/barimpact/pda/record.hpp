@@ -12,10 +12,13 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "barimpact/hopkinson/signal.hpp"
+#include "barimpact/model/contact_law.hpp"
 #include "barimpact/run/output_directory.hpp"
 
 namespace barimpact {
@@ -32,6 +35,33 @@ struct PileSegment {
   [[nodiscard]] double impedance() const { return modulus * area / wave_speed; }
 };
 
+/// [match]: signal matching's settings (`barimpact match`), SI units.
+struct MatchSettings {
+  /// The unknowns a match may fit, in this order.
+  static const std::vector<std::string>& all_unknowns();
+  int segments = 10;               ///< shaft resistances along the embedded length (equal lengths)
+  std::optional<double> embedded;  ///< m of pile in the soil up from the toe (none: all of it)
+  std::optional<double> window;    ///< s after t2 matched (none: 0.020, or to the record's end)
+  DampingLaw damping_law = DampingLaw::smith;
+  std::vector<std::string> unknowns = all_unknowns();
+  double shaft_quake = 0.00254, toe_quake = 0.00254;  ///< m: start values, or the values kept when not unknowns
+  /// s/m: start values, or kept; none: J_c Z over the Case method's capacity
+  std::optional<double> shaft_damping, toe_damping;
+  int starts = 4;  ///< starting points of the fit (the first the Case method's estimate)
+  /// Hz: the channels' zero-phase low-pass before the match (0: none), as
+  /// analysers filter records: it keeps the blow (its rise lasts about a
+  /// millisecond) and removes the gauges' noise above it.
+  double low_pass = 5000.0;
+  /// The weight w of the penalty on the shaft's curvature, w (R_{i-1} - 2
+  /// R_i + R_{i+1}) / F_max per inner segment beside the force residuals
+  /// (Tikhonov regularisation; 0: none). It is zero on any linear
+  /// distribution and settles what the record barely tells apart: the
+  /// deepest shaft from the toe.
+  double smoothing = 10.0;
+
+  [[nodiscard]] bool fits(std::string_view unknown) const;
+};
+
 /// RECORD.toml as read: the pile below the gauges, the CSV file, the channels.
 struct PileRecord {
   std::filesystem::path origin;               ///< the record file, for messages
@@ -44,6 +74,7 @@ struct PileRecord {
   std::vector<std::string> velocity_columns;  ///< velocity (m/s) or, with `acceleration`, m/s^2
   bool acceleration = false;
   double damping = 0.5;  ///< [case_method] damping J_c, in [0, 1]
+  MatchSettings match;   ///< [match] (defaults when absent)
 
   /// L, the pile's length below the gauges.
   [[nodiscard]] double length() const;
@@ -82,6 +113,7 @@ struct PileSignals {
   std::size_t foot = 0;                                ///< first sample above 5% of the averaged force's peak
   std::size_t impact = 0;                              ///< t1: the force's first local maximum from the foot
   std::size_t baseline = 0;  ///< samples more than one rise time before the foot (the offsets' mean)
+  bool filtered = false;     ///< the channels were low-passed (read_pile_signals' cutoff)
 
   [[nodiscard]] double t_foot() const { return t[foot]; }
   [[nodiscard]] double t1() const { return t[impact]; }
@@ -93,8 +125,11 @@ struct PileSignals {
 /// a record ending before t2, one starting too late for the offsets (fewer
 /// than 5 samples more than one rise time before the foot), two channels
 /// differing at t1 by more than half the larger (bending), and force and
-/// velocity disagreeing at t1 (|F / (Z v) - 1| > 0.3).
-[[nodiscard]] PileSignals read_pile_signals(const PileRecord& record);
+/// velocity disagreeing at t1 (|F / (Z v) - 1| > 0.3). With `low_pass` > 0
+/// (Hz), every channel is first low-passed at zero phase (fourth-order
+/// Butterworth response, -6 dB there) unless the sampling rate is below
+/// 1 / 0.45 of it; the record must then be evenly sampled.
+[[nodiscard]] PileSignals read_pile_signals(const PileRecord& record, double low_pass = 0.0);
 
 /// What the analysis reads: the record file and its CSV file.
 [[nodiscard]] CommandInputs pda_inputs(const PileRecord& record);

@@ -209,8 +209,12 @@ class LineScheme : public Scheme {
   /// E_strain, W_ext and D_plastic of an elastic-plastic line at u = u^n.
   void add_plastic(Energies& e, const double* u) const;
   /// The force end's value at t along +x (0 unless the end is a force end).
-  [[nodiscard]] double near_value(double t) const { return near_value_ ? (*near_value_)(0.0, t) : 0.0; }
-  [[nodiscard]] double far_value(double t) const { return far_value_ ? (*far_value_)(0.0, t) : 0.0; }
+  [[nodiscard]] double near_value(double t) const {
+    return near_history_ ? near_history_(t) : near_value_ ? (*near_value_)(0.0, t) : 0.0;
+  }
+  [[nodiscard]] double far_value(double t) const {
+    return far_history_ ? far_history_(t) : far_value_ ? (*far_value_)(0.0, t) : 0.0;
+  }
   /// The penalty links' forces at u (rates from u_old over dt), c_max updated;
   /// adds them to `r` (-p on node a, +p on node b). Rigid links get 0.
   void penalty_forces(const double* u, const double* u_old, double* r);
@@ -247,6 +251,7 @@ class LineScheme : public Scheme {
   bool has_penalty_ = false, has_rigid_ = false;
   double near_force_ = 0.0, far_force_ = 0.0;
   std::unique_ptr<Expression> body_force_, near_value_, far_value_;
+  HistoryReader near_history_, far_history_;  // a sampled end's, instead of its expression
   std::vector<double> u0_, v0_;
 
  private:

@@ -1,0 +1,158 @@
+// Signal matching's simulated static load test and its files: match.csv,
+// soil.csv, static.csv and summary.json.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "barimpact/study/match.hpp"
+#include "csv_cells.hpp"
+
+namespace barimpact {
+
+namespace {
+
+// A Smith spring loaded monotonically to w >= 0: elastic to its quake, then R_u.
+double spring(double ultimate, double quake, double w) {
+  return std::min(ultimate, ultimate * w / quake);
+}
+
+// The pile pushed slowly at the head: from the toe's settlement w0 up, each
+// element shortens by the force it carries (the resistances below) over
+// its stiffness E A / h. Returns the head's settlement and its load.
+std::pair<double, double> push(const Line& line, double w0) {
+  const auto& s = line.shaft;
+  const auto& toe = line.links.front().law.soil;
+  double w = w0, carried = spring(toe.ultimate, toe.quake, w0);
+  for (std::size_t j = 0;; ++j) {
+    if (s.ultimate[j] > 0.0) carried += spring(s.ultimate[j], s.quake[j], w);
+    if (j + 1 == line.nodes()) return {w, carried};
+    w += carried / line.bonds[j].stiffness;
+  }
+}
+
+}  // namespace
+
+StaticTest static_load_test(const MatchModel& model, const MatchSoil& soil) {
+  Line line = model.line();
+  model.apply(soil, line);
+  StaticTest t;
+  // s_C: the largest quake plus the shortening with every spring at R_u, the
+  // sum over elements of the resistance below over E A / h (the integral of
+  // N / E A along the pile: R_toe L + sum R_i z_i over E A on a uniform pile).
+  double carried = soil.toe, shortening = 0.0;
+  for (std::size_t j = 0; j + 1 < line.nodes(); ++j) {
+    carried += line.shaft.ultimate[j];
+    shortening += carried / line.bonds[j].stiffness;
+  }
+  t.s_c = std::max(soil.toe_quake, soil.shaft_quake) + shortening;
+  constexpr int increments = 150;
+  for (int i = 0; i <= increments; ++i) {
+    const double s = 1.5 * t.s_c * i / increments;
+    // The toe's settlement for head settlement s, by bisection (s grows with it).
+    double lo = 0.0, hi = s;
+    for (int k = 0; k < 200 && hi - lo > 1e-15 * s; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (push(line, mid).first < s ? lo : hi) = mid;
+    }
+    t.settlement.push_back(s);
+    t.load.push_back(push(line, 0.5 * (lo + hi)).second);
+  }
+  return t;
+}
+
+std::string match_csv(const MatchResult& r) {
+  const auto& sig = r.pda.signals;
+  const double z = r.pda.record.impedance();
+  std::string out = "t,force_measured,force_computed,velocity_z,wave_up_measured,wave_up_computed\n";
+  for (std::size_t k = 0; k < r.computed.size(); ++k) {
+    const std::size_t i = r.first + k;
+    const double zv = z * sig.velocity[i];
+    out += detail::csv_number(sig.t[i]);
+    for (double v : {sig.force[i], r.computed[k], zv, 0.5 * (sig.force[i] - zv), 0.5 * (r.computed[k] - zv)}) {
+      out += ',';
+      out += detail::csv_number(v);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string soil_csv(const MatchResult& r) {
+  const auto& s = r.soil;
+  std::string out = "segment,top,bottom,resistance,quake,damping\n";
+  for (std::size_t i = 0; i < s.shaft.size(); ++i)
+    out += fmt::format("{},{},{},{},{},{}\n", i + 1, detail::csv_number(r.segment_top[i]),
+                       detail::csv_number(r.segment_bottom[i]), detail::csv_number(s.shaft[i]),
+                       detail::csv_number(s.shaft_quake), detail::csv_number(s.shaft_damping));
+  const double l = r.pda.record.length();
+  out += fmt::format("toe,{},{},{},{},{}\n", detail::csv_number(l), detail::csv_number(l), detail::csv_number(s.toe),
+                     detail::csv_number(s.toe_quake), detail::csv_number(s.toe_damping));
+  return out;
+}
+
+std::string static_csv(const MatchResult& r) {
+  std::string out = "settlement,load\n";
+  for (std::size_t i = 0; i < r.static_test.settlement.size(); ++i)
+    out += detail::csv_number(r.static_test.settlement[i]) + ',' + detail::csv_number(r.static_test.load[i]) + '\n';
+  return out;
+}
+
+std::string match_summary_json(const MatchResult& r) {
+  using nlohmann::ordered_json;
+  ordered_json j;
+  const auto& s = r.soil;
+  double lo = s.capacity(), hi = lo;
+  ordered_json starts = ordered_json::array();
+  for (const auto& st : r.starts) {
+    lo = std::min(lo, st.soil.capacity());
+    hi = std::max(hi, st.soil.capacity());
+    starts.push_back({{"capacity", st.soil.capacity()},
+                      {"shaft", st.soil.shaft_total()},
+                      {"toe", st.soil.toe},
+                      {"match_quality", st.quality},
+                      {"start_capacity", st.start.capacity()},
+                      {"iterations", st.iterations},
+                      {"evaluations", st.evaluations},
+                      {"converged", st.converged},
+                      {"message", st.message}});
+  }
+  // The contract's keys first.
+  j["capacity"] = s.capacity();
+  j["shaft"] = s.shaft_total();
+  j["toe"] = s.toe;
+  j["match_quality"] = r.quality;
+  j["evaluations"] = r.evaluations;
+  j["iterations"] = r.iterations;
+  j["starts"] = r.starts.size();
+  j["spread"] = hi - lo;
+  j["spread_relative"] = s.capacity() > 0.0 ? (hi - lo) / s.capacity() : 0.0;
+  j["best_start"] = r.best + 1;
+  j["shaft_quake"] = s.shaft_quake;
+  j["toe_quake"] = s.toe_quake;
+  j["shaft_damping"] = s.shaft_damping;
+  j["toe_damping"] = s.toe_damping;
+  j["damping_law"] = s.law == DampingLaw::smith ? "smith" : "viscous";
+  j["segments"] = s.shaft.size();
+  j["embedded"] = r.embedded;
+  j["window"] = r.window;
+  j["smoothing"] = r.pda.record.match.smoothing;
+  j["low_pass"] = r.pda.signals.filtered ? ordered_json(r.pda.record.match.low_pass) : ordered_json(nullptr);
+  j["window_start"] = r.pda.t_foot;
+  j["window_end"] = r.pda.t2 + r.window;
+  j["samples_matched"] = r.computed.size();
+  j["s_c"] = r.static_test.s_c;
+  j["case_method_rmx"] = r.pda.rmx;
+  j["t1"] = r.pda.t1;
+  j["t2"] = r.pda.t2;
+  j["impedance"] = r.pda.record.impedance();
+  j["length"] = r.pda.record.length();
+  j["seconds"] = r.seconds;
+  j["start_results"] = starts;
+  j["record"] = r.pda.record.origin.string();
+  j["file"] = r.pda.record.csv.string();
+  return j.dump(2) + "\n";
+}
+
+}  // namespace barimpact
