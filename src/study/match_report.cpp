@@ -79,15 +79,20 @@ std::string match_csv(const MatchResult& r) {
   return out;
 }
 
+// A depth to the nanometre, so that 19.2 m less 18 m reads 1.2.
+static std::string depth_cell(double x) {
+  return detail::csv_number(std::round(x * 1e9) / 1e9);
+}
+
 std::string soil_csv(const MatchResult& r) {
   const auto& s = r.soil;
   std::string out = "segment,top,bottom,resistance,quake,damping\n";
   for (std::size_t i = 0; i < s.shaft.size(); ++i)
-    out += fmt::format("{},{},{},{},{},{}\n", i + 1, detail::csv_number(r.segment_top[i]),
-                       detail::csv_number(r.segment_bottom[i]), detail::csv_number(s.shaft[i]),
-                       detail::csv_number(s.shaft_quake), detail::csv_number(s.shaft_damping));
+    out += fmt::format("{},{},{},{},{},{}\n", i + 1, depth_cell(r.segment_top[i]), depth_cell(r.segment_bottom[i]),
+                       detail::csv_number(s.shaft[i]), detail::csv_number(s.shaft_quake),
+                       detail::csv_number(s.shaft_damping));
   const double l = r.pda.record.length();
-  out += fmt::format("toe,{},{},{},{},{}\n", detail::csv_number(l), detail::csv_number(l), detail::csv_number(s.toe),
+  out += fmt::format("toe,{},{},{},{},{}\n", depth_cell(l), depth_cell(l), detail::csv_number(s.toe),
                      detail::csv_number(s.toe_quake), detail::csv_number(s.toe_damping));
   return out;
 }
