@@ -796,8 +796,9 @@ int match_command(const std::string& record_path, const std::string& out, bool n
   const auto record = barimpact::PileRecord::from_file(record_path);
   barimpact::check_jobs(jobs);
   barimpact::RunDirectory dir(out, flags.force, "match", true, barimpact::pda_inputs(record));
-  const auto r = barimpact::match_pile(record, jobs);
-  poll_signals();
+  poll_signals();  // the fit stops at its next iteration: nothing is written
+  const auto r = barimpact::match_pile(record, jobs, &interrupted);
+  if (r.interrupted || interrupted.load()) return exit_interrupted();
   bool plotted = false;
   dir.commit([&](const std::filesystem::path& staging) {
     barimpact::write_text(staging / "match.csv", barimpact::match_csv(r));

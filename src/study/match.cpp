@@ -254,9 +254,21 @@ Window match_window(const CaseMethodResult& pda) {
 }
 
 // One start's fit: Ceres' Levenberg-Marquardt within the bounds.
+// Ends a start's fit at its next iteration once `interrupt` is set (a signal).
+class StopOnSignal final : public ceres::IterationCallback {
+ public:
+  explicit StopOnSignal(const std::atomic<bool>* interrupt) : interrupt_(interrupt) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
+    return interrupt_ != nullptr && interrupt_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const std::atomic<bool>* interrupt_;
+};
+
 MatchStart fit_from(const MatchModel& model, const MatchSettings& m, const MatchSoil& start,
                     const std::vector<double>& measured, std::size_t first, double force_scale, double scale,
-                    int threads) {
+                    int threads, const std::atomic<bool>* interrupt) {
   MatchStart out;
   out.start = start;
   const Unknowns unknowns(m, model.segments(), scale);
@@ -279,6 +291,8 @@ MatchStart fit_from(const MatchModel& model, const MatchSettings& m, const Match
   options.parameter_tolerance = 1e-8;
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
+  StopOnSignal stop(interrupt);
+  options.callbacks.push_back(&stop);
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   out.soil = unknowns.from_x(start, x.data());
@@ -292,7 +306,7 @@ MatchStart fit_from(const MatchModel& model, const MatchSettings& m, const Match
 
 }  // namespace
 
-MatchResult match_pile(const PileRecord& record, int jobs) {
+MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<bool>* interrupt) {
   const auto clock = std::chrono::steady_clock::now();
   MatchResult r;
   r.pda = analyse_pda(record, read_pile_signals(record, record.match.low_pass));
@@ -321,9 +335,14 @@ MatchResult match_pile(const PileRecord& record, int jobs) {
   const int per_start = std::max(1, cores / starts);
   r.starts.resize(static_cast<std::size_t>(starts));
   run_parallel(static_cast<std::size_t>(starts), std::min(cores, starts), [&](std::size_t k) {
+    if (interrupt != nullptr && interrupt->load()) return;
     const MatchSoil start = k == 0 ? estimate : other_start(estimate, record.match, static_cast<int>(k));
-    r.starts[k] = fit_from(model, record.match, start, measured, w.first, fmax, scale, per_start);
+    r.starts[k] = fit_from(model, record.match, start, measured, w.first, fmax, scale, per_start, interrupt);
   });
+  if (interrupt != nullptr && interrupt->load()) {
+    r.interrupted = true;
+    return r;
+  }
   for (std::size_t k = 0; k < r.starts.size(); ++k) {
     r.evaluations += r.starts[k].evaluations;
     r.iterations += r.starts[k].iterations;

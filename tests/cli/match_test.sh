@@ -54,5 +54,14 @@ expect_refused "--jobs" match "$examples/pda/steel-pipe.toml" --out "$work/refus
 printf '[pile]\nlength = 20.0\narea = 0.01\nmodulus = 200e9\ndensity = 8000.0\n[record]\nfile = "none.csv"\nforce = "F"\nvelocity = "V"\n' > "$work/nofile.toml"
 expect_refused "none.csv cannot be read" match "$work/nofile.toml" --out "$work/refused"
 
+# A signal ends the fit: exit 130, nothing written, no staging left.
+"$bin" match "$examples/pda/steel-pipe.toml" --out "$work/signalled" --no-plot > /dev/null 2>&1 &
+pid=$!
+sleep 0.3
+kill -INT "$pid"
+wait "$pid"
+[ $? -eq 130 ] && ok || bad "SIGINT's exit"
+[ ! -e "$work/signalled" ] && ! ls -a "$work" | grep -q partial && ok || bad "a signalled match left files"
+
 echo "match: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

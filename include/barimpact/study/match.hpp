@@ -9,6 +9,7 @@
 // force difference, from the Case method's estimate and further starts.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <memory>
 #include <span>
@@ -104,11 +105,15 @@ struct MatchResult {
   std::vector<double> segment_top, segment_bottom;
   StaticTest static_test;
   double seconds = 0.0;  ///< the fit's wall time
+  bool interrupted = false;
 };
 
 /// Matches a record (its [match] settings) on `jobs` threads (0: all cores).
-/// Throws InputError for a record the analysis refuses.
-[[nodiscard]] MatchResult match_pile(const PileRecord& record, int jobs = 0);
+/// Throws InputError for a record the analysis refuses. Once `interrupt` is
+/// set (from a signal handler) the fit ends at its starts' next iterations
+/// and the result is only `interrupted`.
+[[nodiscard]] MatchResult match_pile(const PileRecord& record, int jobs = 0,
+                                     const std::atomic<bool>* interrupt = nullptr);
 
 /// The simulated static load test of `soil` on the record's pile (the
 /// model's segments): 150 equal settlement increments to 1.5 s_C.
