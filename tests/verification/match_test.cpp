@@ -83,6 +83,60 @@ TEST(MatchModel, FreePileIsDAlembert) {
   RecordProperty("order", fmt::format("{}", order));
 }
 
+// The same pile written as two [[segment]]s of its properties is the same
+// line (the elements no longer than L / 100 fall on the same nodes): the
+// same force at the gauges under the same soil, to round-off (the joint's
+// node is stepped by the general row, the others by the stretch's).
+TEST(MatchModel, SegmentsOfOneSectionAreTheUniformPile) {
+  testing::ScratchDirectory dir("match-segments");
+  const FreePile p;
+  const PileRecord uniform = p.record(dir.path());
+  const PileRecord two = PileRecord::from_string(
+      fmt::format("[[segment]]\nlength = 12.0\narea = {0}\nmodulus = {1}\ndensity = {2}\n[[segment]]\nlength = 8.0\n"
+                  "area = {0}\nmodulus = {1}\ndensity = {2}\n[record]\nfile = \"blow.csv\"\nforce = \"F\"\n"
+                  "velocity = \"V\"\n",
+                  p.area, p.modulus, p.density),
+      dir.path(), "record.toml");
+  const PileSignals sig = read_pile_signals(uniform);
+  const MatchModel a(uniform, sig, 0.0, sig.t.back()), b(two, sig, 0.0, sig.t.back());
+  ASSERT_EQ(a.line().x.size(), b.line().x.size());
+  MatchSoil s;
+  s.shaft.assign(a.segments(), 30e3);
+  s.toe = 500e3;
+  std::vector<double> fa(sig.t.size()), fb(sig.t.size());
+  ASSERT_TRUE(a.head_force(s, 0, fa));
+  ASSERT_TRUE(b.head_force(s, 0, fb));
+  for (std::size_t k = 0; k < fa.size(); ++k) ASSERT_NEAR(fa[k], fb[k], 1e-9 * p.z() * p.peak) << k;
+}
+
+// A pile whose area halves 12 m below the gauges (r = (Z2 - Z1) / (Z2 + Z1)
+// = -1/3): until the step's second echo (2 T1 = 9.6 ms) and the toe's
+// (T1 + 2 L2 / c = 8 ms), F(t) = Z1 (v(t) + 2 r v(t - T1)), T1 = 2 L1 / c.
+// Measured: 0.31% of Z1 V (the mesh's dispersion, as above).
+TEST(MatchModel, AnImpedanceStepReflectsAsDAlembertSays) {
+  testing::ScratchDirectory dir("match-step");
+  const FreePile p;
+  (void)p.record(dir.path());  // blow.csv: the uniform pile's record; only its velocity drives this one
+  const PileRecord stepped = PileRecord::from_string(
+      fmt::format("[[segment]]\nlength = 12.0\narea = {0}\nmodulus = {1}\ndensity = {2}\n[[segment]]\nlength = 8.0\n"
+                  "area = {3}\nmodulus = {1}\ndensity = {2}\n[record]\nfile = \"blow.csv\"\nforce = \"F\"\n"
+                  "velocity = \"V\"\n",
+                  p.area, p.modulus, p.density, 0.5 * p.area),
+      dir.path(), "record.toml");
+  const PileSignals sig = read_pile_signals(stepped);
+  const MatchModel model(stepped, sig, 0.0, sig.t.back());
+  MatchSoil none;
+  none.shaft.assign(model.segments(), 0.0);
+  std::vector<double> f(sig.t.size());
+  ASSERT_TRUE(model.head_force(none, 0, f));
+  const double t1 = 2.0 * 12.0 / p.c(), r = -1.0 / 3.0;
+  double worst = 0.0;
+  for (std::size_t k = 0; sig.t[k] < 0.0079; ++k)
+    worst = std::max(worst, std::abs(f[k] - p.z() * (p.v(sig.t[k]) + 2.0 * r * p.v(sig.t[k] - t1))));
+  EXPECT_LT(worst / (p.z() * p.peak), 0.01);
+  RecordProperty("error", fmt::format("{}", worst / (p.z() * p.peak)));
+}
+
 // The static load test on a uniform pile: the load reaches the capacity at
 // s_C = max(q_toe, q_shaft) + (R_toe L + sum R_i z_i) / (E A) exactly (the
 // elements' nodal forces carry the segments' uniform loads exactly), stays
