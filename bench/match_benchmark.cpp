@@ -6,6 +6,7 @@
 //   build/release/bench/barimpact_bench --benchmark_filter=BM_Match
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "barimpact/study/match.hpp"
@@ -18,7 +19,10 @@ void BM_MatchForwardBlow(benchmark::State& state) {
   const auto record = barimpact::PileRecord::from_file(record_file);
   const auto signals = barimpact::read_pile_signals(record, record.match.low_pass);
   const auto m = barimpact::match_pile(record, 1);
-  const barimpact::MatchModel model(record, signals, signals.t.front(), signals.t.back());
+  // The fit's own model: at rest from one rise time before the foot.
+  const double rise = signals.t1() - signals.t_foot();
+  const barimpact::MatchModel model(record, signals, std::max(signals.t.front(), signals.t_foot() - rise),
+                                    signals.t.back());
   std::vector<double> force(m.computed.size());
   for (auto _ : state) {
     benchmark::DoNotOptimize(model.head_force(m.soil, m.first, force));
