@@ -57,7 +57,7 @@ struct MatchSettings {
   /// (Tikhonov regularisation; 0: none). It is zero on any linear
   /// distribution and settles what the record barely tells apart: the
   /// deepest shaft from the toe.
-  double smoothing = 10.0;
+  double smoothing = 3.0;
 
   [[nodiscard]] bool fits(std::string_view unknown) const;
 };
