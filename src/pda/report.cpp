@@ -55,6 +55,7 @@ std::string pda_summary_json(const CaseMethodResult& r) {
   for (const auto& [key, value] : inputs) j[key] = value;
   j["samples"] = r.signals.t.size();
   j["baseline_samples"] = r.signals.baseline;
+  j["units"] = {{"system", "SI"}, {"force", "N"}, {"length", "m"}, {"time", "s"}, {"stress", "Pa"}, {"energy", "J"}};
   j["record"] = rec.origin.string();
   j["file"] = rec.csv.string();
   return j.dump(2) + "\n";
