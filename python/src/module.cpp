@@ -30,6 +30,8 @@
 #include "barimpact/study/bearing.hpp"
 #include "barimpact/study/convergence.hpp"
 #include "barimpact/study/drive.hpp"
+#include "barimpact/study/executor.hpp"
+#include "barimpact/study/match.hpp"
 #include "barimpact/study/sweep.hpp"
 
 namespace py = pybind11;
@@ -469,6 +471,34 @@ py::tuple pda_binding(const py::object& record, const std::optional<std::string>
   return py::make_tuple(pda_csv(r), pda_summary_json(r));
 }
 
+// The record's match, then (with `out`) match.csv, soil.csv, static.csv,
+// summary.json and what `draw(staging)` adds, moved into place together as
+// the command does. As the command, `out` is checked before the fit.
+py::tuple match_binding(const py::object& record, const std::optional<std::string>& out, bool force, int jobs,
+                        const py::object& draw) {
+  const PileRecord rec = pile_record(record);
+  check_jobs(jobs);
+  std::optional<RunDirectory> dir;
+  if (out) dir.emplace(*out, force, "match", true, pda_inputs(rec));
+  MatchResult r;
+  {
+    py::gil_scoped_release release;
+    r = match_pile(rec, jobs);
+  }
+  // Ctrl-C during the fit: nothing is written, as the command exits then.
+  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  if (dir) {
+    dir->commit([&](const std::filesystem::path& staging) {
+      write_text(staging / "match.csv", match_csv(r));
+      write_text(staging / "soil.csv", soil_csv(r));
+      write_text(staging / "static.csv", static_csv(r));
+      write_text(staging / "summary.json", match_summary_json(r));
+      if (!draw.is_none()) draw(staging.string());
+    });
+  }
+  return py::make_tuple(match_csv(r), soil_csv(r), static_csv(r), match_summary_json(r));
+}
+
 py::list history_names(const PyResult& p) {
   py::list names;
   for (const char* c : columns) names.append(py::str(c));
@@ -737,6 +767,9 @@ void bind_studies(py::module_& m) {
   m.def("_pda", &pda_binding, py::arg("record"), py::arg("out") = py::none(), py::arg("force") = false,
         py::arg("draw") = py::none(),
         "The analysis of a pile's record, and with `out` its directory; use barimpact.pda");
+  m.def("_match", &match_binding, py::arg("record"), py::arg("out") = py::none(), py::arg("force") = false,
+        py::arg("jobs") = 0, py::arg("draw") = py::none(),
+        "The signal matching of a pile's record, and with `out` its directory; use barimpact.match");
   m.def("_hopkinson", &hopkinson_binding, py::arg("setup"), py::arg("out") = py::none(), py::arg("force") = false,
         py::arg("draw") = py::none(), "The Hopkinson analysis, and with `out` its directory; use barimpact.hopkinson");
 }
