@@ -5,10 +5,15 @@ directory (sweep.csv: each output against the swept keys, and the runs'
 U(t) and R(t) overlaid); several run directories draw one comparison. The
 figures go by the output rule of `barimpact run --out` (--force as its)."""
 import argparse
+import importlib
 import sys
 from pathlib import Path
 
 from .plot import compare, is_run_directory, plot
+
+# The commands whose figures go into the staging directory of their results
+# (COMMAND-plot STAGING --as OUT): each module's plot_COMMAND_into draws them.
+STAGED = ("hopkinson", "pda", "match")
 
 
 def _plot(dirs, out, force):
@@ -38,14 +43,11 @@ def _run(args):
     if args.command == "inspector-plot":
         from .drive import plot_inspector
         return plot_inspector(args.dir)
-    if args.command == "hopkinson-plot":
-        from .hopkinson import plot_hopkinson_into
-        plot_hopkinson_into(args.dir, args.shown or args.dir)
+    command = args.command.removesuffix("-plot")
+    if command in STAGED:
+        module = importlib.import_module(f".{command}", __package__)
+        getattr(module, f"plot_{command}_into")(args.dir, args.shown or args.dir)
         return []  # into the staging directory: its paths would mislead
-    if args.command == "pda-plot":
-        from .pda import plot_pda_into
-        plot_pda_into(args.dir, args.shown or args.dir)
-        return []  # into the staging directory
     if args.command == "converge-plot":
         from .convergence import plot_study
         return plot_study(args.dir)
@@ -74,19 +76,17 @@ def main(argv=None):
     v.add_argument("dir")
     i = sub.add_parser("inspector-plot", help="draw inspector.png of a barimpact inspector directory")
     i.add_argument("dir")
-    h = sub.add_parser("hopkinson-plot", help="draw the figures of a barimpact hopkinson directory")
-    h.add_argument("dir")
-    h.add_argument("--as", dest="shown", default=None,
-                   help="the directory the figures are moved to (DIR is its staging), which errors name")
-    d = sub.add_parser("pda-plot", help="draw the figures of a barimpact pda directory")
-    d.add_argument("dir")
-    d.add_argument("--as", dest="shown", default=None,
-                   help="the directory the figures are moved to (DIR is its staging), which errors name")
+    for command in STAGED:
+        s = sub.add_parser(f"{command}-plot", help=f"draw the figures of a barimpact {command} directory")
+        s.add_argument("dir")
+        s.add_argument("--as", dest="shown", default=None,
+                       help="the directory the figures are moved to (DIR is its staging), which errors name")
     args = parser.parse_args(argv)
     try:
         written = _run(args)
     except (OSError, ValueError, ImportError) as e:  # ImportError: results.h5 without h5py
-        # The command the user gave: plot, converge, bearing, drive, inspector, hopkinson, pda. Exit 2, as the command's own refusals.
+        # The command the user gave: plot, converge, bearing, drive, inspector, hopkinson, pda, match.
+        # Exit 2, as the command's own refusals.
         print(f"barimpact: error: {args.command.removesuffix('-plot')}: {_message(e)}", file=sys.stderr)
         return 2
     for path in written:
