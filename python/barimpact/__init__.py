@@ -19,14 +19,15 @@ as keywords (--toe-share is toe_share=...):
     barimpact bearing CASE --out DIR    barimpact.bearing(case, DIR, capacity=(1e6, 5e7, 10))
     barimpact hopkinson SETUP --out DIR barimpact.hopkinson(setup, out=DIR)
     barimpact pda RECORD --out DIR      barimpact.pda(record, out=DIR)
+    barimpact match RECORD --out DIR    barimpact.match(record, out=DIR, jobs=4)
     barimpact plot DIR                  barimpact.plot(DIR)
 
 They write the same files by the same rules (the output directory, resuming,
 --force), return the table the command writes (convergence.csv, sweep.csv,
-bearing.csv, hopkinson.csv, pda.csv) as a `Table`, release the GIL while they run,
-and stop on Ctrl-C after writing what is done, as the command does. The
-health checks' warnings are `HealthWarning`s; strict=True raises
-`StrictError` after writing, where the command exits 4.
+bearing.csv, hopkinson.csv, pda.csv, match.csv) as a `Table`, release the
+GIL while they run, and stop on Ctrl-C after writing what is done, as the
+command does. The health checks' warnings are `HealthWarning`s; strict=True
+raises `StrictError` after writing, where the command exits 4.
 
 Every number comes from the C++ library (barimpact._core): the same code as
 the `barimpact` command line, so the same case gives the same bits.
@@ -42,12 +43,13 @@ from pathlib import Path as _Path
 import numpy as np
 
 # The submodules first: importing one later would rebind the package's name
-# (barimpact.bearing, barimpact.hopkinson, barimpact.plot) from the function
-# to the module.
+# (barimpact.bearing, barimpact.hopkinson, barimpact.match, barimpact.plot)
+# from the function to the module.
 from . import bearing as _bearing_figures
 from . import drive as _drive_figures
 from . import convergence as _convergence_figures
 from . import hopkinson as _hopkinson_figures
+from . import match as _match_figures
 from . import pda as _pda_figures
 from . import plot as _figures
 from . import _core
@@ -59,8 +61,8 @@ OutOfMemoryError.__module__ = "barimpact"
 from .plot import RunData, load
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "PdaTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "plot", "load",
+           "PdaTable", "MatchTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "match", "plot", "load",
            "read_table", "exact_example1"]
 
 
@@ -156,6 +158,26 @@ class PdaTable(Table):
     bta_depth, ...)."""
 
 
+class MatchTable(Table):
+    """match.csv's columns by name (numpy arrays: t, force_measured,
+    force_computed, velocity_z, wave_up_measured, wave_up_computed; N, s),
+    `summary`, summary.json as a dict (capacity, shaft, toe, match_quality,
+    s_c, t1, t2, start_results, ...), and the other two files as `Table`s:
+    `soil`, soil.csv (segment as text, "1" .. and "toe" for the last row;
+    top, bottom in m below the gauges, resistance in N, quake in m, damping
+    in s/m) and `static`, static.csv (settlement in m, load in N)."""
+
+    soil = None
+    static = None
+
+    def __init__(self, columns=(), summary=None, soil=None, static=None):
+        super().__init__(columns, summary)
+        if soil is not None:
+            self.soil = soil
+        if static is not None:
+            self.static = static
+
+
 # The columns whose type the name fixes; the others (a sweep's axes,
 # convergence's value, hopkinson's) are numbers when every cell is one.
 _INTEGER = frozenset({"level", "elements", "contact_episodes", "steps_done", "contacts"})
@@ -187,26 +209,37 @@ def _table_from_csv(text, summary=None, table=Table):
     return table({name: _column(name, c) for name, c in zip(header, cells)}, summary)
 
 
-_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "drive.csv", "hopkinson.csv", "pda.csv")
+_TABLES = ("convergence.csv", "sweep.csv", "bearing.csv", "drive.csv", "hopkinson.csv", "pda.csv", "match.csv")
 
 
 def read_table(path):
     """A table the command wrote, as a `Table`: `path` a CSV file or a
     directory holding one (convergence.csv, sweep.csv, bearing.csv,
-    hopkinson.csv, pda.csv). A Hopkinson or pda directory's table is a
-    `HopkinsonTable` or `PdaTable` with summary.json as `summary`."""
+    hopkinson.csv, pda.csv, match.csv). A Hopkinson or pda directory's
+    table is a `HopkinsonTable` or `PdaTable` with summary.json as
+    `summary`; a match directory's a `MatchTable`, with soil.csv and
+    static.csv beside it as `soil` and `static`."""
     p = _Path(os.fspath(path))
     if p.is_dir():
         found = [p / name for name in _TABLES if (p / name).is_file()]
         if not found:
             raise InputError(f"{path}: holds none of {', '.join(_TABLES)} (give a directory barimpact wrote)")
         p = found[0]
-    kind = {"hopkinson.csv": HopkinsonTable, "pda.csv": PdaTable}.get(p.name)
+    kind = {"hopkinson.csv": HopkinsonTable, "pda.csv": PdaTable, "match.csv": MatchTable}.get(p.name)
     if kind is not None:
         summary_file = p.with_name("summary.json")
         summary = json.loads(summary_file.read_text()) if summary_file.is_file() else None
+        if kind is MatchTable:
+            return _match_table(p.read_text(), *(p.with_name(n).read_text() for n in ("soil.csv", "static.csv")),
+                                summary)
         return _table_from_csv(p.read_text(), summary, kind)
     return _table_from_csv(p.read_text())
+
+
+def _match_table(match_csv, soil_csv, static_csv, summary):
+    table = _table_from_csv(match_csv, summary, MatchTable)
+    table.soil, table.static = _table_from_csv(soil_csv), _table_from_csv(static_csv)
+    return table
 
 
 def _result_to_pandas(self):
@@ -575,6 +608,31 @@ def pda(record, out=None, *, no_plot=False, force=False):
         lambda staging: _pda_figures.plot_pda_into(staging, _out(out)))
     csv, summary = _core._pda(record, _out(out), bool(force), draw)
     return _table_from_csv(csv, json.loads(summary), PdaTable)
+
+
+def match(record, out=None, *, no_plot=False, force=False, jobs=0):
+    """Signal matching of a measured blow on a pile (`barimpact match RECORD
+    --out DIR`): the soil resistance along the pile whose computed force at
+    the gauges, under the measured velocity, matches the measured force.
+    `record` a record file's path, or the same as a dict of sections
+    ({"pile": {...}, "record": {...}, "match": {...}}; relative paths then
+    from the working directory); `jobs` threads for the fit (0 or None:
+    every core). Returns a `MatchTable`: match.csv's columns (t,
+    force_measured, force_computed, velocity_z, wave_up_measured,
+    wave_up_computed), `summary` (summary.json: capacity, shaft, toe,
+    match_quality, s_c, t1, t2, start_results, ...), `soil` (soil.csv:
+    segment, top, bottom, resistance, quake, damping; the last row the toe)
+    and `static` (static.csv: settlement, load). With `out`, writes the
+    four files and (unless no_plot) the figures force_match, resistance and
+    static_test there, moved into place together by the command's output
+    rule (`force` as --force), `out` refused before the fit; without it
+    nothing is written. The GIL is released during the fit; Ctrl-C during
+    it raises KeyboardInterrupt with nothing written. InputError (one line)
+    for a record it cannot match."""
+    draw = None if no_plot or out is None else (
+        lambda staging: _match_figures.plot_match_into(staging, _out(out)))
+    match_csv, soil_csv, static_csv, summary = _core._match(record, _out(out), bool(force), _jobs(jobs), draw)
+    return _match_table(match_csv, soil_csv, static_csv, json.loads(summary))
 
 
 def plot(dir, out=None, *, force=False, formats=("png", "svg")):

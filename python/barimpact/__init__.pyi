@@ -13,8 +13,8 @@ from ._core import OutputError as OutputError
 from ._core import Result as Result
 
 __all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
-           "PdaTable",
-           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "plot", "load",
+           "PdaTable", "MatchTable",
+           "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "match", "plot", "load",
            "read_table", "exact_example1"]
 
 _PathArg = Union[str, os.PathLike[str]]
@@ -77,6 +77,15 @@ class HopkinsonTable(Table):
 class PdaTable(Table):
     """pda.csv's columns, with summary.json as `summary`."""
 
+class MatchTable(Table):
+    """match.csv's columns, with summary.json as `summary`, soil.csv as `soil` and static.csv as `static`."""
+
+    soil: Table | None
+    static: Table | None
+    def __init__(self, columns: Mapping[str, npt.NDArray[Any]] | Iterable[tuple[str, npt.NDArray[Any]]] = ...,
+                 summary: dict[str, Any] | None = None, soil: Table | None = None,
+                 static: Table | None = None) -> None: ...
+
 def run(case: _CaseLike, progress: _Progress | None = None, *, out: _PathArg | None = None, set: _Overrides = None,
         force: bool = False, strict: bool = False) -> Result:
     """barimpact run CASE [--out DIR] [--set ...] [--force] [--strict]."""
@@ -124,6 +133,11 @@ def hopkinson(setup: _PathArg | Mapping[str, Any], out: _PathArg | None = None, 
 def pda(record: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,
         force: bool = False) -> PdaTable:
     """barimpact pda RECORD [--out DIR] [--no-plot] [--force]: pda.csv's table."""
+
+def match(record: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,
+          force: bool = False, jobs: int | None = 0) -> MatchTable:
+    """barimpact match RECORD [--out DIR] [--no-plot] [--jobs N] [--force]: match.csv's table, soil.csv and
+    static.csv."""
 
 def plot(dir: _PathArg | Result | RunData, out: _PathArg | None = None, *, force: bool = False,
          formats: Sequence[str] = ("png", "svg")) -> list[Path]:

@@ -468,8 +468,10 @@ def test_submodules_do_not_shadow_the_functions():
     import barimpact.bearing  # noqa: F401
     import barimpact.convergence  # noqa: F401
     import barimpact.hopkinson  # noqa: F401
+    import barimpact.match  # noqa: F401
+    import barimpact.pda  # noqa: F401
     import barimpact.plot  # noqa: F401
-    for name in ("bearing", "hopkinson", "plot"):
+    for name in ("bearing", "hopkinson", "pda", "match", "plot"):
         assert inspect.isfunction(getattr(barimpact, name)), name
 
 

@@ -52,12 +52,16 @@ printf '[bar]\nmodulus = 200e9\ndensity = 7850\ndiameter = 0.02\n[specimen]\nbod
   bad "installed hopkinson: $("$bin" hopkinson setup.toml --out runs/analysis2 2>&1 | tail -1)"
 "$bin" pda "$examples/pda/steel-pipe.toml" --out runs/pda > /dev/null 2>&1 && [ -s runs/pda/pda.csv ] &&
   [ -s runs/pda/waves.png ] && ok || bad "installed pda (with its figures)"
+"$bin" match "$examples/pda/steel-pipe.toml" --out runs/match > /dev/null 2>&1 && [ -s runs/match/soil.csv ] &&
+  [ -s runs/match/resistance.png ] && ok || bad "installed match (with its figures)"
 PYTHONPATH="$site" MPLBACKEND=Agg "$python" -c "
 import barimpact
 r = barimpact.run('$examples/paper-example1.toml')
 assert abs(r.summary['contacts'][0]['rebound_velocity'] - 0.9949) < 1e-3, r.summary['contacts']
 barimpact.plot(r, 'py-figures')
-" && [ -s py-figures/displacement.png ] && ok || bad "installed Python package"
+m = barimpact.match('$examples/pda/steel-pipe.toml', out='py-match')
+assert abs(m.summary['capacity'] - 1.5e6) < 3e4 and m.soil.segment[-1] == 'toe', m.summary['capacity']
+" && [ -s py-figures/displacement.png ] && [ -s py-match/static_test.png ] && ok || bad "installed Python package"
 grep -rl "$build" "$prefix" > "$work/refs" 2>/dev/null
 [ ! -s "$work/refs" ] && ok || bad "installed files name the build tree: $(head -3 "$work/refs")"
 
