@@ -471,22 +471,23 @@ py::tuple pda_binding(const py::object& record, const std::optional<std::string>
   return py::make_tuple(pda_csv(r), pda_summary_json(r));
 }
 
+// What `interruptible` sets for the fit.
+struct MatchOptions {
+  const std::atomic<bool>* interrupt = nullptr;
+};
+
 // The record's match, then (with `out`) match.csv, soil.csv, static.csv,
 // summary.json and what `draw(staging)` adds, moved into place together as
-// the command does. As the command, `out` is checked before the fit.
+// the command does. As the command, `out` is checked before the fit, and
+// Ctrl-C ends the fit at its next iterations with nothing written.
 py::tuple match_binding(const py::object& record, const std::optional<std::string>& out, bool force, int jobs,
                         const py::object& draw) {
   const PileRecord rec = pile_record(record);
   check_jobs(jobs);
   std::optional<RunDirectory> dir;
   if (out) dir.emplace(*out, force, "match", true, pda_inputs(rec));
-  MatchResult r;
-  {
-    py::gil_scoped_release release;
-    r = match_pile(rec, jobs);
-  }
-  // Ctrl-C during the fit: nothing is written, as the command exits then.
-  if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  const MatchResult r =
+      interruptible(MatchOptions{}, [&](const MatchOptions& o) { return match_pile(rec, jobs, o.interrupt); });
   if (dir) {
     dir->commit([&](const std::filesystem::path& staging) {
       write_text(staging / "match.csv", match_csv(r));
