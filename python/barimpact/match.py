@@ -99,10 +99,13 @@ def _resistance_figure(shaft, toe, s, out, formats, written):
     for a in (ax, ax2):
         a.axhline(length, color="k", lw=1.5)
         a.grid(True, alpha=0.3)
-    ax.text(0.98, length, "toe", transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=9)
+    marks = [(length, "toe")]
     if top.size and top[0] > 0:  # [match] embedded: the soil starts below the gauges
+        marks.append((top[0], "top of the soil"))
         for a in (ax, ax2):
-            a.axhline(top[0], color="tab:olive", lw=1.0, ls="-.", label="top of the soil")
+            a.axhline(top[0], color="tab:olive", lw=1.0, ls="-.")
+    for depth, text in marks:
+        ax.text(0.98, depth, text, transform=ax.get_yaxis_transform(), ha="right", va="bottom", fontsize=9)
     ax.set_ylim(1.04 * length, 0)  # depth downward, the gauges at the top (shared)
     ax2.legend(fontsize=8, loc="best")
     _save(fig, out, "resistance", formats, written)
