@@ -23,8 +23,14 @@ done
 # The capacity the record was made with: 600 kN on the shaft, 900 kN at the toe.
 awk -F': ' '/^  "capacity"/ { c = $2 + 0; exit !(c > 1.47e6 && c < 1.53e6) }' "$work/pipe/summary.json" && ok || bad "capacity"
 grep -q "capacity" "$work/stdout" && ok || bad "stdout: $(cat "$work/stdout")"
-# A rerun replaces the directory barimpact wrote; someone else's needs --force.
+# A rerun replaces the directory barimpact wrote (with the figures, where the
+# build has the Python package that draws them); someone else's needs --force.
+if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then
+  "$bin" match "$examples/pda/steel-pipe.toml" --out "$work/pipe" > /dev/null 2>&1 && ok || bad "rerun with figures"
+  for f in force_match.png resistance.png static_test.png; do [ -s "$work/pipe/$f" ] && ok || bad "no $f"; done
+fi
 "$bin" match "$examples/pda/steel-pipe.toml" --out "$work/pipe" --no-plot > /dev/null 2>&1 && ok || bad "rerun"
+[ ! -e "$work/pipe/resistance.png" ] && ok || bad "--no-plot drew (or left the last run's figures)"
 mkdir "$work/theirs" && touch "$work/theirs/notes.txt"
 "$bin" match "$examples/pda/steel-pipe.toml" --out "$work/theirs" --no-plot > /dev/null 2>&1 && bad "wrote beside someone's files" || ok
 [ -e "$work/theirs/notes.txt" ] && ok || bad "their file deleted"
