@@ -126,20 +126,25 @@ void low_pass(std::vector<double>& x, double cutoff, double dt) {
   pass(x.rbegin(), x.rend());
 }
 
-// Every channel low-passed at `cutoff` (none at 0, or at or above 0.45 of the
-// sampling rate: the record is band-limited already). The filter needs
-// uniform samples: a record whose steps differ by more than 1% is refused.
-bool filter_channels(const PileRecord& rec, const std::vector<double>& t, CsvColumns& columns, double cutoff) {
-  if (cutoff <= 0.0 || t.size() < 3) return false;
+// Every channel low-passed at `cutoff`, or at a quarter of the sampling
+// rate when that is lower (a record sampled at 10 kHz is filtered at 2.5
+// kHz: its noise would otherwise fool the foot and t1). A record whose steps
+// differ by more than 1% is not filtered; `note` says so. Returns the
+// cutoff applied, 0 for none.
+double filter_channels(const std::vector<double>& t, CsvColumns& columns, double cutoff, std::string& note) {
+  if (cutoff <= 0.0 || t.size() < 3) return 0.0;
   const double dt = (t.back() - t.front()) / static_cast<double>(t.size() - 1);
-  if (cutoff >= 0.45 / dt) return false;
   for (std::size_t k = 1; k < t.size(); ++k)
-    if (std::abs(t[k] - t[k - 1] - dt) > 0.01 * dt)
-      refuse(rec, fmt::format("the samples are not evenly spaced (at t = {} s the step is {} s, the mean {} s): "
-                              "match.low_pass needs a uniform record (set low_pass = 0 to match it unfiltered)",
-                              t[k - 1], t[k] - t[k - 1], dt));
-  for (auto& c : columns.data) low_pass(c, cutoff, dt);
-  return true;
+    if (std::abs(t[k] - t[k - 1] - dt) > 0.01 * dt) {
+      note = fmt::format(
+          "the samples are not evenly spaced (at t = {} s the step is {} s, the mean {} s): the record "
+          "is matched unfiltered",
+          t[k - 1], t[k] - t[k - 1], dt);
+      return 0.0;
+    }
+  const double applied = std::min(cutoff, 0.25 / dt);
+  for (auto& c : columns.data) low_pass(c, applied, dt);
+  return applied;
 }
 
 }  // namespace
@@ -150,7 +155,8 @@ PileSignals read_pile_signals(const PileRecord& rec, double cutoff) {
   keys.resize(names.size(), rec.acceleration ? "acceleration" : "velocity");
   CsvColumns columns = read_csv_columns(rec.layout, rec.csv, names, keys);
   PileSignals s;
-  s.filtered = filter_channels(rec, columns.t, columns, cutoff);
+  s.cutoff = filter_channels(columns.t, columns, cutoff, s.filter_note);
+  s.filtered = s.cutoff > 0.0;
   s.t = std::move(columns.t);
   const auto forces = static_cast<std::ptrdiff_t>(rec.force_columns.size());
   s.force_channels.assign(columns.data.begin(), columns.data.begin() + forces);

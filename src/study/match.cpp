@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <thread>
 
 #include "barimpact/model/input_error.hpp"
@@ -205,9 +206,10 @@ MatchSoil case_estimate(const CaseMethodResult& pda, const MatchModel& model, co
   return s;
 }
 
-// Start k > 0: the estimate's total times 1, 1.25, 0.8, ..., a uniform
-// shaft carrying 50%, 80%, 20%, 35%, 65% of it, quakes and dampings varied
-// (those the fit does not change stay as given).
+// Start k + 1 (k >= 1): the estimate's total times 1, 1.25, 0.8, 1.1, 0.9
+// (and 5% more each further round of five), a uniform shaft carrying 50%,
+// 80%, 20%, 35%, 65% of it, quakes and dampings varied; what the fit does
+// not change stays as the estimate has it.
 MatchSoil other_start(const MatchSoil& estimate, const MatchSettings& m, int k) {
   static const double total_factor[] = {1.0, 1.25, 0.8, 1.1, 0.9};
   static const double shaft_part[] = {0.5, 0.8, 0.2, 0.35, 0.65};
@@ -216,11 +218,11 @@ MatchSoil other_start(const MatchSoil& estimate, const MatchSettings& m, int k) 
   const int i = (k - 1) % 5;
   MatchSoil s = estimate;
   const double total = estimate.capacity() * total_factor[i] * (1.0 + 0.05 * ((k - 1) / 5));
-  if (m.fits("shaft") || m.fits("toe")) {
-    const double shaft = m.fits("shaft") ? shaft_part[i] * total : estimate.shaft_total();
+  // A resistance left out of the unknowns keeps the estimate's, in every start.
+  const double shaft = m.fits("shaft") ? shaft_part[i] * total : estimate.shaft_total();
+  if (m.fits("shaft"))
     for (auto& r : s.shaft) r = shaft / static_cast<double>(s.shaft.size());
-    if (m.fits("toe")) s.toe = std::max(total - shaft, 0.05 * total);
-  }
+  if (m.fits("toe")) s.toe = std::max(total - shaft, 0.05 * total);
   if (m.fits("shaft_quake")) s.shaft_quake = std::clamp(estimate.shaft_quake * quake_factor[i], quake_lo, quake_hi);
   if (m.fits("toe_quake")) s.toe_quake = std::clamp(estimate.toe_quake * quake_factor[(i + 2) % 5], quake_lo, quake_hi);
   if (m.fits("shaft_damping"))
@@ -300,11 +302,18 @@ MatchStart fit_from(const MatchModel& model, const MatchSettings& m, const Match
   out.evaluations = evaluations.load();
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.message = summary.message;
-  out.quality = std::sqrt(2.0 * summary.final_cost / static_cast<double>(measured.size()));
+  out.objective = 2.0 * summary.final_cost / static_cast<double>(measured.size());
+  std::vector<double> computed(measured.size());
+  out.quality = model.head_force(out.soil, first, computed) ? rms_quality(computed, measured, force_scale)
+                                                            : std::numeric_limits<double>::infinity();
   return out;
 }
 
 }  // namespace
+
+bool MatchResult::converged() const {
+  return std::any_of(starts.begin(), starts.end(), [](const MatchStart& s) { return s.converged; });
+}
 
 MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<bool>* interrupt) {
   const auto clock = std::chrono::steady_clock::now();
@@ -346,7 +355,7 @@ MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<boo
   for (std::size_t k = 0; k < r.starts.size(); ++k) {
     r.evaluations += r.starts[k].evaluations;
     r.iterations += r.starts[k].iterations;
-    if (r.starts[k].quality < r.starts[r.best].quality) r.best = k;
+    if (r.starts[k].objective < r.starts[r.best].objective) r.best = k;
   }
   r.soil = r.starts[r.best].soil;
   r.computed.assign(w.count, 0.0);

@@ -117,6 +117,7 @@ std::string match_summary_json(const MatchResult& r) {
                       {"shaft", st.soil.shaft_total()},
                       {"toe", st.soil.toe},
                       {"match_quality", st.quality},
+                      {"objective", st.objective},
                       {"start_capacity", st.start.capacity()},
                       {"iterations", st.iterations},
                       {"evaluations", st.evaluations},
@@ -134,6 +135,7 @@ std::string match_summary_json(const MatchResult& r) {
   j["spread"] = hi - lo;
   j["spread_relative"] = s.capacity() > 0.0 ? (hi - lo) / s.capacity() : 0.0;
   j["best_start"] = r.best + 1;
+  j["converged"] = r.converged();
   j["shaft_quake"] = s.shaft_quake;
   j["toe_quake"] = s.toe_quake;
   j["shaft_damping"] = s.shaft_damping;
@@ -143,7 +145,8 @@ std::string match_summary_json(const MatchResult& r) {
   j["embedded"] = r.embedded;
   j["window"] = r.window;
   j["smoothing"] = r.pda.record.match.smoothing;
-  j["low_pass"] = r.pda.signals.filtered ? ordered_json(r.pda.record.match.low_pass) : ordered_json(nullptr);
+  j["low_pass"] = r.pda.signals.filtered ? ordered_json(r.pda.signals.cutoff) : ordered_json(nullptr);
+  if (!r.pda.signals.filter_note.empty()) j["low_pass_note"] = r.pda.signals.filter_note;
   j["window_start"] = r.pda.t_foot;
   j["window_end"] = r.pda.t2 + r.window;
   j["samples_matched"] = r.computed.size();

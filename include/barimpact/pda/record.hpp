@@ -57,7 +57,7 @@ struct MatchSettings {
   /// (Tikhonov regularisation; 0: none). It is zero on any linear
   /// distribution and settles what the record barely tells apart: the
   /// deepest shaft from the toe.
-  double smoothing = 3.0;
+  double smoothing = 10.0;
 
   [[nodiscard]] bool fits(std::string_view unknown) const;
 };
@@ -114,6 +114,8 @@ struct PileSignals {
   std::size_t impact = 0;                              ///< t1: the force's first local maximum from the foot
   std::size_t baseline = 0;  ///< samples more than one rise time before the foot (the offsets' mean)
   bool filtered = false;     ///< the channels were low-passed (read_pile_signals' cutoff)
+  double cutoff = 0.0;       ///< Hz, the low-pass applied (the cutoff asked, or a quarter of the sampling rate)
+  std::string filter_note;   ///< why a low-pass asked for was not applied (empty: it was, or none was asked)
 
   [[nodiscard]] double t_foot() const { return t[foot]; }
   [[nodiscard]] double t1() const { return t[impact]; }
@@ -127,8 +129,8 @@ struct PileSignals {
 /// differing at t1 by more than half the larger (bending), and force and
 /// velocity disagreeing at t1 (|F / (Z v) - 1| > 0.3). With `low_pass` > 0
 /// (Hz), every channel is first low-passed at zero phase (fourth-order
-/// Butterworth response, -6 dB there) unless the sampling rate is below
-/// 1 / 0.45 of it; the record must then be evenly sampled.
+/// Butterworth response, -6 dB there), at a quarter of the sampling rate
+/// when that is lower; an unevenly sampled record is not (filter_note).
 [[nodiscard]] PileSignals read_pile_signals(const PileRecord& record, double low_pass = 0.0);
 
 /// What the analysis reads: the record file and its CSV file.

@@ -76,7 +76,8 @@ class MatchModel {
 /// One starting point of the fit and where it ended.
 struct MatchStart {
   MatchSoil start, soil;
-  double quality = 0.0;  ///< rms force difference over the largest measured force
+  double quality = 0.0;    ///< rms force difference over the largest measured force
+  double objective = 0.0;  ///< what the fit minimised: quality^2 with the smoothing penalty (the best start's least)
   int iterations = 0;
   long long evaluations = 0;
   bool converged = false;
@@ -106,6 +107,9 @@ struct MatchResult {
   StaticTest static_test;
   double seconds = 0.0;  ///< the fit's wall time
   bool interrupted = false;
+  /// Whether a start converged (Ceres' tolerances); false: every start ran
+  /// out of iterations or failed, and the match may not be a minimum.
+  [[nodiscard]] bool converged() const;
 };
 
 /// Matches a record (its [match] settings) on `jobs` threads (0: all cores).
