@@ -172,6 +172,28 @@ TEST(PileRecord, ReadsMatchSettings) {
   EXPECT_EQ(m.smoothing, 0.0);
 }
 
+// The match's low-pass: at the cutoff asked, or a quarter of the sampling
+// rate when lower (the known waves' 10 kHz: 2.5 kHz), zero phase (the
+// half-sine's peak stays at its time); none on an unevenly sampled record,
+// which says why.
+TEST(PileRecord, LowPassesAtAQuarterOfTheSamplingRateAtMost) {
+  testing::ScratchDirectory dir("pda-filter");
+  const KnownWaves w;
+  w.write(dir.path());
+  const auto rec = PileRecord::from_string(std::string(pile) + channels, dir.path());
+  const PileSignals raw = read_pile_signals(rec);
+  const PileSignals s = read_pile_signals(rec, 5000.0);
+  EXPECT_FALSE(raw.filtered);
+  EXPECT_TRUE(s.filtered);
+  EXPECT_NEAR(s.cutoff, 2500.0, 1e-6);
+  EXPECT_EQ(s.impact, raw.impact) << "zero phase: the force's first peak stays at its sample";
+  EXPECT_TRUE(read_pile_signals(rec, 1000.0).cutoff == 1000.0);
+  std::ofstream(dir.path() / "blow.csv", std::ios::app) << "0.04005,0,0,0,0\n";
+  const PileSignals uneven = read_pile_signals(rec, 5000.0);
+  EXPECT_FALSE(uneven.filtered);
+  EXPECT_NE(uneven.filter_note.find("not evenly spaced"), std::string::npos) << uneven.filter_note;
+}
+
 TEST(PileRecord, RefusesBadMatchSettings) {
   const std::string base = std::string(pile) + channels + "[match]\n";
   EXPECT_RECORD_REFUSED(refusal(base + "segments = 0\n"), "match.segments must be a whole number in [1, 50]");
