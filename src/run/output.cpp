@@ -520,6 +520,15 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"energy_error_relative", number_or_null(rel)},
       {"run_seconds", s.run_seconds},
       {"warnings", s.warnings},
+      // What the numbers are in: the case's units, for SI the base units
+      // (the console prints engineering multiples of them).
+      {"units", c.units == "SI" ? nlohmann::json{{"system", "SI"},
+                                                 {"length", "m"},
+                                                 {"time", "s"},
+                                                 {"force", "N"},
+                                                 {"stress", "Pa"},
+                                                 {"energy", "J"}}
+                                : nlohmann::json{{"system", c.units}}},
   };
   return j.dump(2) + "\n";
 }
@@ -538,34 +547,42 @@ namespace {
 
 // The blow's console lines: "no impact" when the ram never struck; a set of
 // 0 is a refusal only when the pile came to rest; no inf or nan printed.
-std::string blow_text(const BlowSummary& b) {
+// Engineering units (mm, MPa, J) under [units] system = "SI", the case's own
+// numbers without a unit otherwise.
+std::string blow_text(const BlowSummary& b, bool si) {
   if (!b.impact)
     return fmt::format(
         "  blow: no impact: the ram \"{}\" never struck the pile (check its velocity's sign, towards "
         "the pile, and [blow] ram)\n",
         b.ram);
-  const std::string counts = b.set > 0    ? fmt::format("{:.3g} blows per 250 mm", b.blows_per_250mm())
-                             : b.finished ? std::string("refusal")
+  const std::string counts = b.set > 0    ? si ? fmt::format("{:.3g} blows per 250 mm", b.blows_per_250mm())
+                                               : fmt::format("{:.3g} blows per unit length", b.blows_per_m())
+                                : b.finished ? std::string("refusal")
                                           : std::string("no set yet: the blow is not finished");
-  std::string out = fmt::format("  blow: set {:.4g} mm ({}), max compression {:.4g} MPa, max tension {:.4g} MPa\n",
-                                1e3 * b.set, counts, 1e-6 * b.max_compression.value, 1e-6 * b.max_tension.value);
+  std::string out =
+      si ? fmt::format("  blow: set {:.4g} mm ({}), max compression {:.4g} MPa, max tension {:.4g} MPa\n", 1e3 * b.set,
+                       counts, 1e-6 * b.max_compression.value, 1e-6 * b.max_tension.value)
+         : fmt::format("  blow: set {:.4g} ({}), max compression {:.4g}, max tension {:.4g} (the case's units)\n",
+                       b.set, counts, b.max_compression.value, b.max_tension.value);
+  const char* joules = si ? " J" : "";
   const std::string ratio = std::isnan(b.transfer_ratio())
                                 ? std::string(" (no transfer ratio: the ram brought no energy)")
                                 : fmt::format(" (transfer ratio {:.3g})", b.transfer_ratio());
-  out += fmt::format("  hammer energy {:.4g} J at t = {:.4g}; ENTHRU {}{}; {}\n", b.hammer_energy, b.impact_time,
-                     std::isnan(b.enthru) ? std::string("not measured (no gauge on the pile)")
-                                          : fmt::format("{:.4g} J at {}", b.enthru, b.gauge),
-                     std::isnan(b.enthru) ? "" : ratio,
-                     b.finished ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
-                                : std::string("the pile had not come to rest"));
+  out +=
+      fmt::format("  hammer energy {:.4g}{} at t = {:.4g}; ENTHRU {}{}; {}\n", b.hammer_energy, joules, b.impact_time,
+                  std::isnan(b.enthru) ? std::string("not measured (no gauge on the pile)")
+                                       : fmt::format("{:.4g}{} at {}", b.enthru, joules, b.gauge),
+                  std::isnan(b.enthru) ? "" : ratio,
+                  b.finished ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
+                             : std::string("the pile had not come to rest"));
   if (b.diesel)
-    out += fmt::format("  diesel: {}next stroke {}; gas works W_c {:.4g} J, W_e {:.4g} J\n",
+    out += fmt::format("  diesel: {}next stroke {}; gas works W_c {:.4g}{}, W_e {:.4g}{}\n",
                        b.blows_run > 1 ? fmt::format("blow {} from a stroke of {:.4g} m (the first set {:.4g} mm); ",
                                                      b.blows_run, b.stroke, 1e3 * b.first_set)
                                        : std::string(),
                        std::isnan(b.next_stroke) ? std::string("not reached (the ram has not risen past the ports)")
                                                  : fmt::format("{:.4g} m", b.next_stroke),
-                       b.compression_work, b.expansion_work);
+                       b.compression_work, joules, b.expansion_work, joules);
   return out;
 }
 
@@ -611,7 +628,7 @@ std::string summary_text(const Case& c, const Summary& s) {
     for (const auto& [body, w] : s.plastic->work) out += fmt::format(" {} {:.4g}", body, w);
     out += "\n";
   }
-  if (const auto& b = s.blow) out += blow_text(*b);
+  if (const auto& b = s.blow) out += blow_text(*b, c.units == "SI");
   if (std::isfinite(s.energy_initial))
     out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g}{}\n", s.energy_initial,
                        s.energy_final, s.energy_error_max,

@@ -257,6 +257,24 @@ TEST(SmithBlow, ABlowCutShortIsUnfinishedNotARefusal) {
   EXPECT_NE(text.find("not finished"), std::string::npos) << text;
 }
 
+// The console follows [units]: mm, MPa and J under "SI", the case's own
+// numbers without a unit under "none"; summary.json names the units.
+TEST(SmithBlow, TheConsoleFollowsTheCasesUnits) {
+  const std::vector<std::string> short_run{"time.end=0.01", "output.fields_at=[]"};
+  const Case si = testing::example("pile/steel-pipe-sand.toml", short_run);
+  auto sets = short_run;
+  sets.push_back("units.system=none");
+  const Case none = testing::example("pile/steel-pipe-sand.toml", sets);
+  const RunResult r = run(si);
+  const std::string with = summary_text(si, r.summary), without = summary_text(none, r.summary);
+  for (const char* unit : {" mm", " MPa", " J ", "per 250 mm"}) {
+    EXPECT_NE(with.find(unit), std::string::npos) << unit << with;
+    EXPECT_EQ(without.find(unit), std::string::npos) << unit << without;
+  }
+  EXPECT_NE(summary_json(si, r.summary).find("\"stress\": \"Pa\""), std::string::npos);
+  EXPECT_NE(summary_json(none, r.summary).find("\"system\": \"none\""), std::string::npos);
+}
+
 // A ram moving away from the pile never strikes it: no impact, said so; no
 // refusal, no inf or nan on the console, no blow counts or transfer ratio.
 TEST(SmithBlow, ARamMovingAwayIsNoImpact) {
