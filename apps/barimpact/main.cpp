@@ -161,6 +161,7 @@ int run_command(const std::string& case_path, const std::string& out_dir, const 
   std::unique_ptr<barimpact::Scheme> scheme;
   if (!exact && !repeated) scheme = barimpact::make_scheme(fitted);
   barimpact::RunDirectory dir(out_dir, flags.force, exact ? "exact" : "run", true, inputs);
+  dir.expect(barimpact::run_outputs(c));  // a clash refused now, not after the run
   barimpact::RunOptions options;
   options.interrupt = &interrupted;
   options.loop_begins = poll_signals;
@@ -768,6 +769,7 @@ int pda_command(const std::string& record_path, const std::string& out, bool no_
   const auto record = barimpact::PileRecord::from_file(record_path);
   const auto r = barimpact::analyse_pda(record);
   barimpact::RunDirectory dir(out, flags.force, "pda", true, barimpact::pda_inputs(record));
+  dir.expect(barimpact::pda_files());
   bool plotted = false;
   dir.commit([&](const std::filesystem::path& staging) {
     barimpact::write_text(staging / "pda.csv", barimpact::pda_csv(r));
@@ -796,7 +798,8 @@ int match_command(const std::string& record_path, const std::string& out, bool n
   const auto record = barimpact::PileRecord::from_file(record_path);
   barimpact::check_jobs(jobs);
   barimpact::RunDirectory dir(out, flags.force, "match", true, barimpact::pda_inputs(record));
-  poll_signals();  // the fit stops at its next iteration: nothing is written
+  dir.expect(barimpact::match_files());  // before the fit
+  poll_signals();                        // the fit stops at its next iteration: nothing is written
   const auto r = barimpact::match_pile(record, jobs, &interrupted);
   if (r.interrupted || interrupted.load()) return exit_interrupted();
   bool plotted = false;

@@ -462,6 +462,7 @@ py::tuple pda_binding(const py::object& record, const std::optional<std::string>
   }
   if (out) {
     RunDirectory dir(*out, force, "pda", true, pda_inputs(rec));
+    dir.expect(pda_files());
     dir.commit([&](const std::filesystem::path& staging) {
       write_text(staging / "pda.csv", pda_csv(r));
       write_text(staging / "summary.json", pda_summary_json(r));
@@ -485,7 +486,10 @@ py::tuple match_binding(const py::object& record, const std::optional<std::strin
   const PileRecord rec = pile_record(record);
   check_jobs(jobs);
   std::optional<RunDirectory> dir;
-  if (out) dir.emplace(*out, force, "match", true, pda_inputs(rec));
+  if (out) {
+    dir.emplace(*out, force, "match", true, pda_inputs(rec));
+    dir->expect(match_files());  // before the fit
+  }
   const MatchResult r =
       interruptible(MatchOptions{}, [&](const MatchOptions& o) { return match_pile(rec, jobs, o.interrupt); });
   if (dir) {

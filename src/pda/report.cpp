@@ -13,6 +13,11 @@ const std::vector<std::string>& pda_columns() {
   return c;
 }
 
+const std::vector<std::string>& pda_files() {
+  static const std::vector<std::string> f{"pda.csv", "summary.json"};
+  return f;
+}
+
 std::string pda_csv(const CaseMethodResult& r) {
   const auto& s = r.signals;
   const auto& w = r.waves;

@@ -125,6 +125,17 @@ std::string_view history_file(OutputFormat format) {
   return format == OutputFormat::hdf5 ? results_h5_name : std::string_view("history.csv");
 }
 
+std::vector<std::string> run_outputs(const Case& c) {
+  std::vector<std::string> names{std::string(history_file(c.output.format)), "summary.json",
+                                 std::string(case_file_name)};
+  if (c.output.format != OutputFormat::hdf5) names.emplace_back("fields.csv");
+  return names;
+}
+
+void RunDirectory::expect(const std::vector<std::string>& names) const {
+  refuse_entries_of_another_kind(shown_, names);
+}
+
 FieldSink& RunDirectory::stream_fields(const Case& c) {
   fields_ = std::make_unique<detail::FieldStream>(staging_, c);
   return *fields_;

@@ -62,6 +62,11 @@ StaticTest static_load_test(const MatchModel& model, const MatchSoil& soil) {
   return t;
 }
 
+const std::vector<std::string>& match_files() {
+  static const std::vector<std::string> f{"match.csv", "soil.csv", "static.csv", "summary.json"};
+  return f;
+}
+
 std::string match_csv(const MatchResult& r) {
   const auto& sig = r.pda.signals;
   const double z = r.pda.record.impedance();

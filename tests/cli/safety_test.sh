@@ -98,6 +98,16 @@ for entry in "summary.json run $ex1" "convergence.md converge $ex1 --levels 2" \
   expect_refusal "holds a directory $name where barimpact writes a file" "$(listing "$work/named")" "$work/named" \
     "$@" --out "$work/named" --force
 done
+# ... refused before the work, not after it: a run of minutes is refused at once.
+rm -rf "$work/named" && make_user_dir "$work/named" && mkdir "$work/named/summary.json"
+timeout 30 "$bin" run "$ex1" --out "$work/named" --force --set bar.elements=20000 --set time.step=1e-5 > /dev/null 2>&1
+[ $? -eq 2 ] && ok || bad "a clash with summary.json/ not refused before the run"
+for entry in "match.csv match" "pda.csv pda"; do
+  set -- $entry
+  rm -rf "$work/named" && make_user_dir "$work/named" && mkdir "$work/named/$1"
+  expect_refusal "holds a directory $1 where barimpact writes a file" "$(listing "$work/named")" "$work/named" \
+    "$2" "$examples/pda/steel-pipe.toml" --out "$work/named" --force
+done
 # --force writes beside the user's files and deletes none of them.
 check "--force beside a user's files" "$bin" run "$ex1" --out "$work/theirs" --force "${fast[@]}" > /dev/null
 check "user's files kept under --force" user_dir_intact "$work/theirs"

@@ -60,6 +60,8 @@ struct CaseMethodResult {
 /// pda.csv's columns, in order: the contract's six (t, force, velocity_z,
 /// wave_down, wave_up, displacement), then velocity and energy.
 [[nodiscard]] const std::vector<std::string>& pda_columns();
+/// The files the analysis writes (its figures aside).
+[[nodiscard]] const std::vector<std::string>& pda_files();
 /// pda.csv's text, one row a sample.
 [[nodiscard]] std::string pda_csv(const CaseMethodResult& r);
 /// summary.json's text.

@@ -32,6 +32,9 @@ class FieldStream;
 inline constexpr std::string_view case_file_name = "case.toml";
 inline constexpr std::string_view resolved_case_name = "case.resolved.toml";
 
+/// The files a run of `c` writes (RunDirectory::commit's), for expect().
+[[nodiscard]] std::vector<std::string> run_outputs(const Case& c);
+
 class RunDirectory {
  public:
   /// Checks `target` against the output rule (`force` as --force; `inputs`
@@ -45,6 +48,11 @@ class RunDirectory {
   ~RunDirectory();
   RunDirectory(const RunDirectory&) = delete;
   RunDirectory& operator=(const RunDirectory&) = delete;
+
+  /// Refuses now, before the work, what `commit` would refuse at the end:
+  /// an entry of the target named as a file the command writes that is a
+  /// directory, or the reverse (InputError naming --out; nothing written).
+  void expect(const std::vector<std::string>& names) const;
 
   /// Where the run of `c` puts its field snapshots as it takes them
   /// (RunOptions::fields): fields.csv in staging, or a spool results.h5 is

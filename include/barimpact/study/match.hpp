@@ -123,6 +123,8 @@ struct MatchResult {
 /// model's segments): 150 equal settlement increments to 1.5 s_C.
 [[nodiscard]] StaticTest static_load_test(const MatchModel& model, const MatchSoil& soil);
 
+/// The files a match writes (its figures aside).
+[[nodiscard]] const std::vector<std::string>& match_files();
 /// match.csv, soil.csv, static.csv and summary.json's texts.
 [[nodiscard]] std::string match_csv(const MatchResult& r);
 [[nodiscard]] std::string soil_csv(const MatchResult& r);
