@@ -3,12 +3,16 @@
 DIR is a run directory (history.csv or results.h5: the run's figures) or a sweep
 directory (sweep.csv: each output against the swept keys, and the runs'
 U(t) and R(t) overlaid); several run directories draw one comparison. The
-figures go by the output rule of `barimpact run --out` (--force as its)."""
+figures go by the output rule of `barimpact run --out` (--force as its). A
+hopkinson, pda or match directory (written with --no-plot) gets its figures
+drawn into it, as the command draws them."""
 import argparse
 import importlib
+import os
 import sys
 from pathlib import Path
 
+from . import _core
 from .plot import compare, is_run_directory, plot
 
 # The commands whose figures go into the staging directory of their results
@@ -28,8 +32,25 @@ def _plot(dirs, out, force):
     if (d / "sweep.csv").is_file():
         from .convergence import plot_sweep
         return plot_sweep(d, out, force=force)
-    raise ValueError(f"{d}: no history.csv, results.h5 or sweep.csv (not a directory written by barimpact run or "
-                     "sweep)")
+    for command in STAGED:  # their figures beside their tables, as the command draws them
+        if (d / f"{command}.csv").is_file():
+            return _redraw_staged(d, command, out)
+    raise ValueError(f"{d}: no history.csv, results.h5, sweep.csv, hopkinson.csv, pda.csv or match.csv (not a "
+                     "directory written by barimpact run, sweep, hopkinson, pda or match)")
+
+
+def _redraw_staged(d, command, out):
+    """The figures of a hopkinson, pda or match directory drawn again (after
+    --no-plot) where the command draws them: into the directory, which must
+    be the one barimpact wrote; they join its marker, so that a rerun
+    replaces them."""
+    if out is not None:
+        raise ValueError(f"{d}: a barimpact {command} directory's figures go into it, as the command draws them "
+                         "(leave out --out)")
+    module = importlib.import_module(f".{command}", __package__)
+    written = getattr(module, f"plot_{command}")(d)
+    _core._mark_entries(os.fspath(d), [Path(p).name for p in written])
+    return written
 
 
 def _run(args):

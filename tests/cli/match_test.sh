@@ -31,6 +31,12 @@ if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then
 fi
 "$bin" match "$examples/pda/steel-pipe.toml" --out "$work/pipe" --no-plot > /dev/null 2>&1 && ok || bad "rerun"
 [ ! -e "$work/pipe/resistance.png" ] && ok || bad "--no-plot drew (or left the last run's figures)"
+# --no-plot, then plot: the same figures, drawn into the directory.
+if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then
+  "$bin" plot "$work/pipe" > /dev/null 2> "$work/stderr" && ok || bad "plot after --no-plot: $(cat "$work/stderr")"
+  for f in force_match resistance static_test; do [ -s "$work/pipe/$f.png" ] && ok || bad "plot drew no $f.png"; done
+  expect_refused "leave out --out" plot "$work/pipe" --out "$work/refused"
+fi
 mkdir "$work/theirs" && touch "$work/theirs/notes.txt"
 "$bin" match "$examples/pda/steel-pipe.toml" --out "$work/theirs" --no-plot > /dev/null 2>&1 && bad "wrote beside someone's files" || ok
 [ -e "$work/theirs/notes.txt" ] && ok || bad "their file deleted"

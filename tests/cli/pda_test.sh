@@ -20,6 +20,10 @@ fi
 grep -q "RMX" "$work/stdout" && ok || bad "stdout: $(cat "$work/stdout")"
 "$bin" pda "$examples/pda/concrete-pile.toml" --out "$work/concrete" --no-plot > /dev/null 2>&1 && ok || bad "concrete exit"
 [ ! -e "$work/concrete/waves.png" ] && ok || bad "--no-plot drew"
+# --no-plot, then plot: the figures drawn into the directory.
+if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then
+  "$bin" plot "$work/concrete" > /dev/null 2>&1 && [ -s "$work/concrete/waves.png" ] && ok || bad "plot after --no-plot"
+fi
 # A rerun replaces the directory barimpact wrote; someone else's needs --force.
 "$bin" pda "$examples/pda/concrete-pile.toml" --out "$work/concrete" --no-plot > /dev/null 2>&1 && ok || bad "rerun"
 mkdir "$work/theirs" && touch "$work/theirs/notes.txt"
