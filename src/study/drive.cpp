@@ -21,7 +21,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-constexpr double inf = std::numeric_limits<double>::infinity();
 
 double pile_area(const Case& c) {
   for (const auto& b : c.bodies)
