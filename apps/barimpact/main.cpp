@@ -827,15 +827,11 @@ int match_command(const std::string& record_path, const std::string& out, bool n
       "  match quality {:.3g}% (rms force difference over the largest force); the starts' capacities span {:.3g} kN\n",
       100.0 * r.quality, 1e-3 * (hi - lo));
   fmt::print("  static load test: the capacity reached at {:.3g} mm\n", 1e3 * r.static_test.s_c);
-  if (!r.pda.signals.filter_note.empty()) print_warnings({"match-unfiltered: " + r.pda.signals.filter_note});
-  if (!r.converged())
-    print_warnings(
-        {fmt::format("match-not-converged: no start converged within its iterations (the best: {}); the "
-                     "match may not be a minimum: see start_results in summary.json",
-                     r.starts[r.best].message)});
   fmt::print("  match.csv, soil.csv, static.csv, summary.json{} in {}\n", plotted ? " and figures" : "",
              dir.target().string());
-  return 0;
+  const auto warnings = r.warnings();
+  print_warnings(warnings);
+  return flags.strict && !warnings.empty() ? exit_warnings : 0;
 }
 
 // Validates a case and reports what to know before running it (run/check.hpp).

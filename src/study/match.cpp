@@ -315,6 +315,17 @@ bool MatchResult::converged() const {
   return std::any_of(starts.begin(), starts.end(), [](const MatchStart& s) { return s.converged; });
 }
 
+std::vector<std::string> MatchResult::warnings() const {
+  std::vector<std::string> out;
+  if (!pda.signals.filter_note.empty()) out.push_back("match-unfiltered: " + pda.signals.filter_note);
+  if (!starts.empty() && !converged())
+    out.push_back(
+        fmt::format("match-not-converged: no start converged within its iterations (the best: {}); the "
+                    "match may not be a minimum: see start_results in summary.json",
+                    starts[best].message));
+  return out;
+}
+
 MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<bool>* interrupt) {
   const auto clock = std::chrono::steady_clock::now();
   MatchResult r;

@@ -163,6 +163,7 @@ std::string match_summary_json(const MatchResult& r) {
   j["length"] = r.pda.record.length();
   j["seconds"] = r.seconds;
   j["start_results"] = starts;
+  j["warnings"] = r.warnings();
   j["units"] = {{"system", "SI"}, {"force", "N"}, {"length", "m"}, {"time", "s"}, {"damping", "s/m"}};
   j["record"] = r.pda.record.origin.string();
   j["file"] = r.pda.record.csv.string();

@@ -49,6 +49,14 @@ sed -i "s|file = \"concrete-pile.csv\"|file = \"$examples/pda/concrete-pile.csv\
 grep -q '"shaft_damping": 0.16,' "$work/two/summary.json" && ok || bad "a damping not fitted keeps its value"
 grep -q '"starts": 1,' "$work/two/summary.json" && ok || bad "one start"
 
+# An unevenly sampled record is matched unfiltered, with a warning in
+# summary.json and on stderr; --strict then exits 4, its results written.
+awk -F, 'NR == 300 { $1 = $1 + 5e-6 } { print }' OFS=, "$examples/pda/steel-pipe.csv" > "$work/uneven.csv"
+sed "s|file = \"steel-pipe.csv\"|file = \"$work/uneven.csv\"|" "$examples/pda/steel-pipe.toml" > "$work/uneven.toml"
+"$bin" match "$work/uneven.toml" --out "$work/uneven" --no-plot --strict > /dev/null 2> "$work/stderr"
+[ $? -eq 4 ] && grep -q "match-unfiltered" "$work/stderr" && ok || bad "an uneven record's warning and --strict: $(cat "$work/stderr")"
+grep -q '"match-unfiltered: the samples are not evenly spaced' "$work/uneven/summary.json" && grep -q '"low_pass": null' "$work/uneven/summary.json" && ok || bad "summary.json's warning"
+
 # Bad settings: the key and its rule, nothing written.
 bad_match() {  # name, [match] lines, expected message
   sed "s|file = \"steel-pipe.csv\"|file = \"$examples/pda/steel-pipe.csv\"|; /^\[match\]/,\$d" "$examples/pda/steel-pipe.toml" > "$work/$1.toml"

@@ -110,6 +110,9 @@ struct MatchResult {
   /// Whether a start converged (Ceres' tolerances); false: every start ran
   /// out of iterations or failed, and the match may not be a minimum.
   [[nodiscard]] bool converged() const;
+  /// What to doubt about the match, one line each (summary.json's
+  /// `warnings`): match-unfiltered (an uneven record), match-not-converged.
+  [[nodiscard]] std::vector<std::string> warnings() const;
 };
 
 /// Matches a record (its [match] settings) on `jobs` threads (0: all cores).
