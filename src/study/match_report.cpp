@@ -156,6 +156,15 @@ std::string match_summary_json(const MatchResult& r) {
   j["window_end"] = r.pda.t2 + r.window;
   j["samples_matched"] = r.computed.size();
   j["s_c"] = r.static_test.s_c;
+  // The closed form with E A at the gauges: s_c itself on a uniform
+  // pile; on [[segment]]s s_c integrates N / E A section by section instead.
+  {
+    const auto& seg = r.pda.record.segments.front();
+    double moment = s.toe * r.pda.record.length();
+    for (std::size_t i = 0; i < s.shaft.size(); ++i)
+      moment += s.shaft[i] * 0.5 * (r.segment_top[i] + r.segment_bottom[i]);
+    j["s_c_uniform"] = std::max(s.toe_quake, s.shaft_quake) + moment / (seg.modulus * seg.area);
+  }
   j["case_method_rmx"] = r.pda.rmx;
   j["t1"] = r.pda.t1;
   j["t2"] = r.pda.t2;
