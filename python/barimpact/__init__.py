@@ -610,7 +610,7 @@ def pda(record, out=None, *, no_plot=False, force=False):
     return _table_from_csv(csv, json.loads(summary), PdaTable)
 
 
-def match(record, out=None, *, no_plot=False, force=False, jobs=0):
+def match(record, out=None, *, no_plot=False, force=False, jobs=0, strict=False):
     """Signal matching of a measured blow on a pile (`barimpact match RECORD
     --out DIR`): the soil resistance along the pile whose computed force at
     the gauges, under the measured velocity, matches the measured force.
@@ -628,11 +628,17 @@ def match(record, out=None, *, no_plot=False, force=False, jobs=0):
     rule (`force` as --force), `out` refused before the fit; without it
     nothing is written. The GIL is released during the fit; Ctrl-C during
     it raises KeyboardInterrupt with nothing written. InputError (one line)
-    for a record it cannot match."""
+    for a record it cannot match. summary.json's warnings (match-unfiltered,
+    match-not-converged) are `HealthWarning`s; strict=True raises
+    `StrictError` after writing."""
     draw = None if no_plot or out is None else (
         lambda staging: _match_figures.plot_match_into(staging, _out(out)))
     match_csv, soil_csv, static_csv, summary = _core._match(record, _out(out), bool(force), _jobs(jobs), draw)
-    return _match_table(match_csv, soil_csv, static_csv, json.loads(summary))
+    table = _match_table(match_csv, soil_csv, static_csv, json.loads(summary))
+    lines = table.summary.get("warnings", [])
+    _warn(lines)
+    _strict(strict, lines, table, "the match")
+    return table
 
 
 def plot(dir, out=None, *, force=False, formats=("png", "svg")):

@@ -135,8 +135,8 @@ def pda(record: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no
     """barimpact pda RECORD [--out DIR] [--no-plot] [--force]: pda.csv's table."""
 
 def match(record: _PathArg | Mapping[str, Any], out: _PathArg | None = None, *, no_plot: bool = False,
-          force: bool = False, jobs: int | None = 0) -> MatchTable:
-    """barimpact match RECORD [--out DIR] [--no-plot] [--jobs N] [--force]: match.csv's table, soil.csv and
+          force: bool = False, jobs: int | None = 0, strict: bool = False) -> MatchTable:
+    """barimpact match RECORD [--out DIR] [--no-plot] [--jobs N] [--force] [--strict]: match.csv's table, soil.csv and
     static.csv."""
 
 def plot(dir: _PathArg | Result | RunData, out: _PathArg | None = None, *, force: bool = False,

@@ -120,3 +120,23 @@ def test_the_figures_go_only_into_a_match_directory(tmp_path):
     with pytest.raises(barimpact.InputError, match="not a directory barimpact match wrote"):
         plot_match(tmp_path / "pda")
     assert not (tmp_path / "pda" / "force_match.png").exists()
+
+
+def test_an_uneven_record_warns_and_strict_raises_after_writing(tmp_path, monkeypatch):
+    """An unevenly sampled record is matched unfiltered: a HealthWarning
+    (summary.json's match-unfiltered), and strict=True raises StrictError
+    with the results written, as --strict exits 4."""
+    rows = (EXAMPLES / "pda" / "steel-pipe.csv").read_text().splitlines()
+    cells = rows[299].split(",")
+    cells[0] = repr(float(cells[0]) + 5e-6)
+    rows[299] = ",".join(cells)
+    (tmp_path / "uneven.csv").write_text("\n".join(rows) + "\n")
+    record = tomllib.loads(RECORD.read_text())
+    record["record"]["file"] = str(tmp_path / "uneven.csv")
+    record["match"]["starts"] = 1
+    with pytest.warns(barimpact.HealthWarning, match="match-unfiltered"):
+        table = barimpact.match(record, jobs=2)
+    assert table.summary["low_pass"] is None
+    with pytest.warns(barimpact.HealthWarning), pytest.raises(barimpact.StrictError):
+        barimpact.match(record, out=tmp_path / "strict", no_plot=True, strict=True, jobs=2)
+    assert (tmp_path / "strict" / "summary.json").is_file()
