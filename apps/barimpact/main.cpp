@@ -522,6 +522,8 @@ std::vector<barimpact::SweepRow> mpi_sweep(const barimpact::SweepPlan& plan, con
 #endif
 
 #ifdef BARIMPACT_HAVE_MPI
+int report(const std::exception_ptr& failure);
+
 // A distributed sweep: every rank's checks and rank 0's directory first,
 // then the worst exit status among the ranks reaches all of them
 // (MPI_Allreduce), so that a refusal on any rank ends every rank, each with
@@ -556,8 +558,14 @@ std::optional<int> mpi_sweep_command(const std::string& sweep_path, const std::f
     }
   }
   MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  if (failure) std::rethrow_exception(failure);
-  if (worst != 0) return worst;
+  if (worst != 0) {
+    // The failing rank says why before any rank exits: mpirun ends every
+    // rank once one has exited with an error, which could cut the line.
+    if (failure) (void)report(failure);
+    std::fflush(stderr);
+    MPI_Barrier(MPI_COMM_WORLD);
+    return failure ? status : worst;
+  }
   poll_signals();  // between cases and in their time loops
   const auto done = mpi_sweep(*plan, dir, start.todo, o, rank, size, threads);
   if (rank != 0) return interrupted.load() ? exit_interrupted() : 0;
