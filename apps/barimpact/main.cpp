@@ -826,14 +826,9 @@ int match_command(const std::string& record_path, const std::string& out, bool n
   fmt::print("  quakes {:.3g} mm (shaft), {:.3g} mm (toe); dampings {:.3g} s/m (shaft), {:.3g} s/m (toe), {}\n",
              1e3 * s.shaft_quake, 1e3 * s.toe_quake, s.shaft_damping, s.toe_damping,
              s.law == barimpact::DampingLaw::smith ? "Smith" : "viscous");
-  double lo = s.capacity(), hi = lo;
-  for (const auto& st : r.starts) {
-    lo = std::min(lo, st.soil.capacity());
-    hi = std::max(hi, st.soil.capacity());
-  }
   fmt::print(
       "  match quality {:.3g}% (rms force difference over the largest force); the starts' capacities span {:.3g} kN\n",
-      100.0 * r.quality, 1e-3 * (hi - lo));
+      100.0 * r.quality, 1e-3 * r.spread());
   fmt::print("  static load test: the capacity reached at {:.3g} mm\n", 1e3 * r.static_test.s_c);
   fmt::print("  match.csv, soil.csv, static.csv, summary.json{} in {}\n", plotted ? " and figures" : "",
              dir.target().string());

@@ -58,22 +58,20 @@ class Unknowns {
     each(s, [&](double& v, double sc, double lo, double hi) { v = std::clamp(x[k++] * sc, lo, hi); });
     return s;
   }
-  [[nodiscard]] std::vector<double> upper() const {
-    std::vector<double> u;
+  // Each variable's bounds, scaled: {lower, upper}.
+  [[nodiscard]] std::vector<std::pair<double, double>> limits() const {
+    std::vector<std::pair<double, double>> out;
     MatchSoil s;
     s.shaft.assign(shaft_ ? segments_ : 0, 0.0);
-    each(s, [&](double&, double sc, double, double hi) { u.push_back(hi / sc); });
-    return u;
+    each(s, [&](double&, double sc, double lo, double hi) { out.emplace_back(lo / sc, hi / sc); });
+    return out;
   }
   void bounds(ceres::Problem& p, double* x) const {
-    std::size_t k = 0;
-    MatchSoil s;
-    s.shaft.assign(shaft_ ? segments_ : 0, 0.0);
-    each(s, [&](double&, double sc, double lo, double hi) {
-      p.SetParameterLowerBound(x, static_cast<int>(k), lo / sc);
-      if (std::isfinite(hi)) p.SetParameterUpperBound(x, static_cast<int>(k), hi / sc);
-      ++k;
-    });
+    const auto l = limits();
+    for (std::size_t k = 0; k < l.size(); ++k) {
+      p.SetParameterLowerBound(x, static_cast<int>(k), l[k].first);
+      if (std::isfinite(l[k].second)) p.SetParameterUpperBound(x, static_cast<int>(k), l[k].second);
+    }
   }
 
  private:
@@ -97,7 +95,7 @@ class ForceMisfit final : public ceres::CostFunction {
         inv_scale_(1.0 / scale),
         threads_(threads),
         evaluations_(evaluations),
-        upper_(unknowns.upper()) {
+        limits_(unknowns.limits()) {
     set_num_residuals(static_cast<int>(measured.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(unknowns.size()));
   }
@@ -112,7 +110,7 @@ class ForceMisfit final : public ceres::CostFunction {
       std::vector<double> xi(x, x + n), ri(m);
       // A step of 1e-4 of the variable (1e-4 of its scale near 0), inward at an upper bound.
       double h = 1e-4 * std::max(std::abs(x[i]), 1.0);
-      if (x[i] + h > upper_[i]) h = -h;
+      if (x[i] + h > limits_[i].second) h = -h;
       xi[i] += h;
       if (!residuals_at(xi.data(), ri.data())) {
         ok = false;
@@ -144,7 +142,7 @@ class ForceMisfit final : public ceres::CostFunction {
   double inv_scale_;
   int threads_;
   std::atomic<long long>& evaluations_;
-  std::vector<double> upper_;  // each variable's upper bound (scaled)
+  std::vector<std::pair<double, double>> limits_;  // each variable's bounds (scaled)
 };
 
 // Tikhonov's penalty on the shaft's curvature: w (R_{i-1} - 2 R_i + R_{i+1})
@@ -255,7 +253,6 @@ Window match_window(const CaseMethodResult& pda) {
   return w;
 }
 
-// One start's fit: Ceres' Levenberg-Marquardt within the bounds.
 // Ends a start's fit at its next iteration once `interrupt` is set (a signal).
 class StopOnSignal final : public ceres::IterationCallback {
  public:
@@ -268,9 +265,22 @@ class StopOnSignal final : public ceres::IterationCallback {
   const std::atomic<bool>* interrupt_;
 };
 
-MatchStart fit_from(const MatchModel& model, const MatchSettings& m, const MatchSoil& start,
-                    const std::vector<double>& measured, std::size_t first, double force_scale, double scale,
-                    int threads, const std::atomic<bool>* interrupt) {
+// What every start's fit shares: the model, the settings, the measured
+// force over the window from sample `first`, its largest value, the
+// resistances' scale, the threads a start has and the interrupt.
+struct FitInputs {
+  const MatchModel& model;
+  const MatchSettings& m;
+  const std::vector<double>& measured;
+  std::size_t first;
+  double fmax, scale;
+  int threads;
+  const std::atomic<bool>* interrupt;
+};
+
+// One start's fit: Ceres' Levenberg-Marquardt within the bounds.
+MatchStart fit_from(const FitInputs& in, const MatchSoil& start) {
+  const auto& [model, m, measured, first, force_scale, scale, threads, interrupt] = in;
   MatchStart out;
   out.start = start;
   const Unknowns unknowns(m, model.segments(), scale);
@@ -303,13 +313,22 @@ MatchStart fit_from(const MatchModel& model, const MatchSettings& m, const Match
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.message = summary.message;
   out.objective = 2.0 * summary.final_cost / static_cast<double>(measured.size());
-  std::vector<double> computed(measured.size());
-  out.quality = model.head_force(out.soil, first, computed) ? rms_quality(computed, measured, force_scale)
-                                                            : std::numeric_limits<double>::infinity();
+  out.computed.assign(measured.size(), 0.0);
+  out.quality = model.head_force(out.soil, first, out.computed) ? rms_quality(out.computed, measured, force_scale)
+                                                                : std::numeric_limits<double>::infinity();
   return out;
 }
 
 }  // namespace
+
+double MatchResult::spread() const {
+  double lo = soil.capacity(), hi = lo;
+  for (const auto& s : starts) {
+    lo = std::min(lo, s.soil.capacity());
+    hi = std::max(hi, s.soil.capacity());
+  }
+  return hi - lo;
+}
 
 bool MatchResult::converged() const {
   return std::any_of(starts.begin(), starts.end(), [](const MatchStart& s) { return s.converged; });
@@ -345,19 +364,18 @@ MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<boo
   }
   const std::vector<double> measured(sig.force.begin() + static_cast<std::ptrdiff_t>(w.first),
                                      sig.force.begin() + static_cast<std::ptrdiff_t>(w.first + w.count));
-  const double force_scale =
-      *std::max_element(measured.begin(), measured.end(), [](double a, double b) { return std::abs(a) < std::abs(b); });
-  const double fmax = std::abs(force_scale);
+  double fmax = 0.0;
+  for (double f : measured) fmax = std::max(fmax, std::abs(f));
   const MatchSoil estimate = case_estimate(r.pda, model, record.match);
   const double scale = std::max(estimate.capacity(), 1e-6 * fmax) / static_cast<double>(model.segments() + 1);
   const int cores = jobs > 0 ? jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int starts = record.match.starts;
-  const int per_start = std::max(1, cores / starts);
+  const FitInputs in{model, record.match, measured, w.first, fmax, scale, std::max(1, cores / starts), interrupt};
   r.starts.resize(static_cast<std::size_t>(starts));
   run_parallel(static_cast<std::size_t>(starts), std::min(cores, starts), [&](std::size_t k) {
     if (interrupt != nullptr && interrupt->load()) return;
     const MatchSoil start = k == 0 ? estimate : other_start(estimate, record.match, static_cast<int>(k));
-    r.starts[k] = fit_from(model, record.match, start, measured, w.first, fmax, scale, per_start, interrupt);
+    r.starts[k] = fit_from(in, start);
   });
   if (interrupt != nullptr && interrupt->load()) {
     r.interrupted = true;
@@ -368,11 +386,12 @@ MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<boo
     r.iterations += r.starts[k].iterations;
     if (r.starts[k].objective < r.starts[r.best].objective) r.best = k;
   }
-  r.soil = r.starts[r.best].soil;
-  r.computed.assign(w.count, 0.0);
-  if (!model.head_force(r.soil, w.first, r.computed))
+  const MatchStart& best = r.starts[r.best];
+  if (!std::isfinite(best.quality))
     throw InputError(fmt::format("{}: the matched pile's blow did not stay finite", record.origin.string()));
-  r.quality = rms_quality(r.computed, measured, fmax);
+  r.soil = best.soil;
+  r.computed = best.computed;
+  r.quality = best.quality;
   r.static_test = static_load_test(model, r.soil);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - clock).count();
   return r;

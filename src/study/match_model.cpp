@@ -35,20 +35,6 @@ std::string pile_case(const PileRecord& record, double end, double step) {
   return text;
 }
 
-// The hat function of node j (at x[j], neighbours x[j-1], x[j+1]) integrated over [a, b].
-double hat_integral(const std::vector<double>& x, std::size_t j, double a, double b) {
-  double total = 0.0;
-  auto ramp = [&](double lo, double hi, double zero_at, double one_at) {  // the linear piece on [lo, hi]
-    const double from = std::max(a, lo), to = std::min(b, hi);
-    if (to <= from) return;
-    auto phi = [&](double s) { return (s - zero_at) / (one_at - zero_at); };
-    total += 0.5 * (phi(from) + phi(to)) * (to - from);
-  };
-  if (j > 0) ramp(x[j - 1], x[j], x[j - 1], x[j]);
-  if (j + 1 < x.size()) ramp(x[j], x[j + 1], x[j + 1], x[j]);
-  return total;
-}
-
 }  // namespace
 
 double MatchSoil::shaft_total() const {
@@ -58,7 +44,7 @@ double MatchSoil::shaft_total() const {
 }
 
 MatchModel::MatchModel(const PileRecord& record, const PileSignals& signals, double t_start, double t_end)
-    : signals_(&signals), t_start_(t_start), t_end_(t_end) {
+    : signals_(&signals), t_start_(t_start) {
   const double length = record.length();
   case_ = Case::from_string(pile_case(record, t_end - t_start, 1e-9));
   line_ = build_line(case_);
@@ -75,16 +61,20 @@ MatchModel::MatchModel(const PileRecord& record, const PileSignals& signals, dou
   length_ = length;
   top_ = length - embedded;
   segment_length_ = embedded / static_cast<double>(segments_);
-  // Node j's share of segment i: its hat function over the segment's
-  // stretch of the line (x = length - depth), over the segment's length.
-  const auto& x = line_.x;
-  const std::size_t n = x.size();
+  // Node j's share of segment i: the line builder's consistent shares of a
+  // unit resistance spread over the segment (x - x0 = length - depth).
+  const std::size_t n = line_.nodes();
+  const BodyRange whole{"", false, 0, n - 1};
   shares_.assign(n, {});
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < segments_; ++i) {
-      const double w = hat_integral(x, j, length - segment_bottom(i), length - segment_top(i)) / segment_length_;
-      if (w > 0.0) shares_[j].emplace_back(i, w);
-    }
+  std::vector<double> share(n);
+  for (std::size_t i = 0; i < segments_; ++i) {
+    std::fill(share.begin(), share.end(), 0.0);
+    add_shares(
+        line_, whole, length - segment_bottom(i), length - segment_top(i),
+        [&](double) { return 1.0 / segment_length_; }, share);
+    for (std::size_t j = 0; j < n; ++j)
+      if (share[j] > 0.0) shares_[j].emplace_back(i, share[j]);
+  }
   for (auto* v :
        {&line_.shaft.ultimate, &line_.shaft.stiffness, &line_.shaft.quake, &line_.shaft.smith, &line_.shaft.viscous})
     v->assign(n, 0.0);
@@ -118,15 +108,11 @@ void MatchModel::apply(const MatchSoil& soil, Line& line) const {
   toe.stiffness = soil.toe / soil.toe_quake;
 }
 
-double MatchModel::step(const MatchSoil& soil) const {
-  Line line = line_;
-  apply(soil, line);
-  return std::min(bare_step_, 0.95 * line_stable_step(line, false));
-}
-
 bool MatchModel::head_force(const MatchSoil& soil, std::size_t first, std::span<double> out) const {
   Line line = line_;
   apply(soil, line);
+  // 0.9 of the bare pile's stable step, less where the soil's damping asks
+  // for it: continuous in the soil, so that its finite differences are.
   Case c = case_;
   c.time.step = std::min(bare_step_, 0.95 * line_stable_step(line, false));
   const double dt = c.time.step;

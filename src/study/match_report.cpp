@@ -47,6 +47,12 @@ StaticTest static_load_test(const MatchModel& model, const MatchSoil& soil) {
     shortening += carried / line.bonds[j].stiffness;
   }
   t.s_c = std::max(soil.toe_quake, soil.shaft_quake) + shortening;
+  // The closed form with E A at the gauges (the far end's element):
+  // s_c itself on a uniform pile, not on [[segment]]s of other sections.
+  double moment = soil.toe * model.segment_bottom(model.segments() - 1);
+  for (std::size_t i = 0; i < soil.shaft.size(); ++i)
+    moment += soil.shaft[i] * 0.5 * (model.segment_top(i) + model.segment_bottom(i));
+  t.s_c_uniform = std::max(soil.toe_quake, soil.shaft_quake) + moment / line.bonds.back().axial;
   constexpr int increments = 150;
   for (int i = 0; i <= increments; ++i) {
     const double s = 1.5 * t.s_c * i / increments;
@@ -109,26 +115,50 @@ std::string static_csv(const MatchResult& r) {
   return out;
 }
 
-std::string match_summary_json(const MatchResult& r) {
-  using nlohmann::ordered_json;
-  ordered_json j;
+namespace {
+
+nlohmann::ordered_json start_json(const MatchStart& st) {
+  return {{"capacity", st.soil.capacity()}, {"shaft", st.soil.shaft_total()}, {"toe", st.soil.toe},
+          {"match_quality", st.quality},    {"objective", st.objective},      {"start_capacity", st.start.capacity()},
+          {"iterations", st.iterations},    {"evaluations", st.evaluations},  {"converged", st.converged},
+          {"message", st.message}};
+}
+
+// The matched soil and the settings it was matched with.
+void add_soil(nlohmann::ordered_json& j, const MatchResult& r) {
   const auto& s = r.soil;
-  double lo = s.capacity(), hi = lo;
-  ordered_json starts = ordered_json::array();
-  for (const auto& st : r.starts) {
-    lo = std::min(lo, st.soil.capacity());
-    hi = std::max(hi, st.soil.capacity());
-    starts.push_back({{"capacity", st.soil.capacity()},
-                      {"shaft", st.soil.shaft_total()},
-                      {"toe", st.soil.toe},
-                      {"match_quality", st.quality},
-                      {"objective", st.objective},
-                      {"start_capacity", st.start.capacity()},
-                      {"iterations", st.iterations},
-                      {"evaluations", st.evaluations},
-                      {"converged", st.converged},
-                      {"message", st.message}});
-  }
+  j["shaft_quake"] = s.shaft_quake;
+  j["toe_quake"] = s.toe_quake;
+  j["shaft_damping"] = s.shaft_damping;
+  j["toe_damping"] = s.toe_damping;
+  j["damping_law"] = s.law == DampingLaw::smith ? "smith" : "viscous";
+  j["segments"] = s.shaft.size();
+  j["embedded"] = r.embedded;
+  j["smoothing"] = r.pda.record.match.smoothing;
+}
+
+// What of the record was matched: the window, the filter, the Case method's references.
+void add_record(nlohmann::ordered_json& j, const MatchResult& r) {
+  j["window"] = r.window;
+  j["low_pass"] = r.pda.signals.filtered ? nlohmann::ordered_json(r.pda.signals.cutoff) : nullptr;
+  if (!r.pda.signals.filter_note.empty()) j["low_pass_note"] = r.pda.signals.filter_note;
+  j["window_start"] = r.pda.t_foot;
+  j["window_end"] = r.pda.t2 + r.window;
+  j["samples_matched"] = r.computed.size();
+  j["s_c"] = r.static_test.s_c;
+  j["s_c_uniform"] = r.static_test.s_c_uniform;
+  j["case_method_rmx"] = r.pda.rmx;
+  j["t1"] = r.pda.t1;
+  j["t2"] = r.pda.t2;
+  j["impedance"] = r.pda.record.impedance();
+  j["length"] = r.pda.record.length();
+}
+
+}  // namespace
+
+std::string match_summary_json(const MatchResult& r) {
+  nlohmann::ordered_json j;
+  const auto& s = r.soil;
   // The contract's keys first.
   j["capacity"] = s.capacity();
   j["shaft"] = s.shaft_total();
@@ -137,41 +167,15 @@ std::string match_summary_json(const MatchResult& r) {
   j["evaluations"] = r.evaluations;
   j["iterations"] = r.iterations;
   j["starts"] = r.starts.size();
-  j["spread"] = hi - lo;
-  j["spread_relative"] = s.capacity() > 0.0 ? (hi - lo) / s.capacity() : 0.0;
+  j["spread"] = r.spread();
+  j["spread_relative"] = s.capacity() > 0.0 ? r.spread() / s.capacity() : 0.0;
   j["best_start"] = r.best + 1;
   j["converged"] = r.converged();
-  j["shaft_quake"] = s.shaft_quake;
-  j["toe_quake"] = s.toe_quake;
-  j["shaft_damping"] = s.shaft_damping;
-  j["toe_damping"] = s.toe_damping;
-  j["damping_law"] = s.law == DampingLaw::smith ? "smith" : "viscous";
-  j["segments"] = s.shaft.size();
-  j["embedded"] = r.embedded;
-  j["window"] = r.window;
-  j["smoothing"] = r.pda.record.match.smoothing;
-  j["low_pass"] = r.pda.signals.filtered ? ordered_json(r.pda.signals.cutoff) : ordered_json(nullptr);
-  if (!r.pda.signals.filter_note.empty()) j["low_pass_note"] = r.pda.signals.filter_note;
-  j["window_start"] = r.pda.t_foot;
-  j["window_end"] = r.pda.t2 + r.window;
-  j["samples_matched"] = r.computed.size();
-  j["s_c"] = r.static_test.s_c;
-  // The closed form with E A at the gauges: s_c itself on a uniform
-  // pile; on [[segment]]s s_c integrates N / E A section by section instead.
-  {
-    const auto& seg = r.pda.record.segments.front();
-    double moment = s.toe * r.pda.record.length();
-    for (std::size_t i = 0; i < s.shaft.size(); ++i)
-      moment += s.shaft[i] * 0.5 * (r.segment_top[i] + r.segment_bottom[i]);
-    j["s_c_uniform"] = std::max(s.toe_quake, s.shaft_quake) + moment / (seg.modulus * seg.area);
-  }
-  j["case_method_rmx"] = r.pda.rmx;
-  j["t1"] = r.pda.t1;
-  j["t2"] = r.pda.t2;
-  j["impedance"] = r.pda.record.impedance();
-  j["length"] = r.pda.record.length();
+  add_soil(j, r);
+  add_record(j, r);
   j["seconds"] = r.seconds;
-  j["start_results"] = starts;
+  j["start_results"] = nlohmann::ordered_json::array();
+  for (const auto& st : r.starts) j["start_results"].push_back(start_json(st));
   j["warnings"] = r.warnings();
   j["units"] = {{"system", "SI"}, {"force", "N"}, {"length", "m"}, {"time", "s"}, {"damping", "s/m"}};
   j["record"] = r.pda.record.origin.string();

@@ -54,15 +54,12 @@ class MatchModel {
   [[nodiscard]] double segment_top(std::size_t i) const;
   [[nodiscard]] double segment_bottom(std::size_t i) const;
   [[nodiscard]] const Line& line() const { return line_; }
-  /// The step of a run with `soil`: 0.9 of the bare pile's stable step, less
-  /// where the soil's damping asks for it (line_stable_step).
-  [[nodiscard]] double step(const MatchSoil& soil) const;
   /// Sets a copy of line()'s shaft and toe to `soil`.
   void apply(const MatchSoil& soil, Line& line) const;
 
  private:
   const PileSignals* signals_;
-  double t_start_, t_end_;
+  double t_start_;
   Case case_;  // the scheme's settings
   Line line_;  // the pile, toe at x = 0, the far end driven
   std::size_t segments_ = 0;
@@ -78,6 +75,7 @@ struct MatchStart {
   MatchSoil start, soil;
   double quality = 0.0;    ///< rms force difference over the largest measured force
   double objective = 0.0;  ///< what the fit minimised: quality^2 with the smoothing penalty (the best start's least)
+  std::vector<double> computed;  ///< its force at the window's samples
   int iterations = 0;
   long long evaluations = 0;
   bool converged = false;
@@ -89,6 +87,9 @@ struct MatchStart {
 struct StaticTest {
   std::vector<double> settlement, load;
   double s_c = 0.0;  ///< where the load reaches the capacity: the largest quake plus the pile's shortening
+  /// max(q_toe, q_shaft) + (R_toe L + sum R_i z_i) / (E A) with E A at the
+  /// gauges: s_c on a uniform pile (its closed form), not on [[segment]]s.
+  double s_c_uniform = 0.0;
 };
 
 struct MatchResult {
@@ -110,6 +111,8 @@ struct MatchResult {
   /// Whether a start converged (Ceres' tolerances); false: every start ran
   /// out of iterations or failed, and the match may not be a minimum.
   [[nodiscard]] bool converged() const;
+  /// The starts' largest capacity less their smallest (N).
+  [[nodiscard]] double spread() const;
   /// What to doubt about the match, one line each (summary.json's
   /// `warnings`): match-unfiltered (an uneven record), match-not-converged.
   [[nodiscard]] std::vector<std::string> warnings() const;
