@@ -249,9 +249,9 @@ TEST(Match, RecoversTheForwardBlowsSoil) {
 
 // White noise of 2% of each channel's peak on each channel and the velocity
 // 1% high: capacity within 5%, shaft and toe within 10% (the issue's
-// bounds; measured 1498, 587 and 911 kN, quality 1.0%). Over ten noise
+// bounds; measured 1499, 593 and 906 kN, quality 1.0%). Over ten noise
 // seeds on examples/pda's record the capacity stayed within 0.5% and the
-// shaft within 6.2% (docs/pda.md); without the smoothing penalty the shaft
+// shaft within 5.1% (bench/match_noise.py); without the smoothing penalty the shaft
 // spread to -15%, trading the deepest segment for the toe.
 TEST(Match, RecoversTheSoilThroughNoiseAndAVelocityCalibration) {
   testing::ScratchDirectory dir("match-noisy");
@@ -262,7 +262,7 @@ TEST(Match, RecoversTheSoilThroughNoiseAndAVelocityCalibration) {
 // The same noise on a record sampled at about 11 kHz (every fifth sample of
 // the blow's 55 kHz), as analysers record: fewer samples carry the same
 // noise, low-passed at a quarter of the sampling rate (measured 1511, 592
-// and 920 kN, quality 1.7%).
+// and 919 kN, quality 1.7%).
 TEST(Match, RecoversTheSoilThroughNoiseAtAnAnalysersRate) {
   testing::ScratchDirectory dir("match-noisy-11k");
   const MatchResult m =
