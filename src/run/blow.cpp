@@ -41,6 +41,7 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
   ram_last_ = line.bodies[ram].last;
   for (std::size_t i = 0; i < line.links.size(); ++i) {
     if (line.links[i].b == ram_first_ && !line.links[i].is_end) ram_link_ = i;
+    if (!line.links[i].is_end && line.links[i].a >= last_ && line.links[i].b <= ram_first_) hammer_links_.push_back(i);
     if (line.links[i].name == "near_end" && line.links[i].law.kind == LawKind::smith) {
       toe_link_ = i;
       toe_quake_ = line.links[i].law.soil.quake;
@@ -75,6 +76,7 @@ BlowMonitor::BlowMonitor(const Case& c, const Line& line) : line_(line), dt_(c.t
     transit_ += h_c;
   }
   out_.precursor.body = out_.pile;
+  open_at_apex_.assign(hammer_links_.size(), 0);
   if (c.blow.rest_window) out_.rest_window = *c.blow.rest_window;
   start_ = out_;
   mass_ = line.lumped_mass();
@@ -87,11 +89,15 @@ void BlowMonitor::begin(const Scheme& /*scheme*/, long long /*steps*/) {
   power_ = energy_ = 0.0;
   impacted_ = false;
   at_rest_ = rested_ = false;
+  ram_rising_ = apex_ = restruck_ = false;
   slip_ = 0.0;
 }
 
 bool BlowMonitor::observe(const Scheme& s) {
+  if (restruck_) return true;  // the first strike's blow is over: nothing after it counts
   watch_impact(s);
+  if (!diesel_) watch_restrike(s);
+  if (restruck_) return true;
   watch_stresses(s);
   if (gauge_) {  // ENTHRU: int N v dt by trapezoids, its largest value
     const double power = gauge_force(line_, s, *gauge_) * gauge_velocity(s, *gauge_);
@@ -116,6 +122,38 @@ void BlowMonitor::watch_rebound(const Scheme& s) {
   const double y = s.link_opening(ram_link_), v = s.velocity_at(ram_first_);
   if (y >= line_.links[ram_link_].law.gas.compression_length && v > 0.0)
     out_.next_stroke = y + v * v / (2.0 * line_.gravity);
+}
+
+// A re-strike: the ram, risen in free flight after impact (its link open,
+// moving up faster than the rest rule's 1% of the impact velocity), turns
+// two round trips or more after impact and falls back; the first step after
+// that turn at which a joint of the hammer that was open then pushes again
+// (the helmet landing on the pile, the ram on its capblock) is a second
+// strike. It ends the blow if the blow is over by then (settled());
+// otherwise the pile is still moving and it is part of the blow.
+// (A diesel's ram, which its gas catches, is its stroke iteration's.)
+void BlowMonitor::watch_restrike(const Scheme& s) {
+  if (!impacted_ || ram_link_ == Link::ground) return;
+  const double v = s.velocity_at(ram_first_);
+  const bool free = s.link_force(ram_link_) <= 0.0;
+  if (!apex_) {
+    ram_rising_ = free && (ram_rising_ || v > 0.01 * std::abs(out_.impact_velocity));
+    if (!ram_rising_ || v > 0.0 || s.time() < out_.impact_time + 4.0 * transit_) return;
+    apex_ = true;
+    for (std::size_t k = 0; k < hammer_links_.size(); ++k) open_at_apex_[k] = s.link_force(hammer_links_[k]) <= 0.0;
+    return;
+  }
+  for (std::size_t k = 0; k < hammer_links_.size(); ++k)
+    if (open_at_apex_[k] && s.link_force(hammer_links_[k]) > 0.0) {
+      if (settled(s.time())) {
+        restruck_ = true;
+        out_.restrike_time = s.time();
+      } else {
+        ++out_.strikes;
+        apex_ = ram_rising_ = false;
+      }
+      return;
+    }
 }
 
 // Impact: the first step the link below the ram pushes (from t = 0 without
@@ -172,6 +210,7 @@ void BlowMonitor::watch_rest(const Scheme& s) {
   const double slip = s.soil_slip_work();
   if (slip > slip_ && !rested_) {
     slip_ = slip;
+    out_.last_slip_time = s.time();
     at_rest_ = false;
   }
   if (!impacted_ || rested_) return;
@@ -187,11 +226,21 @@ void BlowMonitor::watch_rest(const Scheme& s) {
   rested_ = out_.rest_window > 0 && s.time() - out_.rest_time >= out_.rest_window;
 }
 
+// The blow is over at time t: the pile at rest, or the soil not slipping
+// for ten round trips (20 L/c; the ringing since is elastic), the wave
+// having reached and moved the toe.
+bool BlowMonitor::settled(double t) const {
+  if (at_rest_ || rested_) return true;
+  if (!(out_.toe_penetration > 0.0) || t < out_.impact_time + transit_) return false;
+  const double since = std::isnan(out_.last_slip_time) ? out_.impact_time : out_.last_slip_time;
+  return t - since >= 20.0 * transit_;
+}
+
 BlowSummary BlowMonitor::summary() const {
   BlowSummary b = out_;
   b.impact = impacted_;
-  b.finished = at_rest_ || rested_;
-  if (!b.finished) b.rest_time = std::numeric_limits<double>::quiet_NaN();
+  b.finished = at_rest_ || rested_ || restruck_;
+  if (!(at_rest_ || rested_)) b.rest_time = std::numeric_limits<double>::quiet_NaN();
   b.set = std::max(0.0, b.toe_penetration - toe_quake_);
   if (toe_link_ == Link::ground && !line_.shaft.empty()) {  // no toe spring: the shaft's quake at the toe
     const std::size_t j = line_.shaft.nodes.front();

@@ -350,6 +350,9 @@ BlowSummary read_blow(const nlohmann::json& j) {
   b.impact = j.value("impact", true);
   b.finished = j.value("finished", false);
   b.rest_time = number_or_nan(j, "rest_time");
+  b.restrike_time = number_or_nan(j, "restrike_time");
+  b.last_slip_time = number_or_nan(j, "last_slip_time");
+  b.strikes = j.value("strikes", 1);
   b.diesel = j.contains("next_stroke");
   b.next_stroke = number_or_nan(j, "next_stroke");
   b.compression_work = number_or_nan(j, "compression_work");
@@ -482,6 +485,9 @@ nlohmann::json blow_json(const Summary& s) {
       {"finished", b->finished},
       {"rest_time", number_or_null(b->rest_time)},
       {"rest_window", number_or_null(b->rest_window)},
+      {"restrike_time", number_or_null(b->restrike_time)},
+      {"last_slip_time", number_or_null(b->last_slip_time)},
+      {"strikes", b->strikes},
       {"precursor", stress_peak_json(b->precursor)},
       {"impact", b->impact},
       {"impedance", number_or_null(b->impedance)},
@@ -557,6 +563,17 @@ std::string signed_number(double v) {
 namespace {
 
 // The blow's console lines: "no impact" when the ram never struck; a set of
+// How the blow ended: at rest, settled before the ram struck again, or not.
+std::string blow_end_text(const BlowSummary& b) {
+  std::string out = !std::isnan(b.rest_time) ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
+                    : b.finished             ? fmt::format("the soil's last slip at t = {:.4g}", b.last_slip_time)
+                                             : std::string("the pile had not come to rest");
+  if (b.strikes > 1) out += fmt::format(" after {} strikes (the ram fell back on the pile before it came to rest)", b.strikes);
+  if (!std::isnan(b.restrike_time))
+    out += fmt::format("; the ram fell back and struck again at t = {:.4g}: the blow ends there", b.restrike_time);
+  return out;
+}
+
 // 0 is a refusal only when the pile came to rest; no inf or nan printed.
 // Engineering units (mm, MPa, J) under [units] system = "SI", the case's own
 // numbers without a unit otherwise.
@@ -583,9 +600,7 @@ std::string blow_text(const BlowSummary& b, bool si) {
       fmt::format("  hammer energy {:.4g}{} at t = {:.4g}; ENTHRU {}{}; {}\n", b.hammer_energy, joules, b.impact_time,
                   std::isnan(b.enthru) ? std::string("not measured (no gauge on the pile)")
                                        : fmt::format("{:.4g}{} at {}", b.enthru, joules, b.gauge),
-                  std::isnan(b.enthru) ? "" : ratio,
-                  b.finished ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
-                             : std::string("the pile had not come to rest"));
+                  std::isnan(b.enthru) ? "" : ratio, blow_end_text(b));
   if (b.diesel)
     out += fmt::format("  diesel: {}next stroke {}; gas works W_c {:.4g}{}, W_e {:.4g}{}\n",
                        b.blows_run > 1 ? fmt::format("blow {} from a stroke of {:.4g} m (the first set {:.4g} mm); ",

@@ -139,6 +139,21 @@ void touch_ram(const Case& c, const Line& line, LineScheme::SoilRest& rest) {
   for (std::size_t j = first; first > 0 && j < rest.u.size(); ++j) rest.u[j] = rest.u[first - 1];
 }
 
+// A soil of Smith's springs alone whose capacity is below the weight resting
+// on it has no static rest: the pile sinks under its own weight (a capacity
+// in kN read as N, most likely).
+void check_soil_holds(const Case& c, const Line& line, double weight) {
+  const bool smith_toe = !line.links.empty() && line.links.front().name == "near_end";
+  if (smith_toe && line.links.front().law.kind != LawKind::smith) return;  // a stop that holds any weight
+  const double toe = smith_toe ? line.links.front().law.soil.ultimate : 0.0;
+  const double capacity = toe + std::accumulate(line.shaft.ultimate.begin(), line.shaft.ultimate.end(), 0.0);
+  if (capacity >= weight) return;
+  c.refuse(smith_toe ? "near_end.ultimate" : "body.shaft.ultimate",
+           fmt::format("the soil's static capacity ({:.4g} N, toe and shaft) is below the weight resting on it under "
+                       "[load] gravity ({:.4g} N, the pile and what sits on it): no static rest (capacities in kN?)",
+                       capacity, weight));
+}
+
 }  // namespace
 
 bool start_at_rest(const Case& c, Scheme& scheme) {
@@ -151,6 +166,7 @@ bool start_at_rest(const Case& c, Scheme& scheme) {
   const std::size_t count = below_ram(c, line);
   const std::vector<double> mass = line.lumped_mass();
   const double weight = line.gravity * std::accumulate(mass.begin(), mass.begin() + static_cast<long>(count), 0.0);
+  check_soil_holds(c, line, weight);
   (void)settle(line, count, line.gravity, rest, 1e-9 * std::max(weight, 1.0));  // the weight's balance to 1e-9
   touch_ram(c, line, rest);
   line_scheme->resume_soil(std::move(rest));

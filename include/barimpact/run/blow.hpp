@@ -42,8 +42,17 @@ struct BlowSummary {
   /// the toe and moved it, and stayed so to the end of the run or, with
   /// [blow] rest_window, for that long (a blow cut short before then, or
   /// still ringing at its end, is not finished).
+  /// Under gravity a ram that rebounds falls back and strikes again. Once
+  /// the blow is over (the pile at rest, or the soil not slipping for ten
+  /// round trips, 20 L/c) that is the next strike, which a hammer in
+  /// service (caught and lifted) would not give: the blow ends there
+  /// (restrike_time), finished, every number the strikes' before it. One
+  /// landing before then, the pile still moving, is part of the blow (strikes).
   bool finished = false;
   double rest_time = std::numeric_limits<double>::quiet_NaN();
+  double restrike_time = std::numeric_limits<double>::quiet_NaN();   ///< NaN: none in the run
+  double last_slip_time = std::numeric_limits<double>::quiet_NaN();  ///< the soil's last slip; NaN: none
+  int strikes = 1;  ///< the ram's strikes in the blow: more than 1 when it fell back before the blow was over
   double rest_window = std::numeric_limits<double>::quiet_NaN();  ///< [blow] rest_window, NaN: to the run's end
   /// The largest tension (>= 0) in an element before the stress wave from
   /// the head can have reached it (two element transits of margin): what a
@@ -103,6 +112,8 @@ class BlowMonitor final : public Observer {
   void watch_impact(const Scheme& s);
   void watch_rest(const Scheme& s);
   void watch_rebound(const Scheme& s);
+  void watch_restrike(const Scheme& s);
+  [[nodiscard]] bool settled(double t) const;
 
   const Line& line_;
   BlowSummary start_;  // what a run starts from: the names, the envelopes' x, nothing seen yet
@@ -118,11 +129,16 @@ class BlowMonitor final : public Observer {
   double dt_ = 0.0, power_ = 0.0, energy_ = 0.0;
   double ram_energy_ = 0.0, ram_velocity_ = 0.0;  // at the last step observed
   bool impacted_ = false;
-  double slip_ = 0.0;            // the soil's slip work at the last step
-  double transit_ = 0.0;         // the wave's time from the pile's head to its toe
-  std::vector<double> arrival_;  // per element: the wave's time from the head, less two element transits
-  bool at_rest_ = false;         // below the rule since out_.rest_time, after the last slip
-  bool rested_ = false;          // at rest for the whole rest window: finished, whatever follows
+  double slip_ = 0.0;                      // the soil's slip work at the last step
+  double transit_ = 0.0;                   // the wave's time from the pile's head to its toe
+  std::vector<double> arrival_;            // per element: the wave's time from the head, less two element transits
+  bool at_rest_ = false;                   // below the rule since out_.rest_time, after the last slip
+  bool rested_ = false;                    // at rest for the whole rest window: finished, whatever follows
+  std::vector<std::size_t> hammer_links_;  // the joints from the pile's head up to the ram's
+  std::vector<char> open_at_apex_;         // per hammer link: open when the rising ram turned
+  bool ram_rising_ = false;                // the ram moving up, its link open, after impact
+  bool apex_ = false;                      // the ram turned in free flight: it falls back
+  bool restruck_ = false;                  // a hammer link closed again after the apex: the blow is over
 };
 
 }  // namespace barimpact
