@@ -149,9 +149,10 @@ void check_soil_holds(const Case& c, const Line& line, double weight) {
   const double capacity = toe + std::accumulate(line.shaft.ultimate.begin(), line.shaft.ultimate.end(), 0.0);
   if (capacity >= weight) return;
   c.refuse(smith_toe ? "near_end.ultimate" : "body.shaft.ultimate",
-           fmt::format("the soil's static capacity ({:.4g} N, toe and shaft) is below the weight resting on it under "
-                       "[load] gravity ({:.4g} N, the pile and what sits on it): no static rest (capacities in kN?)",
-                       capacity, weight));
+           fmt::format("= {:g}: the soil's static capacity, toe and shaft, {:.4g} N, is below the weight resting on "
+                       "it under [load] gravity ({:.4g} N, the pile and what sits on it): no static rest (capacities "
+                       "are in N: kN?)",
+                       smith_toe ? toe : capacity, capacity, weight));
 }
 
 }  // namespace

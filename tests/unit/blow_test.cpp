@@ -380,7 +380,7 @@ TEST(SmithBlow, ACapacityBelowThePilesWeightWarnsOfKilonewtons) {
     ADD_FAILURE() << "a soil that cannot carry the pile's weight under gravity ran";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("near_end.ultimate"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("no static rest (capacities in kN?)"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no static rest (capacities are in N: kN?)"), std::string::npos) << e.what();
   }
 }
 
