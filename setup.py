@@ -3,11 +3,13 @@ the compiled core (_core) goes into the package beside its Python files,
 and the `barimpact` command into the environment's bin/ (it finds the
 package beside itself, in ../lib/pythonX.Y/site-packages).
 
-It configures and builds a CMake build of its own (Release), unless
-BARIMPACT_CMAKE_BUILD_DIR names an existing build tree of this source
-tree configured for the same Python (build/release, say): then it brings
-that tree's module and command up to date and packages them, without
-compiling the library again (the test suite's pip installs do this)."""
+It packages an existing build tree of this source when there is one it
+can use: the one BARIMPACT_CMAKE_BUILD_DIR names, else build/release (what
+`make demo` builds) or build/ci, if configured for the same Python and not
+instrumented. It brings that tree's module and command up to date and
+packages them without compiling the library again (minutes saved). Else,
+or with BARIMPACT_CMAKE_BUILD_DIR set empty, it configures and builds a
+CMake build of its own (Release)."""
 import os
 import re
 import subprocess
@@ -29,16 +31,16 @@ class CMakeExtension(Extension):
         super().__init__(name, sources=[])
 
 
-def existing_build(build):
-    """BARIMPACT_CMAKE_BUILD_DIR's build tree, refused unless its module and
-    command are what a build of its own would package: configured from this
-    source tree, for this interpreter (the module's ABI, where the command
-    looks for the package), with the module and without instrumentation (a
-    sanitized or fuzzing _core cannot be imported by a plain Python)."""
+def build_problems(build):
+    """Why a build tree's module and command are not what a build of its own
+    would package ([] if they are): configured from this source tree, for
+    this interpreter (the module's ABI, where the command looks for the
+    package), with the module and without instrumentation (a sanitized or
+    fuzzing _core cannot be imported by a plain Python)."""
     try:
         lines = (build / "CMakeCache.txt").read_text().splitlines()
     except OSError:
-        sys.exit(f"BARIMPACT_CMAKE_BUILD_DIR={build}: not a CMake build tree (no CMakeCache.txt)")
+        return ["not a CMake build tree (no CMakeCache.txt)"]
     cache = dict(m.groups() for m in map(re.compile(r"(\w+):\w+=(.*)").fullmatch, lines) if m)
 
     def on(option):
@@ -51,18 +53,35 @@ def existing_build(build):
         problems.append(f"configured for {cache.get('BARIMPACT_PYTHON')}, not for this Python ({sys.executable})")
     if not on("BARIMPACT_BUILD_PYTHON"):
         problems.append("BARIMPACT_BUILD_PYTHON is OFF")
-    problems += [f"{option} is ON" for option in ("BARIMPACT_SANITIZE", "BARIMPACT_FUZZ") if on(option)]
-    if problems:
-        sys.exit(f"BARIMPACT_CMAKE_BUILD_DIR={build} cannot be packaged: " + "; ".join(problems))
-    return build
+    if cache.get("CMAKE_BUILD_TYPE", "") != "Release":
+        problems.append(f"CMAKE_BUILD_TYPE is {cache.get('CMAKE_BUILD_TYPE') or 'unset'}, not Release")
+    return problems + [f"{option} is ON" for option in ("BARIMPACT_SANITIZE", "BARIMPACT_FUZZ") if on(option)]
+
+
+def existing_build():
+    """The build tree to package: BARIMPACT_CMAKE_BUILD_DIR's (refused with
+    its problems), else build/release or build/ci when usable; None: none."""
+    named = os.environ.get("BARIMPACT_CMAKE_BUILD_DIR")
+    if named:
+        build = Path(named).resolve()
+        problems = build_problems(build)
+        if problems:
+            sys.exit(f"BARIMPACT_CMAKE_BUILD_DIR={build} cannot be packaged: " + "; ".join(problems))
+        return build
+    if named is not None:  # set empty: a build of its own
+        return None
+    for build in (ROOT / "build" / "release", ROOT / "build" / "ci"):
+        if build.is_dir() and not build_problems(build):
+            print(f"barimpact: packaging the existing build {build} (BARIMPACT_CMAKE_BUILD_DIR= for a build of its own)")
+            return build
+    return None
 
 
 class CMakeBuild(build_ext):
     def build_extension(self, ext):
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(os.cpu_count() or 1))
-        if os.environ.get("BARIMPACT_CMAKE_BUILD_DIR"):
-            build = existing_build(Path(os.environ["BARIMPACT_CMAKE_BUILD_DIR"]).resolve())
-        else:
+        build = existing_build()
+        if build is None:
             build = Path(self.build_temp).resolve() / "cmake"
             configure = ["cmake", "-S", str(ROOT), "-B", str(build), "-DCMAKE_BUILD_TYPE=Release",
                          "-DBARIMPACT_BUILD_TESTS=OFF", "-DBARIMPACT_BUILD_BENCH=OFF",

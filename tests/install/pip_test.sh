@@ -34,6 +34,12 @@ ls "$work"/dist/barimpact-*.tar.gz > /dev/null 2>&1 && ok || bad "python3 -m bui
   bad "pip install of the wheel: $(tail -3 "$work/wheel.log")"
 
 if [ -n "$build" ]; then
+  # The README's command, nothing set: the source tree's Release build (build/release or build/ci)
+  # is packaged, not compiled again (a build of its own took 12.5 minutes).
+  "$python" -m venv --system-site-packages "$work/auto-venv" &&
+    env -u BARIMPACT_CMAKE_BUILD_DIR "$work/auto-venv/bin/pip" install -v --no-build-isolation --no-index . \
+      > "$work/auto.log" 2>&1 && grep -q "barimpact: packaging the existing build $source_dir/build/" "$work/auto.log" &&
+    ok || bad "pip install . did not package the existing build: $(grep -i "error\|packaging" "$work/auto.log" | head -3)"
   # Packaged from the build tree, the installed files must not lead back into it.
   grep -rlF "$build" "$work/venv/bin/barimpact" "$work"/venv/lib/python3*/site-packages/barimpact > "$work/refs"
   [ ! -s "$work/refs" ] && ok || bad "installed files name the build tree: $(head -3 "$work/refs")"
