@@ -46,6 +46,11 @@ refused "a line beyond ulimit -v" $? "$work/err" "body.long.elements"
   --set time.end=1.5 --set "output.fields_at=[$(seq -s, 0 0.01 1.5)]" > /dev/null 2> "$work/err") && ok ||
   bad "151 snapshots in 80 MB: $(cat "$work/err")"
 cmp -s "$work/held/fields.csv" "$work/streamed/fields.csv" && ok || bad "streamed fields.csv differs"
+# results.h5 too is written as the run goes (it was made whole in memory,
+# twice the file at the end: the same run was refused in 80 MB).
+(ulimit -v 80000 && "$bin" run "$ex1" --out "$work/streamed-h5" --set bar.elements=10000 --set time.step=1e-3 \
+  --set time.end=1.5 --set "output.fields_at=[$(seq -s, 0 0.01 1.5)]" --set output.format=hdf5 > /dev/null \
+  2> "$work/err") && [ -s "$work/streamed-h5/results.h5" ] && ok || bad "151 snapshots in results.h5 in 80 MB: $(cat "$work/err")"
 fi
 # Outputs above 1 GB get a warning line (here 101 snapshots of 10^6 nodes); check still succeeds.
 "$bin" check "$ex1" --set bar.elements=1000000 --set time.step=1e-3 > "$work/out" 2> "$work/err" && ok ||
