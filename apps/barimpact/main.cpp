@@ -63,6 +63,7 @@
 #include <mpi.h>
 #endif
 #include "barimpact/exact/tabulate.hpp"
+#include "barimpact/model/setup_polling.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "barimpact/study/paper_batch.hpp"
@@ -1139,6 +1140,8 @@ int report(const std::exception_ptr& failure) {
     std::rethrow_exception(failure);
   } catch (const Reported& r) {
     return r.status;
+  } catch (const barimpact::Interrupted&) {
+    return exit_interrupted();  // a study's set-up: nothing run yet, nothing to say
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());
     return exit_bad_input;

@@ -86,6 +86,14 @@ stops "check SIGTERM" TERM 0.5 143 "$bin" check "$ex1" --set bar.elements=500000
 stops "run set-up SIGINT" INT 0.3 130 "$bin" run "$ex1" --out "$work/setup" --set bar.elements=5000000 \
   --set time.scheme=newmark --set time.step=1e-7 --set time.end=1e-4 --set output.fields_at=[]
 ls -a "$work" | grep -q partial && bad "run set-up SIGINT: staging left" || ok
+# A study's case in its set-up: a sweep's case of 10^7 elements on Newmark
+# builds its line and factors for seconds (it ignored the signal until its
+# time loop began, 3 to 8 s later).
+printf 'case = "%s"\n[set]\noutput.fields_at = []\ntime.scheme = "newmark"\ntime.step = 1e-7\ntime.end = 1e-4\n[[axis]]\nkey = "bar.elements"\nvalues = [10000000]\n' \
+  "$ex1" > "$work/setup-sweep.toml"
+stops "sweep set-up SIGINT" INT 1.0 130 "$bin" sweep "$work/setup-sweep.toml" --out "$work/setup-sweep"
+stops "sweep set-up SIGTERM" TERM 0.5 143 "$bin" sweep "$work/setup-sweep.toml" --out "$work/setup-sweep"
+find "$work/setup-sweep" -name '*partial*' | grep -q . && bad "sweep set-up: staging left" || ok
 # A FIFO case file is refused at once, never opened (it blocked until a writer came).
 mkfifo "$work/case.fifo"
 timeout -k 1 5 "$bin" run "$work/case.fifo" --out "$work/fifo" > /dev/null 2> "$work/err"
