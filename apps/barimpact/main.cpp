@@ -3,7 +3,7 @@
 //   barimpact run CASE.toml --out DIR [--set section.key=value]...
 //   barimpact exact CASE.toml --out DIR [--set ...]   (the exact solution, same files)
 //   barimpact plot DIR [--out FIGURES]      (runs the Python package's plots)
-//   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch]   (also under mpirun -n P)
+//   barimpact sweep SWEEP.toml --out DIR [--jobs N] [--no-batch] [--ranks P]   (also under mpirun -n P)
 //   barimpact bearing CASE.toml --out DIR --capacity FROM:TO:COUNT [--toe-share S] [--set K=V ...] [--jobs N]
 //   barimpact drive CASE.toml --out DIR [--set K=V ...] [--jobs N] [--no-plot]
 //   barimpact inspector CASE.toml --out DIR --stroke FROM:TO:COUNT [--depth D] [--set K=V ...] [--no-plot]
@@ -33,7 +33,10 @@
 #include <new>
 #include <optional>
 #include <string_view>
+#include <system_error>
 
+#include <fcntl.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 
 #include <chrono>
@@ -63,6 +66,7 @@
 #include <mpi.h>
 #endif
 #include "barimpact/exact/tabulate.hpp"
+#include "barimpact/model/setup_polling.hpp"
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "barimpact/study/paper_batch.hpp"
@@ -937,12 +941,93 @@ Command add_check(CLI::App& app) {
   return {c, [a] { return check_command(a->case_path, a->sets); }};
 }
 
+// The first `name` on PATH that can be run; empty when there is none.
+std::string on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream dirs(path != nullptr ? path : "");
+  std::error_code ec;
+  for (std::string dir; std::getline(dirs, dir, ':');) {
+    const auto file = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    if (::access(file.c_str(), X_OK) == 0 && !std::filesystem::is_directory(file, ec)) return file.string();
+  }
+  return {};
+}
+
+// Waits for `child`, passing this process's SIGINT or SIGTERM on to it
+// once; then 128 + that signal, else the child's exit status.
+int wait_passing_signal(pid_t child) {
+  bool passed = false;
+  int status = 0;
+  for (;;) {
+    const pid_t done = waitpid(child, &status, WNOHANG);
+    if (done == child) break;
+    if (done < 0 && errno != EINTR) throw std::system_error(errno, std::generic_category(), "--ranks: waitpid");
+    if (interrupted.load() && !passed) {
+      ::kill(child, static_cast<int>(received_signal));
+      passed = true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (interrupted.load()) return exit_interrupted();
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// sweep --ranks N: this command's sweep (`args`) under `mpiexec -n N`,
+// mpiexec from PATH. Open MPI's mpirun exits 1 when it is itself
+// signalled, whatever its ranks return: a SIGINT or SIGTERM here is passed
+// on to it (its ranks end their runs and write what is done) and the
+// command exits 128 + the signal, else with mpiexec's status.
+int launch_ranks(int ranks, std::vector<std::string> args) {
+#if !defined(BARIMPACT_MPI_PROGRAM) && !defined(BARIMPACT_HAVE_MPI)
+  throw barimpact::InputError(fmt::format("--ranks {}: this barimpact is built without MPI", ranks));
+#endif
+  if (ranks < 1)
+    throw barimpact::InputError(fmt::format("--ranks {}: the number of MPI ranks must be at least 1", ranks));
+  if (std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr)
+    throw barimpact::InputError(fmt::format("--ranks {}: the sweep is under mpirun already", ranks));
+  const std::string mpiexec = on_path("mpiexec");
+  if (mpiexec.empty())
+    throw barimpact::InputError(
+        fmt::format("--ranks {}: no mpiexec on PATH (install Open MPI, or run the sweep without --ranks)", ranks));
+  args.insert(args.begin(), {mpiexec, "-n", std::to_string(ranks),
+                             std::filesystem::read_symlink("/proc/self/exe").string(), "sweep"});
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  poll_signals();  // a signal from here on is passed on to mpiexec
+  std::fflush(stdout);
+  const pid_t parent = getpid(), pid = fork();
+  if (pid < 0) throw std::system_error(errno, std::generic_category(), "--ranks: fork");
+  if (pid == 0) {
+    // A group of its own, so that a signal to this command's group (Ctrl-C)
+    // reaches mpirun once, passed on: a second one makes it kill its ranks
+    // before they write what is done. No terminal input (read from a
+    // background group, it would stop mpirun); ended with this process.
+    setpgid(0, 0);
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(exit_bad_input);
+    if (const int null = open("/dev/null", O_RDONLY); null >= 0) dup2(null, STDIN_FILENO);
+    execv(argv[0], argv.data());
+    fmt::print(stderr, "barimpact: error: --ranks {}: cannot start {}: {}\n", ranks, mpiexec, std::strerror(errno));
+    _exit(exit_bad_input);
+  }
+  return wait_passing_signal(pid);
+}
+
 Command add_sweep(CLI::App& app) {
   struct Args {
     std::string file, out;
     barimpact::SweepOptions options;
     bool no_batch = false;
     WriteFlags flags;
+    std::optional<int> ranks;
+    // The sweep's own arguments, as a rank runs it (without --ranks).
+    [[nodiscard]] std::vector<std::string> sweep_arguments() const {
+      std::vector<std::string> args{file, "--out", out, "--jobs", std::to_string(options.jobs)};
+      for (auto [flag, on] : {std::pair{"--no-batch", no_batch}, {"--force", flags.force}, {"--strict", flags.strict}})
+        if (on) args.emplace_back(flag);
+      return args;
+    }
   };
   auto a = std::make_shared<Args>();
   auto* c = app.add_subcommand("sweep", "Run every case of a sweep file (runs/<id>/ and sweep.csv); resumes");
@@ -951,7 +1036,11 @@ Command add_sweep(CLI::App& app) {
   add_write_flags(c, a->flags);
   c->add_option("--jobs", a->options.jobs, jobs_help);
   c->add_flag("--no-batch", a->no_batch, "Run every case alone (no SIMD batches)");
+  c->add_option("--ranks", a->ranks,
+                "Run the sweep on N MPI ranks: mpiexec -n N of this command, mpiexec from PATH (a signal to this "
+                "process ends it with 130/143)");
   return {c, [a] {
+            if (a->ranks) return launch_ranks(*a->ranks, a->sweep_arguments());
             a->options.batch = !a->no_batch;
             a->options.interrupt = &interrupted;
             return sweep_command(a->file, a->out, a->options, a->flags);
@@ -1139,6 +1228,8 @@ int report(const std::exception_ptr& failure) {
     std::rethrow_exception(failure);
   } catch (const Reported& r) {
     return r.status;
+  } catch (const barimpact::Interrupted&) {
+    return exit_interrupted();  // a study's set-up: nothing run yet, nothing to say
   } catch (const barimpact::InputError& e) {
     fmt::print(stderr, "barimpact: error: {}\n", e.what());
     return exit_bad_input;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "../model/huge_pages.hpp"
+#include "barimpact/model/setup_polling.hpp"
 
 namespace barimpact {
 
@@ -84,6 +85,9 @@ End end_of(const LawData& d, std::size_t node) {
   return e;
 }
 
+// Nodes built between two looks at the set-up's interrupt.
+constexpr int setup_poll_nodes = 1 << 16;
+
 // Appends node at x, joined to the previous node (if any) by `bond`.
 void add_node(Line& line, double x, const Bond& bond) {
   if (!line.x.empty()) line.bonds.push_back(bond);
@@ -102,7 +106,10 @@ void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, con
     const double h = b.length / b.elements;
     const double ea = b.modulus * b.area, eta_a = b.viscosity * b.area;
     const Bond e{BondKind::element, h, ea / h, eta_a / h, b.density * b.area * h, b.area, index, ea, eta_a};
-    for (int k = 1; k <= b.elements; ++k) add_node(line, start + static_cast<double>(k) * h, e);
+    for (int k = 1; k <= b.elements; ++k) {
+      if (k % setup_poll_nodes == 0) poll_setup();  // a line of millions of nodes takes seconds
+      add_node(line, start + static_cast<double>(k) * h, e);
+    }
   }
   range.last = line.x.size() - 1;
   line.bodies.push_back(range);

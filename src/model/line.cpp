@@ -1,5 +1,7 @@
 #include "barimpact/model/line.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <array>
 #include <cmath>
 
@@ -28,6 +30,7 @@ std::string_view to_string(LawKind kind) {
 namespace {
 // Assembles per-bond coefficients c_j as c_j [[p, q], [q, p]].
 Tridiagonal assemble(const std::vector<Bond>& bonds, std::size_t nodes, double Bond::*field, double p, double q) {
+  poll_setup();  // line-sized: a study's case polls its interrupt between such phases
   Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes > 0 ? nodes - 1 : 0, 0.0)};
   for (std::size_t j = 0; j < bonds.size(); ++j) {
     const double c = bonds[j].*field;
@@ -56,6 +59,7 @@ Tridiagonal Line::viscosity() const {
 }
 
 std::vector<double> Line::lumped_mass() const {
+  poll_setup();
   std::vector<double> m = point_mass;
   for (std::size_t j = 0; j < bonds.size(); ++j) {
     m[j] += 0.5 * bonds[j].mass;
@@ -88,6 +92,7 @@ void Line::load(const Expression& f, double t, std::vector<double>& out) const {
 }
 
 std::vector<double> Line::initial(int which) const {
+  poll_setup();
   std::vector<double> out(nodes(), 0.0);
   for (const auto& b : bodies) {
     const Expression g(which == 0 ? b.displacement : b.velocity);

@@ -1,5 +1,7 @@
 #include "barimpact/model/tridiagonal.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <array>
 #include <cassert>
 #include <cmath>
@@ -30,6 +32,7 @@ Tridiagonal Tridiagonal::combine(double c1, const Tridiagonal& a, double c2, con
 }
 
 Tridiagonal Tridiagonal::combine(double c1, Tridiagonal&& a, double c2, const Tridiagonal& b) {
+  poll_setup();  // line-sized: a study's case polls its interrupt between such phases
   assert(a.size() == b.size());
   Tridiagonal r = std::move(a);
   for (std::size_t i = 0; i < r.diag.size(); ++i) r.diag[i] = c1 * r.diag[i] + c2 * b.diag[i];
@@ -38,6 +41,7 @@ Tridiagonal Tridiagonal::combine(double c1, Tridiagonal&& a, double c2, const Tr
 }
 
 FactoredTridiagonal::FactoredTridiagonal(const Tridiagonal& a, bool fix_last) {
+  poll_setup();
   const std::size_t n = a.size();
   inv_.assign(n, 0.0);
   coupling_.assign(n, 0.0);

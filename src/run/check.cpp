@@ -66,8 +66,8 @@ double time_steps(const Case& c, long long steps, std::string& trouble) {
 //     and the result's);
 //   field snapshots: one (u, v, sigma, eps_p of every node) while they
 //     stream to the run directory, all of them where the caller holds them;
-//   results.h5: the whole file is made in memory, twice at the end (an
-//     uncompressed upper bound).
+//   results.h5: written as the run goes; HDF5 holds a few chunks of each
+//     of the four fields (its chunk caches, 1 MiB each at most).
 double bytes_per_node(const Case& c) {
   struct Measured {
     std::string_view scheme;
@@ -97,6 +97,8 @@ double bytes_per_node(const Case& c) {
 // (a field still at rest writes shorter rows).
 constexpr double csv_value_bytes = 12.0;
 constexpr double fields_row_bytes = 92.0;
+// HDF5's default chunk cache of a dataset.
+constexpr double h5_chunk_cache_bytes = 1024.0 * 1024.0;
 
 // The history's columns: the budget's and the probes' (probe.cpp).
 std::size_t history_columns(const Case& c) {
@@ -157,7 +159,7 @@ ResourceEstimate estimate_resources(const Case& c, bool streamed_fields) {
   const double held = streamed_fields ? std::min(snapshots, 1.0) : snapshots;
   const double fields = e.snapshots > 0 ? 24.0 * nodes + 32.0 * nodes * held : 0.0;
   e.memory_bytes = bytes_per_node(c) * nodes + 2.0 * 8.0 * rows * columns + fields;
-  if (h5) e.memory_bytes += 2.0 * e.output_bytes;
+  if (h5) e.memory_bytes += 4.0 * h5_chunk_cache_bytes;
   return e;
 }
 

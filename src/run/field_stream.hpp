@@ -1,49 +1,36 @@
 // Field snapshots written as a run takes them, into its run directory's
-// staging: fields.csv row by row, or, for results.h5 (made whole at the
-// end), a spool of raw doubles the HDF5 writer reads back a few snapshots
-// at a time. Either way the run holds one snapshot, never all of them, and
-// the files are the bytes the held snapshots would have made.
+// staging: fields.csv row by row, or results.h5's /fields extended by each
+// (its history and the rest written at the end). Either way the run holds
+// one snapshot, never all of them, and the files are those the held
+// snapshots would have made.
 #pragma once
 
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <vector>
 
 #include "barimpact/case/case.hpp"
 #include "barimpact/run/observer.hpp"
 #include "output_file.hpp"
+#include "results_h5_module.hpp"
 
 namespace barimpact::detail {
 
 class FieldStream final : public FieldSink {
  public:
-  /// Writes into `staging`: fields.csv, or (hdf5) the spool `spool_name`.
+  /// Writes into `staging`: fields.csv, or results.h5.
   FieldStream(const std::filesystem::path& staging, const Case& c);
   bool write(const Fields& snapshot) override;
-  /// After the run: a write's error rethrown, else the file closed whole.
-  void finish();
-
-  [[nodiscard]] bool spooled() const { return spooled_; }
-  /// The snapshots' times (the spool's).
-  [[nodiscard]] const std::vector<double>& times() const { return times_; }
-  /// Quantity q's (0 u, 1 v, 2 sigma, 3 eps_p) values of snapshots
-  /// first .. first + count - 1, snapshot-major, into `out` (the spool's).
-  void read(int q, std::size_t first, std::size_t count, double* out);
-  /// The spool removed (once results.h5 holds it).
-  void remove_spool();
-
-  static constexpr const char* spool_name = ".fields.spool";
+  /// After the run: a write's error rethrown, else the file closed whole
+  /// (results.h5 with the rest of `result`).
+  void finish(const Case& c, const RunResult& result);
 
  private:
-  std::filesystem::path path_;
-  bool spooled_;
-  std::unique_ptr<OutputFile> out_;
+  std::unique_ptr<OutputFile> csv_;
+  std::unique_ptr<ResultsH5File> h5_;
   std::exception_ptr failure_;
   std::vector<double> times_;
-  std::size_t nodes_ = 0;
-  std::ifstream in_;
 };
 
 }  // namespace barimpact::detail

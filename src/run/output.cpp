@@ -72,6 +72,10 @@ OutputError RunDirectory::refused(const OutputError& e) const {
           e.reason()};
 }
 
+OutputError RunDirectory::cannot_write(const std::exception& e, const std::string& reason) const {
+  return {fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()), shown_, reason};
+}
+
 namespace {
 
 // Shortest text that reads back to the same double.
@@ -137,21 +141,21 @@ void RunDirectory::expect(const std::vector<std::string>& names) const {
 }
 
 FieldSink& RunDirectory::stream_fields(const Case& c) {
-  fields_ = std::make_unique<detail::FieldStream>(staging_, c);
+  try {
+    fields_ = std::make_unique<detail::FieldStream>(staging_, c);
+  } catch (const OutputError& e) {
+    throw refused(e);
+  } catch (const Hdf5Error& e) {
+    throw cannot_write(e, e.what());
+  }
   return *fields_;
 }
 
 void RunDirectory::commit(const Case& c, const RunResult& result) {
   commit([&](const fs::path& dir) {
-    if (fields_) fields_->finish();  // what the disk refused during the run, first
+    if (fields_) fields_->finish(c, result);  // what the disk refused during the run, first
     if (c.output.format == OutputFormat::hdf5) {
-      StreamedSnapshots spool;
-      if (fields_)
-        spool = {&fields_->times(), [&](int q, std::size_t first, std::size_t count, double* out) {
-                   fields_->read(q, first, count, out);
-                 }};
-      write_results_h5(dir / results_h5_name, c, result, fields_ ? &spool : nullptr);
-      if (fields_) fields_->remove_spool();
+      if (!fields_) write_results_h5(dir / results_h5_name, c, result);  // else streamed there
     } else {
       write_history(dir / "history.csv", result);
       if (!fields_) write_fields(dir / "fields.csv", result);  // else streamed there
@@ -162,11 +166,6 @@ void RunDirectory::commit(const Case& c, const RunResult& result) {
 }
 
 void RunDirectory::commit(const std::function<void(const fs::path& staging)>& write) {
-  // What the file system or HDF5 refused; any other failure is not the output's.
-  const auto cannot_write = [&](const std::exception& e, const std::string& reason) {
-    return OutputError(fmt::format("--out {}: cannot write the results: {}", shown_.string(), e.what()), shown_,
-                       reason);
-  };
   try {
     write(staging_);
     spare_inputs();

@@ -1,6 +1,7 @@
 #include "barimpact/run/simulate.hpp"
 
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/model/setup_polling.hpp"
 
 #include <fmt/format.h>
 
@@ -106,9 +107,29 @@ RunRecorder::RunRecorder(const Case& c, const Scheme& scheme, FieldSink* fields)
   if (blow_) observers_.push_back(&*blow_);
 }
 
+namespace {
+
+// A run whose set-up its interrupt ended: no step taken.
+RunResult interrupted_setup(const Case& c, const Interrupted& e) {
+  RunResult r;
+  r.summary.method = c.time.scheme;
+  r.summary.complete = false;
+  r.summary.status = RunStatus::interrupted;
+  r.summary.message = e.what();
+  r.summary.steps = c.step_count();
+  return r;
+}
+
+}  // namespace
+
 RunResult run(const Case& c, const RunOptions& options) {
   (void)check_resources(c, options.fields != nullptr);  // before fitting builds the line
-  return run(fit_scheme(c), options);
+  const SetupPolling polling(options.interrupt);        // a study's case: its set-up polls too
+  try {
+    return run(fit_scheme(c), options);
+  } catch (const Interrupted& e) {
+    return interrupted_setup(c, e);
+  }
 }
 
 namespace {
@@ -196,7 +217,9 @@ RunResult run_scheme(const Case& c, Scheme& scheme_ref, long long steps, const R
   RunRecorder rec(c, scheme_ref, options.fields);
   std::vector<Observer*> observers = rec.observers();
   if (options.progress) observers.push_back(&progress);
+  poll_setup();
   if (options.loop_begins) options.loop_begins();
+  const SetupPolling set_up(nullptr);  // the loop polls its own way: what it ran is the result
   const LoopResult loop = simulate(scheme_ref, steps, observers, options.interrupt);
   RunResult r = rec.finish(loop, steps, started, finite_rows);
   if (unsettled)

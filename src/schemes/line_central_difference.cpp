@@ -1,5 +1,7 @@
 #include "barimpact/schemes/line_central_difference.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <cmath>
 
 namespace barimpact {
@@ -12,6 +14,7 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
     c_.push_back(b.viscosity);
     viscous_ = viscous_ || b.viscosity > 0.0;
   }
+  poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   m_ = line_.lumped_mass();
   inv_m_.resize(n);
   for (std::size_t j = 0; j < n; ++j) inv_m_[j] = line_.fixed(j) ? 0.0 : 1.0 / m_[j];
@@ -19,6 +22,7 @@ LineCentralDifference::LineCentralDifference(const Case& c, Line line)
   rigid_.assign(line_.links.size(), 0.0);
   for (const End* e : {&line_.near, &line_.far})
     held_ends_ = held_ends_ || e->kind == EndKind::clamped || e->kind == EndKind::velocity;
+  poll_setup();
   for (auto& l : levels_) l.assign(n, 0.0);
   // Uniform interior nodes: both bonds the same element of one body, no point mass, not held.
   auto uniform = [&](std::size_t j) {

@@ -1,5 +1,7 @@
 #include "barimpact/schemes/line_mass_redistribution.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -28,6 +30,7 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
   Tridiagonal a = Tridiagonal::combine(2.0 / (dt_ * dt_), mass_, 0.5, k);
   held_ = hold_rows(line_, a);
   factor_ = FactoredTridiagonal(a, false);
+  poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   for (const auto& b : line_.bonds) k_.push_back(b.stiffness);
   // The faces and their inner neighbours (M~ changed there) are special rows.
   face_.assign(n, 0);
@@ -42,6 +45,7 @@ LineMassRedistribution::LineMassRedistribution(const Case& c, Line line) : LineS
     if (face_[j]) faces_.push_back(j);
   stretches_ = uniform_stretches(line_, special, held_);
   rigid_ = RigidLinks(line_, factor_, 0.5);  // lambda enters a face's halved equilibrium as lambda h / 2
+  poll_setup();
   for (auto* v : {&u_, &v_, &u_old_, &y_, &load_old_}) v->assign(n, 0.0);
   face_u_old_.assign(faces_.size(), 0.0);
   face_rho_.assign(faces_.size(), 0.0);

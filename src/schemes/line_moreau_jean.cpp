@@ -1,5 +1,7 @@
 #include "barimpact/schemes/line_moreau_jean.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,6 +15,7 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
                                        th * th * dt * dt, line_.stiffness());
   held_ = hold_rows(line_, w);
   factor_ = FactoredTridiagonal(w, false);
+  poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   // P = M - dt^2 theta (1 - theta) K - dt (1 - theta) C and Q = -dt K, bond by
   // bond: -(P - M) v - Q u = -(K (a v + dt u) + b C v), a bond's tension.
   for (const auto& b : line_.bonds) {
@@ -23,6 +26,7 @@ LineMoreauJean::LineMoreauJean(const Case& c, Line line) : LineScheme(c, std::mo
   }
   stretches_ = uniform_stretches(line_, std::vector<unsigned char>(n, 0), held_);
   rigid_ = RigidLinks(line_, factor_, 1.0);
+  poll_setup();
   for (auto* v : {&u_, &v_, &u_old_, &v_old_, &y_, &load_old_}) v->assign(n, 0.0);
   for (auto* v : {&rate_old_, &q_, &p_}) v->assign(rigid_.size(), 0.0);
   active_.assign(rigid_.size(), 0);

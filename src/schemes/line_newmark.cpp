@@ -1,5 +1,7 @@
 #include "barimpact/schemes/line_newmark.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -53,13 +55,17 @@ LineNewmark::LineNewmark(const Case& c, Line line)
       held[j] = 1;
       held_.push_back(j);
     }
+  poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   factor_from_far_end(a, held, coupling_, inv_pivot_, lower_);
+  poll_setup();
   for (const auto& b : line_.bonds) {
     stiff_bond_.push_back(b.stiffness);
     visc_bond_.push_back(b.viscosity);
     viscous_ = viscous_ || b.viscosity != 0.0;
   }
+  poll_setup();
   build_blocks();
+  poll_setup();
   // The links' Delassus matrix from their responses A^{-1} h_i (none on held rows).
   // Sized row by row: GCC 12 misreads the nested fill constructor here
   // (a false -Wfree-nonheap-object).

@@ -1,5 +1,7 @@
 #include "barimpact/schemes/line_paoli_schatzman.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,6 +13,7 @@ LinePaoliSchatzman::LinePaoliSchatzman(const Case& c, Line line) : LineScheme(c,
   Tridiagonal m = mass_;
   held_ = hold_rows(line_, m);
   factor_ = FactoredTridiagonal(m, false);
+  poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   for (const auto& b : line_.bonds) {
     k_.push_back(b.stiffness);
     c_.push_back(b.viscosity);
@@ -26,13 +29,16 @@ LinePaoliSchatzman::LinePaoliSchatzman(const Case& c, Line line) : LineScheme(c,
     if (e->kind == EndKind::force) special[e->node] = 1;
   for (std::size_t j = 0; j < n; ++j)
     if (special[j]) extra_nodes_.push_back(j);
+  poll_setup();
   stretches_ = uniform_stretches(line_, special, held_);
+  poll_setup();
   rigid_ = RigidLinks(line_, factor_, 1.0);
   extra_.assign(n, 0.0);
   target_.assign(held_.size(), 0.0);
   q_.assign(rigid_.size(), 0.0);
   mu_.assign(rigid_.size(), 0.0);
   all_.assign(rigid_.size(), 1);
+  poll_setup();
   for (auto& l : levels_) l.assign(n, 0.0);
 }
 

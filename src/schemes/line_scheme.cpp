@@ -1,5 +1,7 @@
 #include "barimpact/schemes/line_scheme.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,6 +33,7 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
     far_value_ = std::make_unique<Expression>(line_.far.value);
   if (line_.near.history) near_history_ = HistoryReader(line_.near.history);
   if (line_.far.history) far_history_ = HistoryReader(line_.far.history);
+  poll_setup();  // line-sized phases: a study's case polls its interrupt between them
   u0_ = line_.initial(0);
   v0_ = line_.initial(1);
   // A held end starts as its condition says: at rest at 0 (clamped; the case

@@ -1,5 +1,7 @@
 #include "barimpact/schemes/paper_scheme.hpp"
 
+#include "barimpact/model/setup_polling.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -101,7 +103,9 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
     l_ = law_->kind == LawKind::viscoelastic ? law_->viscosity : 0.0;
   }
   factor(form_matrices());
+  poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   if (l_ > 0.0) respond_to_dashpot();
+  poll_setup();
   allocate(c, one);
 }
 
@@ -191,6 +195,7 @@ void PaperScheme::respond_to_dashpot() {
 void PaperScheme::allocate(const Case& c, const OneBar& one) {
   const std::size_t n = line_.nodes();
   for (auto& level : levels_) detail::assign_huge(level, n, 0.0);
+  poll_setup();
   detail::assign_huge(u0_, n, 0.0);
   detail::assign_huge(v0_, n, 0.0);
 

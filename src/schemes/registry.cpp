@@ -8,6 +8,7 @@
 #include <string>
 
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/model/setup_polling.hpp"
 #include "barimpact/schemes/line_central_difference.hpp"
 #include "barimpact/schemes/line_characteristic.hpp"
 #include "barimpact/schemes/line_mass_redistribution.hpp"
@@ -259,8 +260,10 @@ std::unique_ptr<Scheme> make_scheme(FittedCase& fitted) {
   const SchemeInfo& s = scheme_info(c.time.scheme);
   Line line = fitted.line ? std::move(*fitted.line) : build_line(c);
   fitted.line.reset();
-  if (s.one_bar && c.one_bar()) return s.one_bar(c, std::move(line));
-  return s.make(c, std::move(line));
+  poll_setup();
+  auto scheme = s.one_bar && c.one_bar() ? s.one_bar(c, std::move(line)) : s.make(c, std::move(line));
+  poll_setup();
+  return scheme;
 }
 
 std::unique_ptr<Scheme> make_scheme(const Case& c) {

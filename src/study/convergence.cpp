@@ -12,6 +12,7 @@
 
 #include "barimpact/exact/exact.hpp"
 #include "barimpact/exact/lines.hpp"
+#include "barimpact/model/setup_polling.hpp"
 #include "barimpact/run/health.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
@@ -408,8 +409,11 @@ Study converge(const Case& base, const StudyOptions& o) {
   const auto schemes = o.schemes.empty() ? std::vector<std::string>{base.time.scheme} : o.schemes;
   const std::string base_toml = base.to_toml();
   std::vector<Task> tasks;
-  for (const auto& scheme : schemes)
-    for (int i = 0; i < levels; ++i) tasks.push_back(make_task(base, base_toml, o, scheme, i));
+  {
+    const SetupPolling polling(o.interrupt);  // fitting a level builds its line
+    for (const auto& scheme : schemes)
+      for (int i = 0; i < levels; ++i) tasks.push_back(make_task(base, base_toml, o, scheme, i));
+  }
 
   OutputStop stop(o.runs.parent_path());
   run_parallel(tasks.size(), o.jobs, [&](std::size_t i) { run_task(tasks[i], o, stop); });

@@ -68,6 +68,11 @@ expect_full "$disk/made/below/ex1" run "$ex1" --out "$disk/made/below/ex1"
 fresh 200k
 expect_full "$disk/ex1-h5" run "$ex1" --out "$disk/ex1-h5" --set output.format=hdf5
 [ -z "$(ls -A "$disk")" ] && ok || bad "the HDF5 run left: $(ls -A "$disk")"
+# results.h5 filling the disk at its end (its history, and what HDF5 writes
+# as it closes the file): the same one line, no crash at exit.
+fresh 32k
+expect_full "$disk/h5-end" run "$ex1" --out "$disk/h5-end" --set output.format=hdf5 --set output.fields_at=[]
+[ -z "$(ls -A "$disk")" ] && ok || bad "the HDF5 run filling the disk at its end left: $(ls -A "$disk")"
 fresh 100k
 expect_full "$disk/exact" exact "$examples/clamped-periodic.toml" --out "$disk/exact"
 

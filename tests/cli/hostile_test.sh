@@ -46,6 +46,11 @@ refused "a line beyond ulimit -v" $? "$work/err" "body.long.elements"
   --set time.end=1.5 --set "output.fields_at=[$(seq -s, 0 0.01 1.5)]" > /dev/null 2> "$work/err") && ok ||
   bad "151 snapshots in 80 MB: $(cat "$work/err")"
 cmp -s "$work/held/fields.csv" "$work/streamed/fields.csv" && ok || bad "streamed fields.csv differs"
+# results.h5 too is written as the run goes (it was made whole in memory,
+# twice the file at the end: the same run was refused in 80 MB).
+(ulimit -v 80000 && "$bin" run "$ex1" --out "$work/streamed-h5" --set bar.elements=10000 --set time.step=1e-3 \
+  --set time.end=1.5 --set "output.fields_at=[$(seq -s, 0 0.01 1.5)]" --set output.format=hdf5 > /dev/null \
+  2> "$work/err") && [ -s "$work/streamed-h5/results.h5" ] && ok || bad "151 snapshots in results.h5 in 80 MB: $(cat "$work/err")"
 fi
 # Outputs above 1 GB get a warning line (here 101 snapshots of 10^6 nodes); check still succeeds.
 "$bin" check "$ex1" --set bar.elements=1000000 --set time.step=1e-3 > "$work/out" 2> "$work/err" && ok ||
@@ -81,6 +86,14 @@ stops "check SIGTERM" TERM 0.5 143 "$bin" check "$ex1" --set bar.elements=500000
 stops "run set-up SIGINT" INT 0.3 130 "$bin" run "$ex1" --out "$work/setup" --set bar.elements=5000000 \
   --set time.scheme=newmark --set time.step=1e-7 --set time.end=1e-4 --set output.fields_at=[]
 ls -a "$work" | grep -q partial && bad "run set-up SIGINT: staging left" || ok
+# A study's case in its set-up: a sweep's case of 10^7 elements on Newmark
+# builds its line and factors for seconds (it ignored the signal until its
+# time loop began, 3 to 8 s later).
+printf 'case = "%s"\n[set]\noutput.fields_at = []\ntime.scheme = "newmark"\ntime.step = 1e-7\ntime.end = 1e-4\n[[axis]]\nkey = "bar.elements"\nvalues = [10000000]\n' \
+  "$ex1" > "$work/setup-sweep.toml"
+stops "sweep set-up SIGINT" INT 1.0 130 "$bin" sweep "$work/setup-sweep.toml" --out "$work/setup-sweep"
+stops "sweep set-up SIGTERM" TERM 0.5 143 "$bin" sweep "$work/setup-sweep.toml" --out "$work/setup-sweep"
+find "$work/setup-sweep" -name '*partial*' | grep -q . && bad "sweep set-up: staging left" || ok
 # A FIFO case file is refused at once, never opened (it blocked until a writer came).
 mkfifo "$work/case.fifo"
 timeout -k 1 5 "$bin" run "$work/case.fifo" --out "$work/fifo" > /dev/null 2> "$work/err"
@@ -89,10 +102,19 @@ printf 'case = "case.fifo"\n[[axis]]\nkey = "bar.length"\nvalues = [1]\n' > "$wo
 timeout -k 1 5 "$bin" sweep "$work/fifo-sweep.toml" --out "$work/fifo-sweep" > /dev/null 2> "$work/err"
 refused "sweep FIFO" $? "$work/err" "case.fifo" "named pipe"
 
+# sweep --ranks N runs mpiexec itself: refused (exit 2, one line naming
+# --ranks) below 1 rank or without an mpiexec on PATH.
+"$bin" sweep "$work/setup-sweep.toml" --out "$work/ranks" --ranks 0 > /dev/null 2> "$work/err"
+refused "--ranks 0" $? "$work/err" "--ranks 0"
+PATH=/nonexistent "$bin" sweep "$work/setup-sweep.toml" --out "$work/ranks" --ranks 2 > /dev/null 2> "$work/err"
+refused "--ranks without mpiexec" $? "$work/err" "--ranks 2"
+[ ! -e "$work/ranks" ] && ok || bad "a refused --ranks wrote $work/ranks"
+
 # Under mpirun (when built with MPI): a signal to one rank ends every rank
 # within 5 s, about 0.1 s alone (the other ran its cases on for as long as they took), and
 # mpirun reports the signal's status. A signal to mpirun itself ends its
-# ranks the same way; mpirun's own status is then Open MPI's, 1.
+# ranks the same way; mpirun's own status is then Open MPI's, 1 (sweep
+# --ranks, below, exits 130 / 143).
 if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
   printf 'case = "%s"\n[set]\ntime.end = 1000.0\ntime.step = 1e-4\noutput.fields_at = []\noutput.every = 100\n[[axis]]\nkey = "bar.elements"\nvalues = [400, 500, 600, 700, 800, 900, 1000, 1100]\n' \
     "$ex1" > "$work/slow-sweep.toml"
@@ -113,6 +135,24 @@ if [ -n "${BARIMPACT_MPIEXEC:-}" ]; then
     wait $pid
     code=$?
     [ $code -eq $([ $signal = INT ] && echo 130 || echo 143) ] && ok || bad "mpirun after SIG$signal to a rank: exit $code"
+  done
+  # sweep --ranks 2 runs mpiexec itself and passes a signal to it on: the
+  # ranks write what is done and the command exits 130 / 143 within 5 s.
+  for signal in INT TERM; do
+    PATH="$(dirname "$BARIMPACT_MPIEXEC"):$PATH" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 \
+      "$bin" sweep "$work/slow-sweep.toml" --out "$work/ranks-$signal" --ranks 2 > /dev/null 2>&1 &
+    pid=$!
+    sleep 6
+    kill -s $signal $pid
+    start=$(date +%s%N)
+    while kill -0 $pid 2> /dev/null && ! grep -q '^State:.*Z' "/proc/$pid/status" 2> /dev/null &&
+      [ $((($(date +%s%N) - start) / 1000000)) -lt 5000 ]; do sleep 0.01; done
+    took=$((($(date +%s%N) - start) / 1000000))
+    [ $took -lt 5000 ] && ok || { bad "--ranks: still running 5 s after SIG$signal"; kill -9 $pid; }
+    wait $pid
+    code=$?
+    [ $code -eq $([ $signal = INT ] && echo 130 || echo 143) ] && ok || bad "--ranks after SIG$signal: exit $code"
+    [ -s "$work/ranks-$signal/sweep.csv" ] && ok || bad "--ranks after SIG$signal: no sweep.csv"
   done
 fi
 

@@ -17,14 +17,31 @@ namespace {
 
 TEST(Simulate, AnInterruptEndsTheRunAfterTheStepUnderWay) {
   const auto c = testing::example("paper-example1.toml", {"output.fields_at=[]"});
-  std::atomic<bool> interrupt{true};
+  std::atomic<bool> interrupt{false};
   RunOptions options;
   options.interrupt = &interrupt;
+  options.loop_begins = [&interrupt] { interrupt = true; };
   const auto r = run(c, options);
   EXPECT_EQ(r.summary.status, RunStatus::interrupted);
   EXPECT_FALSE(r.summary.complete);
   EXPECT_EQ(r.summary.steps_done, 1);
   EXPECT_EQ(r.history.size(), 2u);
+}
+
+TEST(Simulate, AnInterruptEndsTheSetUpOfAStudysCase) {
+  // A study's case polls its interrupt while its line and scheme are made:
+  // it ends there, with no step taken (it took the first step, after a set-up of seconds at 10^7 elements).
+  const auto c = testing::example("paper-example1.toml", {"output.fields_at=[]"});
+  std::atomic<bool> interrupt{true};
+  RunOptions options;
+  options.interrupt = &interrupt;
+  bool began = false;
+  options.loop_begins = [&began] { began = true; };
+  const auto r = run(c, options);
+  EXPECT_FALSE(began);
+  EXPECT_EQ(r.summary.status, RunStatus::interrupted);
+  EXPECT_EQ(r.summary.steps_done, 0);
+  EXPECT_EQ(r.summary.message, "interrupted during its set-up");
 }
 
 TEST(Simulate, LoopBeginsIsCalledOnceTheSetUpIsDone) {

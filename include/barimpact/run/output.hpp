@@ -55,8 +55,8 @@ class RunDirectory {
   void expect(const std::vector<std::string>& names) const;
 
   /// Where the run of `c` puts its field snapshots as it takes them
-  /// (RunOptions::fields): fields.csv in staging, or a spool results.h5 is
-  /// made from, so that the run never holds them all. Call before the run;
+  /// (RunOptions::fields): fields.csv in staging, or results.h5 (written as
+  /// the run goes), so that the run never holds them all. Call before the run;
   /// `commit` then writes the rest.
   FieldSink& stream_fields(const Case& c);
   /// Writes the files into staging (history.csv and fields.csv, or
@@ -82,6 +82,8 @@ class RunDirectory {
   void spare_inputs();
   /// `e` naming `--out` and the file by its name in the results.
   [[nodiscard]] OutputError refused(const OutputError& e) const;
+  /// What the file system or HDF5 refused (`e`, for `reason`), naming `--out`.
+  [[nodiscard]] OutputError cannot_write(const std::exception& e, const std::string& reason) const;
 
   std::filesystem::path shown_, target_, staging_;  // as given; resolved; staging
   CommandInputs inputs_;

@@ -16,8 +16,9 @@
 //                     line order, a welded node once per body
 //   /fields/u, v, sigma, eps_p
 //                     (snapshots, rows) float64: [s, j] is fields.csv's row
-//                     of snapshot s and row j (chunked by whole snapshots up
-//                     to 256 KiB, a larger one in pieces; shuffled
+//                     of snapshot s and row j (extendible along the
+//                     snapshots, chunked by whole snapshots up to 256 KiB, a
+//                     larger one in pieces; shuffled
 //                     and compressed with gzip at level output.compression,
 //                     1 by default, none at 0)
 //   /fields/body      (rows,) int32, each row's body as an index into the
@@ -28,7 +29,6 @@
 #pragma once
 
 #include <filesystem>
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -47,23 +47,13 @@ struct Hdf5Error : std::runtime_error {
 /// The file's name in a run directory.
 inline constexpr std::string_view results_h5_name = "results.h5";
 
-/// Field snapshots a run streamed out instead of holding them in its
-/// RunResult (RunOptions::fields): their times, and `read(q, first, count,
-/// out)` filling `out` with quantity q's (0 u, 1 v, 2 sigma, 3 eps_p) values
-/// of snapshots first .. first + count - 1, snapshot-major.
-struct StreamedSnapshots {
-  const std::vector<double>* t = nullptr;
-  std::function<void(int q, std::size_t first, std::size_t count, double* out)> read;
-};
-
-/// Writes `result`'s history and fields (the snapshots from `streamed` when
-/// given: the same bytes), and `c` as attributes, into a new
-/// file at `path` (replaced if it exists): made in memory, then written as
-/// one image. Throws Hdf5Error (what HDF5 refused) or OutputError (what the
-/// file system refused: a full disk), naming the path; HDF5 holds no file
-/// open afterwards, and a file not written whole is removed.
-void write_results_h5(const std::filesystem::path& path, const Case& c, const RunResult& result,
-                      const StreamedSnapshots* streamed = nullptr);
+/// Writes `result`'s history and fields, and `c` as attributes, into a new
+/// file at `path` (replaced if it exists), a snapshot at a time. Throws
+/// Hdf5Error (what HDF5 refused) or OutputError (what the file system
+/// refused: a full disk), naming the path; HDF5 holds no file open
+/// afterwards, and a file not written whole is removed. A run directory
+/// writes its results.h5 as the run goes instead (RunDirectory::stream_fields).
+void write_results_h5(const std::filesystem::path& path, const Case& c, const RunResult& result);
 
 /// A history by column, as history.csv holds it.
 struct HistoryColumns {
