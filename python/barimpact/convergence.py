@@ -259,12 +259,12 @@ def _sweep_figure(output, dims, rows, units, dropped):
     ys = [_number(r[output]) for r in rows]
     finite = [y for y in ys if y is not None and math.isfinite(y)]
     log_y = bool(finite) and min(finite) > 0 and max(finite) / min(finite) >= 1000
-    words = output_words(output)
-    yscale = units.axis(words, OUTPUT_QUANTITIES.get(output), None if log_y else finite or None, sign=False)
+    said = output_words(output)
+    yscale = units.axis(said, OUTPUT_QUANTITIES.get(output), None if log_y else finite or None, sign=False)
     groups, rest = _curves(rows, dims)
     labels = legend_labels([_setting(g[0], rest) for g in groups], units) if rest else [None]
     position = dict(zip((r["id"] for r in rows), xs_all))
-    title = f"{words[:1].upper()}{words[1:]} against {key_words(x_key)}"
+    title = f"{said[:1].upper()}{said[1:]} against {key_words(x_key)}"
     fig, ax = _figure(title + (f" ({dropped})" if dropped else ""))
     if not rows:
         ax.text(0.5, 0.5, "no complete case", transform=ax.transAxes, ha="center", color="0.4")

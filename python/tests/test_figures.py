@@ -237,8 +237,8 @@ def test_a_sweep_gets_one_figure_per_output(sweep_dir, tmp_path, drawn):
         assert (tmp_path / "figs" / f"{column}.png").stat().st_size > 5_000
     ax = drawn["max_reaction"][0]
     # k = 100 ... 800 doubling: log-spaced; the zipped bar.elements goes with it; one curve per velocity.
-    assert ax["xscale"] == "log"
-    assert ax["xlabel"] == "obstacle stiffness, with bar elements"
+    assert ax["xscale"] == "log" and ax["title"] == "Largest reaction against obstacle stiffness"
+    assert ax["xlabel"] == "obstacle stiffness, with bar elements" and ax["xticks"] == [100.0, 200.0, 400.0, 800.0]
     velocities = ["initial velocity = -1", "initial velocity = -0.5", "initial velocity = -0.25"]
     assert ax["legend"] == velocities + ["has warnings (sweep.csv)"]
     assert [len(x) for label, x, _ in ax["lines"] if label in velocities] == [4, 4, 4]
