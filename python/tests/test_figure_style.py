@@ -1,6 +1,7 @@
 """The figures' one style across the commands: words instead of column
 names, a unit on every axis under SI, one time unit a figure, stress maps
 only where snapshots are, Hopkinson figures in DIR/figures."""
+import re
 import subprocess
 import tomllib
 
@@ -8,6 +9,7 @@ import numpy as np
 import pytest
 
 import barimpact
+from barimpact.plot import SCREEN_COLUMNS
 from barimpact.style import COLUMN_WORDS, UNIT_SYSTEMS, Units, choose_unit, column_words, words_of
 from conftest import CLI, EXAMPLES
 from figure_text import axes_without_unit, raw_names, time_units
@@ -117,3 +119,47 @@ def test_pda_figures_keep_one_time_unit_and_name_their_units(tmp_path, drawn):
     plot_pda(tmp_path / "pda", formats=())
     assert axes_without_unit(drawn) == []
     assert {name: time_units(axes) for name, axes in drawn.items()} == {"force_velocity": {"ms"}, "waves": {"ms"}}
+
+
+def test_long_records_are_thinned_to_the_screen(tmp_path, drawn):
+    """A Hopkinson analysis of 200,000-sample records (about 24,000 rows):
+    every curve drawn keeps at most two points a pixel column."""
+    from test_hopkinson import _shape
+    t = np.arange(200_000) * 5e-9
+    incident = -1e-3 * _shape(t - 100e-6) + 6e-4 * _shape(t - 503e-6)
+    transmitted = -4e-4 * _shape(t - 401e-6)
+    for name, strain in (("inc", incident), ("tr", transmitted)):
+        np.savetxt(tmp_path / f"{name}.csv", np.column_stack([t, strain]), delimiter=",", header="t,strain",
+                   comments="")
+    setup = tmp_path / "setup.toml"
+    setup.write_text('[bar]\nmodulus = 200e9\ndensity = 8000.0\narea = 3e-4\n[specimen]\nlength = 0.005\n'
+                     'area = 1e-4\n[incident]\nsignal = "inc.csv"\ngauge_to_specimen = 1.0\n'
+                     '[transmitted]\nsignal = "tr.csv"\ngauge_to_specimen = 0.5\n')
+    cli("hopkinson", setup, "--out", tmp_path / "hk", "--no-plot")
+    assert sum(1 for _ in open(tmp_path / "hk" / "hopkinson.csv")) > 20_000
+    from barimpact.hopkinson import plot_hopkinson
+    plot_hopkinson(tmp_path / "hk", formats=())
+    longest = max(x.size for axes in drawn.values() for ax in axes for _, x, _ in ax["lines"])
+    assert 1000 < longest <= 2 * SCREEN_COLUMNS + 2
+
+
+GALLERY = EXAMPLES.parent / "docs" / "figures.md"
+
+
+def test_the_gallery_shows_each_command_once_small_and_made_by_its_script():
+    text = GALLERY.read_text()
+    shown = re.findall(r"\(figures/(gallery-[\w-]+\.png)\)", text)
+    script = (GALLERY.parent / "figures" / "make_gallery.sh").read_text()
+    picked = [f"gallery-{n}.png" for n in re.findall(r"^pick \S+ (\S+)$", script, re.M)]
+    assert sorted(shown) == sorted(picked) and 10 <= len(shown) <= 14
+    for name in shown:
+        assert (GALLERY.parent / "figures" / name).stat().st_size < 150_000, name
+    for command in ("run", "exact", "converge", "sweep", "bearing", "drive", "hopkinson", "pda", "match"):
+        assert f"**{command}" in text, command
+
+
+def test_the_docs_table_lists_every_column_pattern():
+    text = GALLERY.read_text()
+    for pattern, _, _ in COLUMN_WORDS:
+        column = pattern.replace("(?P<name>.+)", "{name}").replace("\\.", ".")
+        assert f"| `{column}` |" in text, column
