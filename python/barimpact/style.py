@@ -50,10 +50,10 @@ UNIT_SYSTEMS = {
     },
 }
 
-# What a value in a legend or title is written in (its base unit, no prefix).
-BASE_UNITS = {quantity: units[0][0] if quantity != "time" else "s" for quantity, units in UNIT_SYSTEMS["SI"].items()}
-BASE_UNITS.update(length="m", displacement="m", opening="m", force="N", stress="Pa", energy="J", stiffness="N/m",
-                  impedance="N s/m")
+# What a value in a legend or title is written in: the SI unit of size 1.
+BASE_UNITS = {quantity: next((name for name, size, _ in units if size == 1.0), None)
+              for quantity, units in UNIT_SYSTEMS["SI"].items()}
+BASE_UNITS["impedance"] = "N s/m"
 
 
 def choose_unit(table, quantity, values, span=False):
