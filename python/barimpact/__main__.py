@@ -5,7 +5,8 @@ directory (sweep.csv: each output against the swept keys, and the runs'
 U(t) and R(t) overlaid); several run directories draw one comparison. The
 figures go by the output rule of `barimpact run --out` (--force as its). A
 hopkinson, pda or match directory (written with --no-plot) gets its figures
-drawn into it, as the command draws them."""
+drawn where the command draws them (hopkinson's into DIR/figures, pda's and
+match's into DIR)."""
 import argparse
 import importlib
 import os
@@ -41,15 +42,16 @@ def _plot(dirs, out, force):
 
 def _redraw_staged(d, command, out):
     """The figures of a hopkinson, pda or match directory drawn again (after
-    --no-plot) where the command draws them: into the directory, which must
-    be the one barimpact wrote; they join its marker, so that a rerun
-    replaces them."""
+    --no-plot) where the command draws them: into the directory (hopkinson's
+    into its figures/), which must be the one barimpact wrote; they join its
+    marker, so that a rerun replaces them."""
     if out is not None:
         raise ValueError(f"{d}: a barimpact {command} directory's figures go into it, as the command draws them "
                          "(leave out --out)")
     module = importlib.import_module(f".{command}", __package__)
     written = getattr(module, f"plot_{command}")(d)
-    _core._mark_entries(os.fspath(d), [Path(p).name for p in written])
+    # Each figure's entry in the directory: the figure, or figures/ holding it (hopkinson's).
+    _core._mark_entries(os.fspath(d), sorted({Path(p).relative_to(d).parts[0] for p in written}))
     return written
 
 

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from .plot import DPI, _save, study_directory  # noqa: E402
+from .plot import DPI, _save, study_directory, units_of_runs  # noqa: E402
 
 
 def _float(text):
@@ -36,38 +36,44 @@ def read_study_table(directory, name):
     return rows
 
 
+def _capacity_axes(ax, ax2, rows, units):
+    """The bearing graph (capacity against blow count) and the driving stresses at each capacity."""
+    moved = [r for r in rows if math.isfinite(r["blows_per_250mm"])]
+    refused = [r for r in rows if r["blows_per_250mm"] == math.inf]
+    cs = units.axis("static capacity", "force", [r["capacity"] for r in rows], sign=False)
+    if moved:
+        ax.plot([r["blows_per_250mm"] for r in moved], cs([r["capacity"] for r in moved]), "o-", label="blow count")
+    unfinished = [r for r in moved if not r["finished"]]
+    if unfinished:
+        ax.plot([r["blows_per_250mm"] for r in unfinished], cs([r["capacity"] for r in unfinished]), "x",
+                color="tab:red", label="pile not yet at rest")
+    if refused:
+        right = max([r["blows_per_250mm"] for r in moved], default=1.0)
+        ax.plot([right] * len(refused), cs([r["capacity"] for r in refused]), ">", color="tab:gray",
+                label="refusal (set 0)")
+    ax.set_xlabel("blows per 250 mm")
+    ax.set_ylabel(cs.label)
+    ax.set_title("Bearing graph")
+    ax.set_xlim(left=0)
+    ok = [r for r in rows if math.isfinite(r["max_compression"])]
+    ss = units.axis("largest stress in the pile, a magnitude", "stress",
+                    [r[k] for r in ok for k in ("max_compression", "max_tension")], sign=False)
+    ax2.plot(ss([r["max_compression"] for r in ok]), cs([r["capacity"] for r in ok]), "o-", label="largest compression")
+    ax2.plot(ss([r["max_tension"] for r in ok]), cs([r["capacity"] for r in ok]), "s--", label="largest tension")
+    ax2.set_xlabel(ss.label)
+    ax2.set_title("Driving stresses")
+
+
 def plot_bearing(directory, formats=("png", "svg")):
     """Draws bearing.png (and .svg) into the directory barimpact bearing
     wrote (nowhere else); returns the paths."""
     d = study_directory(directory, "bearing")
     rows = read_bearing(d)
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=DPI, sharey=True, layout="constrained")
-    moved = [r for r in rows if math.isfinite(r["blows_per_250mm"])]
-    refused = [r for r in rows if r["blows_per_250mm"] == math.inf]
-    mn = 1e-6  # N -> MN, Pa -> MPa
-    if moved:
-        ax.plot([r["blows_per_250mm"] for r in moved], [mn * r["capacity"] for r in moved], "o-", label="blow count")
-    unfinished = [r for r in moved if not r["finished"]]
-    if unfinished:
-        ax.plot([r["blows_per_250mm"] for r in unfinished], [mn * r["capacity"] for r in unfinished], "x",
-                color="tab:red", label="pile not yet at rest")
-    if refused:
-        right = max([r["blows_per_250mm"] for r in moved], default=1.0)
-        ax.plot([right] * len(refused), [mn * r["capacity"] for r in refused], ">", color="tab:gray",
-                label="refusal (set 0)")
-    ax.set_xlabel("blows per 250 mm")
-    ax.set_ylabel("static capacity (MN)")
-    ax.set_title("Bearing graph")
-    ax.set_xlim(left=0)
-    ax.grid(True, alpha=0.3)
-    ax.legend()
-    ok = [r for r in rows if math.isfinite(r["max_compression"])]
-    ax2.plot([mn * r["max_compression"] for r in ok], [mn * r["capacity"] for r in ok], "o-", label="max compression")
-    ax2.plot([mn * r["max_tension"] for r in ok], [mn * r["capacity"] for r in ok], "s--", label="max tension")
-    ax2.set_xlabel("stress in the pile (MPa)")
-    ax2.set_title("Driving stresses")
-    ax2.grid(True, alpha=0.3)
-    ax2.legend()
+    _capacity_axes(ax, ax2, rows, units_of_runs(d, "SI"))
+    for a in (ax, ax2):
+        a.grid(True, alpha=0.3)
+        a.legend()
     written = []
     _save(fig, d, "bearing", formats, written)
     return written

@@ -15,14 +15,14 @@ import csv
 import math
 import re
 import sys
-import tomllib
 from pathlib import Path
 
 import numpy as np
 from matplotlib.ticker import NullLocator
 
-from .plot import (Units, _figure, _save, compared, figures_directory, is_run_directory, key_quantity, legend_labels,
-                   load, study_directory, units_of)
+from .plot import (_figure, _save, compared, figures_directory, is_run_directory, key_quantity, legend_labels, load,
+                   study_directory, units_of_runs)
+from .style import key_words, spoken
 
 
 def _float(text):
@@ -32,16 +32,6 @@ def _float(text):
         return v if math.isfinite(v) else None
     except (TypeError, ValueError):
         return None
-
-
-def _units_of_runs(directory):
-    """The Units of a study, from the case.toml of its first run (all share it)."""
-    for case in sorted(Path(directory).glob("runs/*/case.toml")):
-        try:
-            return units_of(tomllib.loads(case.read_text()))
-        except (OSError, tomllib.TOMLDecodeError):
-            continue
-    return Units()
 
 
 # --- converge ------------------------------------------------------------------------
@@ -60,10 +50,10 @@ def _abscissa(rows, text):
     vary = re.search(r"--vary[ =]'?([^\s=']+)=", text) or re.search(r"vary=\(?['\"]([^'\"=]+)['\"=]", text)
     if any(r["value"] for r in rows) and all(_float(r["value"]) is not None for r in rows if r["value"]):
         key = vary.group(1) if vary else "varied value"
-        return "value", key, key_quantity(key), False
+        return "value", key_words(key), key_quantity(key), False
     if len({r["h"] for r in rows}) > 1 or len({r["step"] for r in rows}) <= 1:
-        return "h", "h", "length", True
-    return "step", "dt", "time", True
+        return "h", "element length h", "length", True
+    return "step", "time step dt", "time", True
 
 
 def measured_order(xs, errors):
@@ -115,7 +105,7 @@ def _study_figure(rows, schemes, xkey, xname, xlabel, name, units, refined, note
     if name == "convergence" and refined:
         reference_slopes(ax, all_points)
     ax.set_xlabel(xlabel)
-    ax.set_ylabel(units.axis("max error of U", "length").label)
+    ax.set_ylabel(units.axis("largest error of the near-end displacement", "displacement", sign=False).label)
     if note:
         ax.text(0.99, 0.01, note, transform=ax.transAxes, ha="right", va="bottom", fontsize=7, color="0.3")
     ax.grid(True, which="both", alpha=0.3)
@@ -132,23 +122,37 @@ def plot_study(directory, formats=("png", "svg")):
     with open(d / "convergence.csv", newline="") as f:
         rows = list(csv.DictReader(f))
     schemes = list(dict.fromkeys(r["scheme"] for r in rows))
-    units = _units_of_runs(d)
+    units = units_of_runs(d)
     text = _study_text(d)
     xkey, xname, quantity, refined = _abscissa(rows, text)
     reference = re.search(r"^Reference: (.*?)\.?$", text, re.M)
     note = f"reference: {reference.group(1)}" if reference else ""
     written = []
-    for name, key, label in (("convergence", xkey, units.axis(xname, quantity).label),
-                             ("work_precision", "cpu_seconds", "CPU time (s)")):
+    for name, key, label in (("convergence", xkey, units.axis(xname, quantity, sign=False).label),
+                             ("work_precision", "cpu_seconds", "CPU time [s]")):  # seconds whatever the case's units
         _save(_study_figure(rows, schemes, key, xname, label, name, units, refined, note), d, name, formats, written)
     return written
 
 
 # --- sweep ------------------------------------------------------------------------------
 
-# The quantity of each sweep.csv output (None: a count or a ratio).
+# The quantity of each sweep.csv output (None: a count or a ratio), and its words.
 OUTPUT_QUANTITIES = {"t_end": "time", "first_contact": "time", "lift_off": "time", "rebound_velocity": "velocity",
-                     "max_penetration": "length", "max_reaction": "force"}
+                     "max_penetration": "displacement", "max_reaction": "force", "set": "displacement",
+                     "max_compression": "stress", "max_tension": "stress", "enthru": "energy", "run_seconds": None}
+OUTPUT_WORDS = {"steps_done": "steps done", "t_end": "end time", "contacts": "contact episodes",
+                "first_contact": "first contact time", "lift_off": "lift-off time",
+                "rebound_velocity": "rebound velocity", "max_penetration": "largest penetration",
+                "max_reaction": "largest reaction", "energy_error_relative": "relative energy error",
+                "run_seconds": "run time [s]", "set": "set (permanent penetration of the blow)",
+                "blows_per_250mm": "blows per 250 mm", "blows_per_m": "blows per m",
+                "max_compression": "largest compression stress", "max_tension": "largest tension stress",
+                "enthru": "energy through the gauge (EMX)", "transfer_ratio": "energy transfer ratio"}
+
+
+def output_words(column):
+    """A sweep.csv output column in words."""
+    return OUTPUT_WORDS.get(column, spoken(column))
 RUNS_OVERLAID = 12  # more curves than this in one figure cannot be told apart
 
 
@@ -255,11 +259,13 @@ def _sweep_figure(output, dims, rows, units, dropped):
     ys = [_number(r[output]) for r in rows]
     finite = [y for y in ys if y is not None and math.isfinite(y)]
     log_y = bool(finite) and min(finite) > 0 and max(finite) / min(finite) >= 1000
-    yscale = units.axis(output, OUTPUT_QUANTITIES.get(output), None if log_y else finite or None)
+    said = output_words(output)
+    yscale = units.axis(said, OUTPUT_QUANTITIES.get(output), None if log_y else finite or None, sign=False)
     groups, rest = _curves(rows, dims)
     labels = legend_labels([_setting(g[0], rest) for g in groups], units) if rest else [None]
     position = dict(zip((r["id"] for r in rows), xs_all))
-    fig, ax = _figure(f"{output} against {x_key}" + (f" ({dropped})" if dropped else ""))
+    title = f"{said[:1].upper()}{said[1:]} against {key_words(x_key)}"
+    fig, ax = _figure(title + (f" ({dropped})" if dropped else ""))
     if not rows:
         ax.text(0.5, 0.5, "no complete case", transform=ax.transAxes, ha="center", color="0.4")
     for group, label in zip(groups, labels):
@@ -278,7 +284,9 @@ def _sweep_figure(output, dims, rows, units, dropped):
     if words is not None:
         ax.set_xticks(range(len(words)), words)
     partners = dims[0][1:]
-    ax.set_xlabel(units.axis(x_key, key_quantity(x_key)).label + (f", with {', '.join(partners)}" if partners else ""))
+    partners = ", ".join(key_words(k) for k in partners)
+    ax.set_xlabel(units.axis(key_words(x_key), key_quantity(x_key), sign=False).label +
+                  (f", with {partners}" if partners else ""))
     ax.set_ylabel(yscale.label)
     if (rest and len(groups) > 1) or warned:
         ax.legend(fontsize=8)
@@ -315,7 +323,7 @@ def plot_sweep(directory, out=None, formats=("png", "svg"), force=False):
     keys, outputs, rows = read_sweep(d)
     out = figures_directory(d, out, [*outputs, "runs_U", "runs_R"], formats, force)
     complete = [r for r in rows if r["status"] == "complete"]
-    units = _units_of_runs(d)
+    units = units_of_runs(d)
     dims = sweep_dimensions(keys, rows) or [["id"]]  # no swept key: the cases in their order
     written = []
     for output in outputs:

@@ -10,7 +10,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from .bearing import read_study_table  # noqa: E402
-from .plot import DPI, _save, study_directory  # noqa: E402
+from .plot import DPI, _save, study_directory, units_of_runs  # noqa: E402
 
 
 def read_drive(directory):
@@ -18,7 +18,7 @@ def read_drive(directory):
     return read_study_table(directory, "drive.csv")
 
 
-def _blow_counts(ax, rows, refusal):
+def _blow_counts(ax, rows, refusal, units):
     """Blow counts up to twice the refusal; counts beyond it (and set 0) at the axis' right edge."""
     cap = 2.0 * refusal
     shown = [r for r in rows if r["blows_per_250mm"] <= cap]
@@ -35,28 +35,32 @@ def _blow_counts(ax, rows, refusal):
                 label="pile not yet at rest")
     ax.axvline(refusal, color="tab:red", ls=":", label=f"refusal ({refusal:g})")
     ax.set_xlabel("blows per 250 mm")
-    ax.set_ylabel("penetration (m)")
+    ax.set_ylabel(units.axis("toe depth", "length", None, sign=units.sign("penetration")).label)
     ax.set_xlim(0, right)
     ax.set_title("Blow count")
 
 
-def _stresses(ax, rows, yield_stress):
+def _stresses(ax, rows, yield_stress, units):
     ok = [r for r in rows if math.isfinite(r["max_compression"])]
-    ax.plot([1e-6 * r["max_compression"] for r in ok], [r["depth"] for r in ok], "o-", label="max compression")
-    ax.plot([1e-6 * r["max_tension"] for r in ok], [r["depth"] for r in ok], "s--", label="max tension")
+    ss = units.axis("largest stress, a magnitude", "stress",
+                    [r[k] for r in ok for k in ("max_compression", "max_tension")] + [yield_stress or 0.0], sign=False)
+    ax.plot(ss([r["max_compression"] for r in ok]), [r["depth"] for r in ok], "o-", label="largest compression")
+    ax.plot(ss([r["max_tension"] for r in ok]), [r["depth"] for r in ok], "s--", label="largest tension")
     if yield_stress:
-        ax.axvline(1e-6 * yield_stress, color="tab:red", ls=":", label="yield stress")
-    ax.set_xlabel("stress in the pile (MPa)")
+        ax.axvline(ss(yield_stress), color="tab:red", ls=":", label="yield stress")
+    ax.set_xlabel(ss.label)
     ax.set_xlim(left=0)
     ax.set_title("Driving stresses")
 
 
-def _capacity(ax, rows):
+def _capacity(ax, rows, units):
     depth = [r["depth"] for r in rows]
-    ax.plot([1e-3 * r["capacity"] for r in rows], depth, "o-", label="during driving")
-    ax.plot([1e-3 * r["long_term_capacity"] for r in rows], depth, "--", label="long term (setup)")
-    ax.plot([1e-3 * r["toe"] for r in rows], depth, ":", label="toe")
-    ax.set_xlabel("static capacity (kN)")
+    cs = units.axis("static capacity", "force", [r[k] for r in rows for k in ("capacity", "long_term_capacity")],
+                    sign=False)
+    ax.plot(cs([r["capacity"] for r in rows]), depth, "o-", label="during driving")
+    ax.plot(cs([r["long_term_capacity"] for r in rows]), depth, "--", label="long term (setup)")
+    ax.plot(cs([r["toe"] for r in rows]), depth, ":", label="toe")
+    ax.set_xlabel(cs.label)
     ax.set_xlim(left=0)
     ax.set_title("Capacity")
 
@@ -70,12 +74,13 @@ def plot_drive(directory, formats=("png", "svg")):
     diesel = (summary.get("hammer") or {}).get("kind") == "diesel"
     panels = 4 if diesel else 3
     fig, axes = plt.subplots(1, panels, figsize=(3.6 * panels, 5), dpi=DPI, sharey=True, layout="constrained")
-    _blow_counts(axes[0], rows, summary["refusal"])
-    _stresses(axes[1], rows, (summary.get("pile") or {}).get("yield_stress"))
-    _capacity(axes[2], rows)
+    units = units_of_runs(d, "SI")
+    _blow_counts(axes[0], rows, summary["refusal"], units)
+    _stresses(axes[1], rows, (summary.get("pile") or {}).get("yield_stress"), units)
+    _capacity(axes[2], rows, units)
     if diesel:
         axes[3].plot([r["stroke"] for r in rows], [r["depth"] for r in rows], "o-", label="stroke")
-        axes[3].set_xlabel("stroke (m)")
+        axes[3].set_xlabel(units.axis("stroke", "length", None, sign=False).label)
         axes[3].set_title("Diesel hammer stroke")
     axes[0].invert_yaxis()  # depth downwards (the axes share it)
     refusal_depth = summary.get("refusal_depth")
@@ -103,13 +108,17 @@ def plot_inspector(directory, formats=("png", "svg")):
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(10, 4.5), dpi=DPI, sharex=True, layout="constrained")
     stroke = [r["stroke"] for r in rows]
     ax.plot(stroke, [r["blows_per_250mm"] for r in rows], "o-", label="blow count")
-    ax.set_xlabel("stroke (m)")
+    units = units_of_runs(d, "SI")
+    stroke_label = units.axis("stroke", "length", None, sign=False).label
+    ax.set_xlabel(stroke_label)
     ax.set_ylabel("blows per 250 mm")
     ax.set_title("Inspector's chart")
-    ax2.plot(stroke, [1e-6 * r["max_compression"] for r in rows], "o-", label="max compression")
-    ax2.plot(stroke, [1e-6 * r["max_tension"] for r in rows], "s--", label="max tension")
-    ax2.set_xlabel("stroke (m)")
-    ax2.set_ylabel("stress in the pile (MPa)")
+    ss = units.axis("largest stress, a magnitude", "stress",
+                    [r[k] for r in rows for k in ("max_compression", "max_tension")], sign=False)
+    ax2.plot(stroke, ss([r["max_compression"] for r in rows]), "o-", label="largest compression")
+    ax2.plot(stroke, ss([r["max_tension"] for r in rows]), "s--", label="largest tension")
+    ax2.set_xlabel(stroke_label)
+    ax2.set_ylabel(ss.label)
     ax2.set_title("Driving stresses")
     for a in (ax, ax2):
         a.grid(True, alpha=0.3)

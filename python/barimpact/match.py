@@ -11,7 +11,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from .plot import DPI, FIGSIZE, _save, draw_into, read_table_summary, study_directory  # noqa: E402
+from .plot import DPI, FIGSIZE, _line, _save, draw_into, read_table_summary, study_directory  # noqa: E402
+from .style import Units  # noqa: E402
 
 
 def read_soil(directory):
@@ -33,36 +34,45 @@ def read_match(directory):
     return m, read_soil(directory), static, s
 
 
-def _time_marks(ax, s, label):
+def _units(s):
+    """The record's units (summary.json's), SI when it says none."""
+    return Units((s.get("units") or {}).get("system", "SI"))
+
+
+def _time_marks(ax, s, ts, label):
     for key, style in (("t1", "--"), ("t2", ":")):
-        ax.axvline(1e3 * s[key], color="0.4", lw=0.9, ls=style,
-                   label=f"{key} = {1e3 * s[key]:.4g} ms" if label else None)
+        ax.axvline(ts(s[key]), color="0.4", lw=0.9, ls=style, label=f"{key} = {ts.text(s[key])}" if label else None)
     ax.axhline(0, color="0.6", lw=0.6)
     ax.grid(True, alpha=0.3)
 
 
-def _measured_computed(ax, t, m, column, colour, what):
+def _measured_computed(ax, t, fs, m, column, colour, what):
     """Measured wide and computed thin on top: where they agree, both show."""
-    ax.plot(t, 1e-3 * m[f"{column}_measured"], color=colour, lw=2.4, alpha=0.6, label=f"{what} measured")
-    ax.plot(t, 1e-3 * m[f"{column}_computed"], color="tab:red", lw=1.0, ls="--", label=f"{what} computed")
+    _line(ax, t, fs(m[f"{column}_measured"]), color=colour, lw=2.4, alpha=0.6, label=f"{what} measured")
+    _line(ax, t, fs(m[f"{column}_computed"]), color="tab:red", lw=1.0, ls="--", label=f"{what} computed")
 
 
 def _match_figure(m, s, out, formats, written):
     """The force at the gauges above, the wave up below (its misfit is the
     soil's), t1 and t2 marked."""
-    t = 1e3 * m["t"]
+    units = _units(s)
+    ts = units.time(m["t"])
+    t = ts(m["t"])
+    forces = [m["force_measured"], m["force_computed"]]  # one unit for both panels: the force's
+    fs, ws = (units.axis(words, "force", forces) for words in ("force at the gauges", "wave up Wu"))
+    cs = units.axis("", "force", s["capacity"])
     fig, (ax, ax2) = plt.subplots(2, 1, figsize=(FIGSIZE[0], 6.0), dpi=DPI, sharex=True, layout="constrained",
                                   height_ratios=(3, 2))
-    fig.suptitle(f"Signal match: capacity {1e-3 * s['capacity']:.4g} kN (shaft {1e-3 * s['shaft']:.4g} kN, toe "
-                 f"{1e-3 * s['toe']:.4g} kN), match quality {100 * s['match_quality']:.3g}%")
-    _measured_computed(ax, t, m, "force", "k", "force")
-    _time_marks(ax, s, True)
-    ax.set_ylabel("force at the gauges (kN, compression > 0)")
+    fig.suptitle(f"Signal match: capacity {cs.text(s['capacity'])} (shaft {cs.text(s['shaft'])}, toe "
+                 f"{cs.text(s['toe'])}), match quality {100 * s['match_quality']:.3g}%")
+    _measured_computed(ax, t, fs, m, "force", "k", "force")
+    _time_marks(ax, s, ts, True)
+    ax.set_ylabel(fs.label, fontsize=9)
     ax.legend(fontsize=8, loc="best")
-    _measured_computed(ax2, t, m, "wave_up", "tab:green", "wave up")
-    _time_marks(ax2, s, False)
-    ax2.set_xlabel("t (ms)")
-    ax2.set_ylabel("wave up Wu = (F - Z v)/2 (kN)")
+    _measured_computed(ax2, t, ws, m, "wave_up", "tab:green", "wave up")
+    _time_marks(ax2, s, ts, False)
+    ax2.set_xlabel(ts.label)
+    ax2.set_ylabel(ws.label, fontsize=9)
     ax2.legend(fontsize=8, loc="best")
     _save(fig, out, "force_match", formats, written)
 
@@ -73,28 +83,30 @@ def _resistance_figure(shaft, toe, s, out, formats, written):
     segments' worth: not drawn to the bars' scale). Depth downward, as a
     pile is drawn."""
     length = s["length"]
+    units = _units(s)
+    cs = units.axis("", "force", s["capacity"])
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=FIGSIZE, dpi=DPI, sharey=True, layout="constrained")
-    fig.suptitle(f"Soil resistance: shaft {1e-3 * s['shaft']:.4g} kN on {len(shaft['top'])} segments, toe "
-                 f"{1e-3 * s['toe']:.4g} kN")
-    top, bottom, r = shaft["top"], shaft["bottom"], 1e-3 * shaft["resistance"]
+    fig.suptitle(f"Soil resistance: shaft {cs.text(s['shaft'])} on {len(shaft['top'])} segments, toe "
+                 f"{cs.text(s['toe'])}")
+    top, bottom, r = shaft["top"], shaft["bottom"], cs(shaft["resistance"])
     ax.barh(top, r, height=bottom - top, align="edge", color="tab:brown", alpha=0.7, edgecolor="k", lw=0.6)
-    ax.set_xlabel("shaft resistance per segment (kN)")
-    ax.set_ylabel("depth below the gauges (m)")
+    ax.set_xlabel(f"shaft resistance per segment [{cs.unit}]" if cs.unit else "shaft resistance per segment")
+    ax.set_ylabel(units.axis("depth below the gauges", "length", None, sign=False).label)
     ax.set_xlim(0, 1.15 * max(r.max(initial=0.0), 1e-9))
     ax.set_title("Shaft, per segment", fontsize=10)
     # Each segment's resistance spreads evenly over its length: the sum above a depth is piecewise linear.
     cumulative = np.concatenate(([0.0], np.cumsum(r)))
     depth = np.concatenate((top[:1], bottom))
-    ax2.plot(np.append(cumulative, 1e-3 * s["capacity"]), np.append(depth, length), "k", lw=1.4,
+    ax2.plot(np.append(cumulative, cs(s["capacity"])), np.append(depth, length), "k", lw=1.4,
              label="resistance above the depth")
-    ax2.axvline(1e-3 * s["shaft"], color="tab:brown", ls=":", lw=1.0, label=f"shaft {1e-3 * s['shaft']:.4g} kN")
-    ax2.axvline(1e-3 * s["capacity"], color="tab:red", ls="--", lw=1.0,
-                label=f"capacity {1e-3 * s['capacity']:.4g} kN")
-    ax2.annotate(f"toe {1e-3 * toe['resistance']:.4g} kN", (1e-3 * s["capacity"], length), xytext=(-4, 3),
+    ax2.axvline(cs(s["shaft"]), color="tab:brown", ls=":", lw=1.0, label=f"shaft {cs.text(s['shaft'])}")
+    ax2.axvline(cs(s["capacity"]), color="tab:red", ls="--", lw=1.0,
+                label=f"capacity {cs.text(s['capacity'])}")
+    ax2.annotate(f"toe {cs.text(toe['resistance'])}", (cs(s["capacity"]), length), xytext=(-4, 3),
                  textcoords="offset points", ha="right", va="bottom", fontsize=9,
                  bbox=dict(boxstyle="square,pad=0.1", fc="white", ec="none", alpha=0.8))
-    ax2.set_xlabel("cumulative resistance (kN)")
-    ax2.set_xlim(0, 1.08 * 1e-3 * s["capacity"])
+    ax2.set_xlabel(f"cumulative resistance [{cs.unit}]" if cs.unit else "cumulative resistance")
+    ax2.set_xlim(0, 1.08 * cs(s["capacity"]))
     ax2.set_title("Cumulative, from the gauges down", fontsize=10)
     for a in (ax, ax2):
         a.axhline(length, color="k", lw=1.5)
@@ -113,16 +125,22 @@ def _resistance_figure(shaft, toe, s, out, formats, written):
 
 def _static_figure(static, s, out, formats, written):
     """Load against settlement, settlement downward as a load test's plot."""
-    load, settlement = 1e-3 * static["load"], 1e3 * static["settlement"]
-    capacity, s_c = 1e-3 * s["capacity"], 1e3 * s["s_c"]
+    units = _units(s)
+    ls = units.axis("load at the gauges", "force", s["capacity"], sign=False)
+    ds = units.axis("settlement", "displacement", np.append(static["settlement"], s["s_c"]),
+                    sign=units.sign("penetration"))
+    load, settlement = ls(static["load"]), ds(static["settlement"])
+    capacity, s_c = ls(s["capacity"]), ds(s["s_c"])
     fig, ax = plt.subplots(figsize=FIGSIZE, dpi=DPI, layout="constrained")
-    ax.set_title(f"Simulated static load test: capacity {capacity:.4g} kN reached at s_c = {s_c:.3g} mm")
+    ax.set_title(f"Simulated static load test: capacity {ls.text(s['capacity'])} reached at s_c = "
+                 f"{ds.text(s['s_c'], 3)}")
     ax.plot(load, settlement, "k", lw=1.4, label="load at the gauges")
-    ax.axvline(capacity, color="tab:red", ls="--", lw=1.0, label=f"capacity {capacity:.4g} kN")
-    ax.axhline(s_c, color="tab:blue", ls=":", lw=1.0, label=f"s_c = {s_c:.3g} mm (largest quake + shortening)")
+    ax.axvline(capacity, color="tab:red", ls="--", lw=1.0, label=f"capacity {ls.text(s['capacity'])}")
+    ax.axhline(s_c, color="tab:blue", ls=":", lw=1.0,
+               label=f"s_c = {ds.text(s['s_c'], 3)} (largest quake + shortening)")
     ax.plot([capacity], [s_c], "o", color="tab:red", ms=5)
-    ax.set_xlabel("load (kN)")
-    ax.set_ylabel("settlement (mm)")
+    ax.set_xlabel(ls.label)
+    ax.set_ylabel(ds.label)
     ax.set_xlim(0, 1.1 * capacity)
     ax.set_ylim(settlement.max(initial=s_c), 0)  # settlement downward
     ax.grid(True, alpha=0.3)

@@ -1,7 +1,8 @@
 """The figures of a `barimpact pda` directory (pda.csv, summary.json): the
 analyser's plot of force and velocity times impedance against time with
 marks at t1 and t2, and the waves down and up at the gauges."""
-from .plot import _figure, _save, draw_into, read_table_summary, study_directory
+from .plot import _figure, _line, _save, draw_into, read_table_summary, study_directory
+from .style import Units
 
 
 def read_pda(directory):
@@ -9,18 +10,20 @@ def read_pda(directory):
     return read_table_summary(directory, "pda.csv")
 
 
-def _against_time(h, s, title, series, ylabel, out, name, formats, written):
-    """Columns of pda.csv in kN against t in ms, with t1 and t2 marked.
-    `series`: (column, colour, label) each."""
-    t = 1e3 * h["t"]
+def _against_time(h, s, title, series, words, sign, out, name, formats, written):
+    """Columns of pda.csv against time, with t1 and t2 marked, in the
+    record's units. `series`: (column, colour, label) each."""
+    units = Units((s.get("units") or {}).get("system", "SI"))
+    ts = units.time(h["t"])
+    fs = units.axis(words, "force", [h[c] for c, _, _ in series], sign=sign)
     fig, ax = _figure(title)
     for column, colour, label in series:
-        ax.plot(t, 1e-3 * h[column], color=colour, lw=1.2, label=label)
+        _line(ax, ts(h["t"]), fs(h[column]), color=colour, lw=1.2, label=label)
     for key, style in (("t1", "--"), ("t2", ":")):
-        ax.axvline(1e3 * s[key], color="0.4", lw=0.9, ls=style, label=f"{key} = {1e3 * s[key]:.4g} ms")
+        ax.axvline(ts(s[key]), color="0.4", lw=0.9, ls=style, label=f"{key} = {ts.text(s[key])}")
     ax.axhline(0, color="0.6", lw=0.6)
-    ax.set_xlabel("t (ms)")
-    ax.set_ylabel(ylabel)
+    ax.set_xlabel(ts.label)
+    ax.set_ylabel(fs.label)
     ax.legend(fontsize=8)
     _save(fig, out, name, formats, written)
 
@@ -31,14 +34,15 @@ def plot_pda(directory, formats=("png", "svg")):
     plot: F and Z v proportional until the first reflections) and waves."""
     out = study_directory(directory, "pda")
     h, s = read_pda(out)
+    rmx = Units((s.get("units") or {}).get("system", "SI")).axis("", "force", s["rmx"])
     written = []
-    _against_time(h, s, "Force and velocity times impedance at the gauges",
+    _against_time(h, s, "Force and impedance times velocity at the gauges",
                   (("force", "k", "force F"), ("velocity_z", "tab:blue", "Z v")),
-                  "kN (compression, downward velocity > 0)", out, "force_velocity", formats, written)
-    _against_time(h, s, f"Waves at the gauges (RMX {1e-3 * s['rmx']:.4g} kN, J_c = {s.get('damping', 0.5):g})",
+                  "force, Z v", "compression +, Z v: down +", out, "force_velocity", formats, written)
+    _against_time(h, s, f"Waves at the gauges (RMX {rmx.text(s['rmx'])}, J_c = {s.get('damping', 0.5):g})",
                   (("wave_down", "tab:red", "wave down Wd = (F + Z v)/2"),
                    ("wave_up", "tab:green", "wave up Wu = (F - Z v)/2")),
-                  "kN", out, "waves", formats, written)
+                  "wave force", "compression +", out, "waves", formats, written)
     return written
 
 

@@ -43,6 +43,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import _core  # noqa: E402
+from .style import Scale, Units, column_words, drawn_sign, is_pile, key_words, spoken, words_of  # noqa: E402,F401
 
 COLUMNS = ("t", "U", "V", "R", "E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic")
 FIGSIZE = (8.0, 4.5)  # inches; at DPI 120 a PNG of 960 x 540 pixels
@@ -52,13 +53,7 @@ MAP_ROWS = 600  # snapshot rows a space-time map keeps at most (the axis is abou
 EXACT_ROWS = 20000  # history rows of the exact solution at most: far more than a screen shows
 
 
-# --- units -----------------------------------------------------------------
-
-UNITS = {"time": "s", "length": "m", "velocity": "m/s", "acceleration": "m/s²", "force": "N", "stress": "Pa",
-         "energy": "J", "strain": "-", "strain_rate": "1/s", "stiffness": "N/m", "area": "m²", "mass": "kg",
-         "density": "kg/m³", "line_density": "kg/m"}
-_PREFIXED = {"s", "m", "N", "Pa", "J"}  # the units a prefix (ms, kN, MPa) suits
-_PREFIXES = {-9: "n", -6: "µ", -3: "m", 0: "", 3: "k", 6: "M", 9: "G"}
+# --- units (the shared style: barimpact.style) ------------------------------------
 
 # The quantity of a case key, by its last part ([bar]'s stiffness is E A, a
 # force, and its density a mass per unit length).
@@ -76,57 +71,19 @@ def key_quantity(key):
     return KEY_QUANTITIES.get(parts[-1])
 
 
-class Scale:
-    """An axis' label and the factor its numbers are drawn with: scale(values) -> drawn values."""
-
-    def __init__(self, label, factor=1.0, unit=""):
-        self.label, self.factor, self.unit = label, factor, unit
-
-    def __call__(self, values):
-        return np.asarray(values, dtype=float) * self.factor if self.factor != 1.0 else values
-
-
-def _prefix(unit, values):
-    """(factor, prefixed unit) for `values`: none while their largest
-    magnitude is in [0.1, 1000), else the prefix putting it in [1, 1000)."""
-    if unit not in _PREFIXED or values is None:
-        return 1.0, unit
-    a = np.abs(np.asarray(values, dtype=float).ravel())
-    a = a[np.isfinite(a)]
-    if not a.size or a.max() == 0 or 0.1 <= a.max() < 1000:
-        return 1.0, unit
-    e = int(np.floor(np.log10(a.max() * 1.001) / 3) * 3)  # 0.9999 ms stays 1 ms, not 999.9 µs
-    e = min(max(e, -9), 0 if unit == "s" else 9)  # no kiloseconds
-    return 10.0 ** -e, _PREFIXES[e] + unit
-
-
-class Units:
-    """Labels in a unit system: "SI" names the unit of each axis, "none"
-    (nondimensional or unstated units) leaves the bare names."""
-
-    def __init__(self, system="none"):
-        self.system = str(system)
-        self.si = self.system.upper() == "SI"
-
-    def axis(self, name, quantity, values=None):
-        """The Scale of an axis showing `name`, a `quantity` of UNITS; with
-        `values`, SI picks a prefix for them (none on log axes: give None)."""
-        unit = UNITS.get(quantity) if self.si and quantity else None
-        if not unit:
-            return Scale(name)
-        factor, unit = _prefix(unit, values)
-        return Scale(f"{name} ({unit})", factor, unit)
-
-    def value(self, number, quantity):
-        """A number with its unit, for legends and titles: "100 N/m"."""
-        text = f"{number:.4g}" if isinstance(number, (int, float)) else str(number)
-        unit = UNITS.get(quantity) if self.si and quantity else None
-        return f"{text} {unit}" if unit and unit != "-" else text
-
-
 def units_of(case):
-    """The Units of a case (a dict of its TOML): its `[units] system`, "none" when absent."""
-    return Units((case or {}).get("units", {}).get("system", "none"))
+    """The Units of a case (a dict of its TOML): its `[units] system`, "none" when absent; a pile's words."""
+    return Units((case or {}).get("units", {}).get("system", "none"), pile=is_pile(case))
+
+
+def units_of_runs(directory, default="none"):
+    """The Units of a study, from the case.toml of its first run (all share it); `default`'s without one."""
+    for case in sorted(Path(directory).glob("runs/*/case.toml")):
+        try:
+            return units_of(tomllib.loads(case.read_text()))
+        except (OSError, tomllib.TOMLDecodeError):
+            continue
+    return Units(default)
 
 
 # --- reading -----------------------------------------------------------------
@@ -451,12 +408,12 @@ def _shown(value, key, units):
 
 def legend_labels(settings, units=None):
     """One label per dict of `settings` naming only the keys that differ
-    between them ("obstacle.stiffness = 100, initial.velocity = -1"), none
+    between them, in words ("near-end stiffness = 100, bar velocity = -1"), none
     of those they all share."""
     keys = differing_keys(settings)
     if not keys:
         return [f"run {i + 1}" for i in range(len(settings))]
-    return [", ".join(f"{k} = {_shown(s.get(k), k, units)}" for k in keys) for s in settings]
+    return [", ".join(f"{key_words(k)} = {_shown(s.get(k), k, units)}" for k in keys) for s in settings]
 
 
 # --- the figures of a run -------------------------------------------------------------
@@ -487,9 +444,16 @@ def _replace_whole(path, write):
         raise
 
 
+# Called as hook(fig, name) before each figure is saved: what reads the
+# figures' text (titles, labels, legends) without comparing images.
+SAVE_HOOKS: list = []
+
+
 def _save(fig, out, name, formats, written):
     """The figure in each format, each file whole or not at all; closed either way."""
     try:
+        for hook in SAVE_HOOKS:
+            hook(fig, name)
         for fmt in formats:
             path = Path(out) / f"{name}.{fmt}"
             _replace_whole(path, lambda staged, fmt=fmt: fig.savefig(staged, dpi=DPI, format=fmt))
@@ -499,12 +463,12 @@ def _save(fig, out, name, formats, written):
 
 
 def _near_end(case, units):
-    """The near end in words, for titles: "elastic obstacle k = 100"."""
+    """The near end in words, for titles: "elastic obstacle k = 100 N/m", "Smith soil at the toe"."""
     near = case.get("near_end", {})
     law = near.get("law", "free")
     if law in ("elastic", "viscoelastic", "cushion") and "stiffness" in near:
         return f"{law} obstacle k = {units.value(near['stiffness'], 'stiffness')}"
-    return {"free": "", "rigid": "rigid obstacle"}.get(law, f"{law} near end")
+    return {"free": "", "rigid": "rigid obstacle", "smith": "Smith soil at the toe"}.get(law, f"{law} near end")
 
 
 def _titled(title, data):
@@ -513,58 +477,57 @@ def _titled(title, data):
 
 
 def _run_label(data):
-    return data.case.get("time", {}).get("scheme", "computed")
+    return spoken(data.case.get("time", {}).get("scheme", "computed"))
 
 
-def _displacement_figure(data, refs, out, formats, written):
+def _column(data, column, values=None, sign=True):
+    """(words, Scale) of a history column's axis: its words, sign and unit."""
+    words, quantity = column_words(column, data.case) or (words_of(column), None)
+    return words, data.units.axis(words, quantity, values, sign=sign)
+
+
+def _capital(text):
+    return text[:1].upper() + text[1:]
+
+
+def _history_figure(data, refs, column, name, out, formats, written):
+    """A history column against time with its references (U: the displacement figure, R: the reaction's)."""
     h, units = data.history, data.units
-    ts, us = units.axis("t", "time", h["t"]), units.axis("U", "length", h["U"])
-    fig, ax = _figure(_titled("End displacement U(t) = u(0, t)", data))
-    t, u = screen_points(h["t"], h["U"])
+    ts = units.time(h["t"])
+    words, ys = _column(data, column, h[column])
+    fig, ax = _figure(_titled(_capital(words), data))
+    t, y = screen_points(h["t"], h[column])
     style = dict(ls="none", marker=".", ms=3) if t.size <= 400 else dict(lw=1.6)  # dots only while they stay apart
-    ax.plot(ts(t), us(u), label=_run_label(data), **style)
-    _draw_references(ax, refs, "U", ts, us)
+    ax.plot(ts(t), ys(y), label=_run_label(data), **style)
+    _draw_references(ax, refs, column, ts, ys)
     near = data.case.get("near_end", {})
-    if near.get("law", "free") in ("elastic", "viscoelastic", "rigid", "cushion"):
-        ax.axhline(us(-near.get("gap", 0.0)), color="gray", lw=0.8, ls="--", label="obstacle face")
+    if column == "U" and near.get("law", "free") in ("elastic", "viscoelastic", "rigid", "cushion"):
+        ax.axhline(ys(-near.get("gap", 0.0)), color="gray", lw=0.8, ls="--", label="obstacle face")
     ax.set_xlabel(ts.label)
-    ax.set_ylabel(us.label)
+    ax.set_ylabel(ys.label)
     ax.legend()
-    _save(fig, out, "displacement", formats, written)
+    _save(fig, out, name, formats, written)
 
 
-def _reaction_figure(data, refs, out, formats, written):
-    h, units = data.history, data.units
-    ts, rs = units.axis("t", "time", h["t"]), units.axis("R", "force", h["R"])
-    fig, ax = _figure(_titled("Reaction of the obstacle R(t)", data))
-    _line(ax, ts(h["t"]), rs(h["R"]), "-", lw=1.4, label=_run_label(data))
-    _draw_references(ax, refs, "R", ts, rs)
-    ax.set_xlabel(ts.label)
-    ax.set_ylabel(rs.label)
-    ax.legend()
-    _save(fig, out, "reaction", formats, written)
-
-
-ENERGIES = (("E_kin", "kinetic"), ("E_strain", "strain"), ("E_obstacle", "obstacle"), ("W_ext", "external work"),
-            ("D_visc", "viscous dissipation"), ("D_contact", "contact dissipation"), ("D_plastic", "plastic work"))
+ENERGIES = ("E_kin", "E_strain", "E_obstacle", "W_ext", "D_visc", "D_contact", "D_plastic")
 
 
 def _energy_figure(data, exact, out, formats, written):
     h, units = data.history, data.units
     balance = (h["E_kin"] + h["E_strain"] + h["E_obstacle"] - h["W_ext"] + h["D_visc"] + h.get("D_contact", 0.0) +
                h.get("D_plastic", 0.0))
-    ts = units.axis("t", "time", h["t"])
-    es = units.axis("energy", "energy", np.concatenate([h[n] for n, _ in ENERGIES if n in h]))
+    ts = units.time(h["t"])
+    es = units.axis("energy", "energy", np.concatenate([h[n] for n in ENERGIES if n in h]))
     fig, ax = _figure("Energy budget")
     exact_drawn = False
-    for name, label in ENERGIES:
+    for name in ENERGIES:
         if name in h and (name not in ("D_contact", "D_plastic") or np.any(h[name] != 0)):
-            line, = _line(ax, ts(h["t"]), es(h[name]), lw=1.0, label=label)
+            line, = _line(ax, ts(h["t"]), es(h[name]), lw=1.0, label=words_of(name, data.case))
             y = exact.history.get(name) if exact is not None else None
             if y is not None and np.any(np.isfinite(y)) and np.any(y != 0):  # same colour, dashed
                 _line(ax, ts(exact.history["t"]), es(y), ls="--", lw=1.0, color=line.get_color())
                 exact_drawn = True
-    _line(ax, ts(h["t"]), es(balance), "k-", lw=1.8, label="balance: kin + strain + obstacle - work + dissipation")
+    _line(ax, ts(h["t"]), es(balance), "k-", lw=1.8, label="balance: kinetic + strain + obstacle - work + dissipation")
     if exact_drawn:
         _exact_entry(ax)
     ax.set_xlabel(ts.label)
@@ -581,26 +544,78 @@ def _body_rows(data):
     return [np.flatnonzero(data.body == name) for name in names]
 
 
-def _map_figure(data, field, name, title, symbol, quantity, cmap, out, formats, written):
-    """A field over x and t, one map per bar body (the gaps between them stay
-    blank), reduced to about a cell per pixel and rasterized."""
-    units = data.units
+def _position_axis(data):
+    """The axis of x along the line: a pile's height above its toe."""
+    words = "height above the toe x" if data.units.pile else "position x"
+    return data.units.axis(words, "length", data.x, sign=False)
+
+
+def between_snapshots(cells, snapshot_t, grid_t):
+    """`cells` (snapshots, columns) interpolated linearly in time onto
+    `grid_t`, masked outside the snapshots' span: a map shows only where
+    there is data, never a snapshot stretched past the last one."""
+    j = np.clip(np.searchsorted(snapshot_t, grid_t, side="right") - 1, 0, max(snapshot_t.size - 2, 0))
+    gap = np.diff(snapshot_t)[j] if snapshot_t.size > 1 else np.ones_like(grid_t)
+    w = np.clip((grid_t - snapshot_t[j]) / np.where(gap > 0, gap, 1.0), 0.0, 1.0)[:, None]
+    values = cells[j] * (1.0 - w) + cells[np.minimum(j + 1, snapshot_t.size - 1)] * w
+    outside = (grid_t < snapshot_t[0]) | (grid_t > snapshot_t[-1])
+    mask = np.zeros(values.shape, dtype=bool)
+    mask[outside] = True
+    return np.ma.masked_array(values, mask)
+
+
+def _map_grid(data, snapshot_t):
+    """The time rows of a map: MAP_ROWS over the run's span (the history's), at most."""
+    t = data.history.get("t", np.empty(0))
+    lo = min(float(snapshot_t[0]), float(t[0]) if t.size else np.inf)
+    hi = max(float(snapshot_t[-1]), float(t[-1]) if t.size else -np.inf)
+    edges = np.linspace(lo, hi, MAP_ROWS + 1)
+    return edges, 0.5 * (edges[1:] + edges[:-1])
+
+
+def _mark_snapshots(ax, snapshot_t):
+    """A tick at each snapshot time on the map's right edge."""
+    ax.plot(np.ones(snapshot_t.size), snapshot_t, ls="none", marker="_", ms=7, mew=0.7, color="k", clip_on=False,
+            transform=ax.get_yaxis_transform(), label=f"the {snapshot_t.size} snapshot times")
+
+
+def _map_figure(data, symbol, name, what, quantity, cmap, out, formats, written):
+    """A field (`symbol`: sigma or eps_p) over x and t from its snapshots,
+    one map per bar body (the gaps between them stay blank), interpolated in
+    time between snapshots only, reduced to about a cell per pixel and
+    rasterized; drawn with drawn_sign (compression positive)."""
+    units, field = data.units, drawn_sign(symbol) * getattr(data, symbol)
     finite = np.abs(field[np.isfinite(field)])
     limit = float(finite.max()) if finite.size and finite.max() > 0 else 1.0
-    xs, ts = units.axis("x", "length", data.x), units.axis("t", "time", data.field_t)
-    vs = units.axis(symbol, quantity, limit)
-    fig, ax = _figure(title, grid=False)
+    xs = _position_axis(data)
+    edges, grid = _map_grid(data, data.field_t)
+    ts, vs = units.time(edges), units.axis(what, quantity, limit)
+    line = "pile" if units.pile else "line"
+    fig, ax = _figure(f"{_capital(what)} along the {line} from {data.field_t.size} snapshots "
+                      "(linear in time between them)", grid=False)
     span = float(np.ptp(data.x)) or 1.0
     for rows in _body_rows(data):
         bins = max(2, round(SCREEN_COLUMNS * float(np.ptp(data.x[rows])) / span))
         x, cells = peak_cells(field[:, rows], data.x[rows], bins, axis=1)
         t, cells = peak_cells(cells, data.field_t, MAP_ROWS, axis=0)
-        mesh = ax.pcolormesh(xs(x), ts(t), vs(cells), cmap=cmap, vmin=-vs(limit), vmax=vs(limit), shading="nearest",
-                             rasterized=True)  # an image in the SVG, not a path per cell
-    fig.colorbar(mesh, ax=ax, label=f"{vs.label}, tension > 0")
+        mesh = ax.pcolormesh(xs(_cell_edges(x)), ts(edges), vs(between_snapshots(cells, t, grid)), cmap=cmap,
+                             vmin=-vs(limit), vmax=vs(limit), shading="flat", rasterized=True)
+    _mark_snapshots(ax, ts(data.field_t))
+    ax.set_facecolor("0.88")  # no snapshot there: grey, not the colour of zero
+    ax.set_ylim(ts(edges[0]), ts(edges[-1]))
+    fig.colorbar(mesh, ax=ax, label=vs.label)
     ax.set_xlabel(xs.label)
     ax.set_ylabel(ts.label)
     _save(fig, out, name, formats, written)
+
+
+def _cell_edges(x):
+    """Edges of cells centred on the sorted coordinates `x`."""
+    x = np.asarray(x, dtype=float)
+    if x.size == 1:
+        return np.array([x[0] - 0.5, x[0] + 0.5])
+    mid = 0.5 * (x[1:] + x[:-1])
+    return np.concatenate(([x[0] - (mid[0] - x[0])], mid, [x[-1] + (x[-1] - mid[-1])]))
 
 
 def run_step(data):
@@ -634,24 +649,27 @@ def _exact_snapshot(data, exact, field):
     return {i: int(j[i]) for i in np.flatnonzero(close) if np.any(np.isfinite(values[j[i]]))}
 
 
-def _snapshots(data, field, title, symbol, quantity, out, name, formats, written, exact=None):
-    """A field over x at up to eight snapshot times, one colour per time
-    across the bodies; `exact` (a RunData) adds the exact `symbol` field dashed."""
-    units = data.units
-    xs, fs = units.axis("x", "length", data.x), units.axis(symbol, quantity, field)
-    ts = units.axis("t", "time", data.field_t)
+def _snapshots(data, symbol, what, quantity, out, name, formats, written, exact=None):
+    """A field (`symbol`: u or eps_p) over x at up to eight snapshot times,
+    one colour per time across the bodies, drawn with drawn_sign; `exact`
+    (a RunData) adds the exact field dashed."""
+    units, sign = data.units, drawn_sign(symbol)
+    field = sign * getattr(data, symbol)
+    xs, fs = _position_axis(data), units.axis(what, quantity, field)
+    ts = units.time(data.field_t)
     matched = _exact_snapshot(data, exact, symbol)
-    fig, ax = _figure(title)
+    line = "pile" if units.pile else "line"
+    fig, ax = _figure(f"{_capital(what)} along the {line} at snapshot times")
     chosen = np.unique(np.linspace(0, data.field_t.size - 1, min(8, data.field_t.size)).round().astype(int))
     for i in chosen:
-        when = f"t = {ts(data.field_t[i]):.3g}" + (f" {ts.unit}" if ts.unit else "")
+        when = f"t = {ts.text(data.field_t[i], 3)}"
         color = None  # the first body's line picks it, the others follow
         for n, rows in enumerate(_body_rows(data)):
-            line, = _line(ax, xs(data.x[rows]), fs(field[i, rows]), lw=1.2, label=when if n == 0 else None,
-                          color=color)
-            color = line.get_color()
+            drawn, = _line(ax, xs(data.x[rows]), fs(field[i, rows]), lw=1.2, label=when if n == 0 else None,
+                           color=color)
+            color = drawn.get_color()
         if i in matched:
-            values = getattr(exact, symbol)[matched[i]]
+            values = sign * getattr(exact, symbol)[matched[i]]
             for rows in _body_rows(exact):
                 _line(ax, xs(exact.x[rows]), fs(values[rows]), ls="--", lw=0.9, color=color)
     if any(i in matched for i in chosen):
@@ -678,8 +696,8 @@ def _contact_spans(summary, t):
 
 def _impacts_figure(data, refs, out, formats, written):
     h, units = data.history, data.units
-    ts = units.axis("t", "time", h["t"])
-    us, rs = units.axis("U", "length", h["U"]), units.axis("R", "force", h["R"])
+    ts = units.time(h["t"])
+    (_, us), (_, rs) = _column(data, "U", h["U"]), _column(data, "R", h["R"])
     contacts = data.summary.get("contacts", [])
     fig, (top, bottom) = plt.subplots(2, 1, sharex=True, figsize=FIGSIZE, dpi=DPI, layout="constrained")
     fig.suptitle(f"Impacts: {len(contacts)} contact episode{'s' if len(contacts) != 1 else ''}")
@@ -688,8 +706,8 @@ def _impacts_figure(data, refs, out, formats, written):
     exact = [r for r in refs if r.label == "exact"]
     _draw_references(top, exact, "U", ts, us)
     _draw_references(bottom, exact, "R", ts, rs)
-    top.set_ylabel(us.label)
-    bottom.set_ylabel(rs.label)
+    top.set_ylabel(us.label, fontsize=9)
+    bottom.set_ylabel(rs.label, fontsize=9)
     bottom.set_xlabel(ts.label)
     for ax in (top, bottom):
         for i, (start, end) in enumerate(_contact_spans(data.summary, h["t"])):
@@ -700,28 +718,33 @@ def _impacts_figure(data, refs, out, formats, written):
     _save(fig, out, "impacts", formats, written)
 
 
+def _line_groups(h):
+    """(figure, title, axis words, quantity, columns) of what a line adds to the history."""
+    return (("joint_forces", "Joint forces" + (" and the far end's" if "far_end.force" in h else ""), "force",
+             "force", [c for c in h if c.startswith("joint.") and c.endswith(".force") or c == "far_end.force"]),
+            ("gauges", "Gauge forces", "force", "force",
+             [c for c in h if c.startswith("gauge.") and c.endswith(".force")]),
+            ("masses", "Mass displacements", "displacement", "displacement",
+             [c for c in h if c.startswith("body.") and c.endswith(".u")]))
+
+
 def _line_figures(data, exact, out, formats, written):
     """Joint and end forces, gauges, mass motions: the columns a line adds
-    (with the exact ones dashed when the line admits an exact solution)."""
+    (with the exact ones dashed when the line admits an exact solution),
+    each drawn with its drawn_sign."""
     h, t, units = data.history, data.history["t"], data.units
-    groups = (("joint_forces", "Joint and end forces (compression > 0)", "force", "force",
-               [c for c in h if c.startswith("joint.") and c.endswith(".force") or c == "far_end.force"]),
-              ("gauges", "Gauges: axial force (tension > 0)", "force", "force",
-               [c for c in h if c.startswith("gauge.") and c.endswith(".force")]),
-              ("masses", "Mass displacements", "u", "length",
-               [c for c in h if c.startswith("body.") and c.endswith(".u")]))
-    ts = units.axis("t", "time", t)
-    for name, title, symbol, quantity, columns in groups:
+    ts = units.time(t)
+    for name, title, words, quantity, columns in _line_groups(h):
         if not columns:
             continue
-        ys = units.axis(symbol, quantity, [h[c] for c in columns])
+        ys = units.axis(words, quantity, [drawn_sign(c) * h[c] for c in columns])
         fig, ax = _figure(title)
         exact_drawn = False
         for c in columns:
-            line, = _line(ax, ts(t), ys(h[c]), lw=1.0, label=c)
+            line, = _line(ax, ts(t), ys(drawn_sign(c) * h[c]), lw=1.0, label=words_of(c, data.case))
             y = exact.history.get(c) if exact is not None else None
             if y is not None and np.any(np.isfinite(y)):
-                _line(ax, ts(exact.history["t"]), ys(y), ls="--", lw=1.0, color=line.get_color())
+                _line(ax, ts(exact.history["t"]), ys(drawn_sign(c) * y), ls="--", lw=1.0, color=line.get_color())
                 exact_drawn = True
         if exact_drawn:
             _exact_entry(ax)
@@ -734,50 +757,70 @@ def _line_figures(data, exact, out, formats, written):
 def _blow_figures(data, out, formats, written):
     """A blow's figures: force and Z v at the gauge (the analyser's plot,
     compression and downward velocity positive), the toe's resistance, and
-    the stress envelopes along the pile. A pile is in SI whatever the case
-    says: the analysers' kN, ms and MPa."""
+    the stress envelopes along the pile."""
     blow = data.summary.get("blow")
     if not blow:
         return
-    h, t = data.history, data.history["t"]
     gauge = blow.get("gauge")
-    if gauge and f"gauge.{gauge}.force" in h and blow.get("impedance"):
-        z = blow["impedance"]
-        fig, ax = _figure(f"Pile head ({gauge}): force and Z v (compression, downward > 0)")
-        _line(ax, t * 1e3, -h[f"gauge.{gauge}.force"] / 1e3, lw=1.1, label="F")
-        _line(ax, t * 1e3, -z * h[f"gauge.{gauge}.velocity"] / 1e3, lw=1.1, label=f"Z v, Z = {z / 1e3:.4g} kN s/m")
-        ax.set_xlabel("t (ms)")
-        ax.set_ylabel("kN")
-        ax.legend(fontsize=8)
-        _save(fig, out, "blow_head", formats, written)
+    if gauge and f"gauge.{gauge}.force" in data.history and blow.get("impedance"):
+        _head_figure(data, gauge, blow["impedance"], out, formats, written)
     if data.case.get("near_end", {}).get("law") == "smith":
         _toe_figure(data, blow, out, formats, written)
     env = blow.get("envelope")
     if env and env.get("x"):
-        fig, ax = _figure(f"Stress envelopes along the pile ({blow.get('pile', '')})")
-        x = np.asarray(env["x"])
-        ax.plot(np.asarray(env["compression"]) / 1e6, x, lw=1.2, label="largest compression")
-        ax.plot(np.asarray(env["tension"]) / 1e6, x, lw=1.2, label="largest tension")
-        ax.set_xlabel("stress (MPa)")
-        ax.set_ylabel("x (m, toe at 0)")
-        ax.legend(fontsize=8)
-        _save(fig, out, "blow_envelopes", formats, written)
+        _envelope_figure(data, blow, env, out, formats, written)
+
+
+def _head_figure(data, gauge, z, out, formats, written):
+    h, units = data.history, data.units
+    force = -h[f"gauge.{gauge}.force"]  # compression positive
+    zv = -z * h[f"gauge.{gauge}.velocity"]  # downward positive: Z v = F in a wave going down
+    ts = units.time(h["t"])
+    fs = units.axis("force, Z v", "force", np.concatenate([force, zv]), sign="compression +, Z v: down +")
+    fig, ax = _figure(f"Pile {words_of(f'gauge.{gauge}.force', data.case).removesuffix(' force')}: force and "
+                      "impedance times velocity")
+    _line(ax, ts(h["t"]), fs(force), lw=1.1, label="force F")
+    _line(ax, ts(h["t"]), fs(zv), lw=1.1, label=f"Z v, Z = {units.axis('', 'impedance', z).text(z)}")
+    ax.set_xlabel(ts.label)
+    ax.set_ylabel(fs.label)
+    ax.legend(fontsize=8)
+    _save(fig, out, "blow_head", formats, written)
 
 
 def _toe_figure(data, blow, out, formats, written):
-    h, t = data.history, data.history["t"]
-    fig, ax = _figure("Toe resistance and penetration")
-    _line(ax, t * 1e3, h["R"] / 1e3, lw=1.1, color="tab:brown", label="toe force")
-    ax.set_xlabel("t (ms)")
-    ax.set_ylabel("toe force (kN)")
+    h, units = data.history, data.units
+    ts = units.time(h["t"])
+    words, rs = _column(data, "R", h["R"])
+    penetration = -h["U"]  # the toe's displacement is up the pile: into the soil is down
+    ps = units.axis("toe penetration", "displacement", np.append(penetration, blow.get("set", 0.0)),
+                    sign=units.sign("penetration"))
+    fig, ax = _figure("Toe resistance and penetration, Smith soil")
+    _line(ax, ts(h["t"]), rs(h["R"]), lw=1.1, color="tab:brown", label=words)
+    ax.set_xlabel(ts.label)
+    ax.set_ylabel(rs.label)
     right = ax.twinx()
-    _line(right, t * 1e3, -h["U"] * 1e3, lw=1.0, color="tab:blue", label="toe penetration")
+    _line(right, ts(h["t"]), ps(penetration), lw=1.0, color="tab:blue", label="toe penetration")
     if blow.get("set", 0) > 0:
-        right.axhline(blow["set"] * 1e3, color="tab:blue", lw=0.8, ls="--", label=f"set {blow['set'] * 1e3:.3g} mm")
-    right.set_ylabel("penetration (mm)")
+        right.axhline(ps(blow["set"]), color="tab:blue", lw=0.8, ls="--", label=f"set {ps.text(blow['set'], 3)}")
+    right.set_ylabel(ps.label)
     lines = ax.get_legend_handles_labels(), right.get_legend_handles_labels()
     ax.legend(lines[0][0] + lines[1][0], lines[0][1] + lines[1][1], fontsize=8)
     _save(fig, out, "blow_toe", formats, written)
+
+
+def _envelope_figure(data, blow, env, out, formats, written):
+    """The largest compression and tension of each element, magnitudes, against the height above the toe."""
+    units = data.units
+    x, compression, tension = (np.asarray(env[k], dtype=float) for k in ("x", "compression", "tension"))
+    ss = units.axis("largest stress, a magnitude", "stress", np.concatenate([compression, tension]), sign=False)
+    xs = units.axis("height above the toe", "length", x, sign=False)
+    fig, ax = _figure(f"Stress envelopes along the {spoken(blow.get('pile', 'pile'))}")
+    ax.plot(ss(compression), xs(x), lw=1.2, label="largest compression")
+    ax.plot(ss(tension), xs(x), lw=1.2, label="largest tension")
+    ax.set_xlabel(ss.label)
+    ax.set_ylabel(xs.label)
+    ax.legend(fontsize=8)
+    _save(fig, out, "blow_envelopes", formats, written)
 
 
 # --- where figures go: the library's output rule ------------------------------------------
@@ -845,9 +888,9 @@ def draw_into(draw, staging, shown, formats=("png", "svg")):
     try:
         return draw(staging, formats)
     except OSError as e:
-        if e.filename is None or Path(e.filename).parent != Path(staging):
+        if e.filename is None or not Path(e.filename).is_relative_to(staging):
             raise
-        raise OSError(e.errno, e.strerror, str(Path(shown) / Path(e.filename).name)) from e
+        raise OSError(e.errno, e.strerror, str(Path(shown) / Path(e.filename).relative_to(staging))) from e
 
 
 # --- entry points ---------------------------------------------------------------------
@@ -875,29 +918,24 @@ def plot(source, out=None, formats=("png", "svg"), force=False):
         out = prepare_figures("figures" if out is None else out, names, formats, force)
     written = []
     refs, exact = references(data)
-    _displacement_figure(data, refs, out, formats, written)
-    _reaction_figure(data, refs, out, formats, written)
+    _history_figure(data, refs, "U", "displacement", out, formats, written)
+    _history_figure(data, refs, "R", "reaction", out, formats, written)
     _energy_figure(data, exact, out, formats, written)
     if data.field_t.size >= 2:
-        _map_figure(data, data.sigma, "stress_map", "Stress sigma(x, t)", "sigma", "stress", "RdBu_r", out, formats,
-                    written)
+        _map_figure(data, "sigma", "stress_map", "stress", "stress", "RdBu_r", out, formats, written)
     eps_p = data.eps_p
     if data.field_t.size >= 2 and eps_p is not None and eps_p.size and np.any(eps_p != 0):
-        _map_figure(data, eps_p, "plastic_map", "Plastic strain eps_p(x, t)", "eps_p", "strain", "PuOr_r", out,
-                    formats, written)
-        _snapshots(data, eps_p, "Plastic strain eps_p(x) at snapshot times", "eps_p", "strain", out,
-                   "plastic_snapshots", formats, written, exact)
+        _map_figure(data, "eps_p", "plastic_map", "plastic strain", "strain", "PuOr_r", out, formats, written)
+        _snapshots(data, "eps_p", "plastic strain", "strain", out, "plastic_snapshots", formats, written, exact)
     if data.field_t.size >= 1:
-        _snapshots(data, data.u, "Displacement u(x) at snapshot times", "u", "length", out, "snapshots", formats,
-                   written, exact)
+        _snapshots(data, "u", "displacement", "displacement", out, "snapshots", formats, written, exact)
     _impacts_figure(data, refs, out, formats, written)
     _line_figures(data, exact, out, formats, written)
     _blow_figures(data, out, formats, written)
     return written
 
 
-COMPARED = (("U", "End displacement U(t) = u(0, t)", "U", "length"),
-            ("R", "Reaction of the obstacle R(t)", "R", "force"))
+COMPARED = ("U", "R")  # the history columns compare draws, one figure each
 
 
 def compare(sources, out, formats=("png", "svg"), labels=None, name="compare", force=False):
@@ -907,7 +945,7 @@ def compare(sources, out, formats=("png", "svg"), labels=None, name="compare", f
     named by the case keys that differ between the runs (or by `labels`),
     the keys they share go unnamed. Returns the paths written."""
     reads = [s for s in sources if _is_directory(s)]
-    out = prepare_figures(out, [f"{name}_{column}" for column, *_ in COMPARED], formats, force, reads)
+    out = prepare_figures(out, [f"{name}_{column}" for column in COMPARED], formats, force, reads)
     return compared([_data_of(s) for s in sources], out, formats, labels, name)
 
 
@@ -918,11 +956,10 @@ def compared(runs, out, formats=("png", "svg"), labels=None, name="compare"):
     if labels is None:
         labels = legend_labels([_run_settings(r) for r in runs], units)
     written = []
-    every_t = np.concatenate([r.history["t"] for r in runs])
-    for column, title, symbol, quantity in COMPARED:
-        ts = units.axis("t", "time", every_t)
-        ys = units.axis(symbol, quantity, np.concatenate([r.history[column] for r in runs]))
-        fig, ax = _figure(title)
+    ts = units.time(*(r.history["t"] for r in runs))
+    for column in COMPARED:
+        words, ys = _column(runs[0], column, np.concatenate([r.history[column] for r in runs]))
+        fig, ax = _figure(_capital(words))
         # past the ten colours of the cycle, a colour map keeps every curve its own
         colors = plt.cm.viridis(np.linspace(0, 0.9, len(runs))) if len(runs) > 10 else [None] * len(runs)
         for run, label, color in zip(runs, labels, colors):

@@ -35,3 +35,16 @@ def cli_error(*args):
     line = p.stderr.strip()
     assert line.startswith("barimpact: error: ")
     return line[len("barimpact: error: "):]
+
+
+@pytest.fixture
+def drawn(monkeypatch):
+    """What each figure drawn holds, by name (figure_text.figure_texts),
+    from the hook every figure passes before it is saved."""
+    import importlib
+
+    from figure_text import figure_texts
+    plot_module = importlib.import_module("barimpact.plot")  # barimpact.plot is the function
+    figures = {}
+    monkeypatch.setattr(plot_module, "SAVE_HOOKS", [lambda fig, name: figures.__setitem__(name, figure_texts(fig))])
+    return figures

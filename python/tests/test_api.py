@@ -348,7 +348,7 @@ def test_hopkinson_writes_the_commands_directory(tmp_path):
         r = barimpact.hopkinson(setup, tmp_path / "py")
     for name in ("hopkinson.csv", "summary.json"):
         assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
-    assert (tmp_path / "py" / "stress_strain.png").is_file()
+    assert (tmp_path / "py" / "figures" / "stress_strain.png").is_file()
     assert isinstance(r, barimpact.HopkinsonTable) and isinstance(r, dict)
     assert np.array_equal(r.stress_3w, r["stress_3w"])
     back = barimpact.read_table(tmp_path / "py")
@@ -358,7 +358,7 @@ def test_hopkinson_writes_the_commands_directory(tmp_path):
     with pytest.warns(barimpact.HealthWarning):
         d = barimpact.hopkinson(hopkinson_setup(tmp_path), tmp_path / "from-dict", no_plot=True)
     np.testing.assert_array_equal(d.stress_3w, r.stress_3w)
-    assert not (tmp_path / "from-dict" / "stress_strain.png").exists()
+    assert not (tmp_path / "from-dict" / "figures").exists()
 
 
 def test_a_study_or_analysis_never_writes_over_the_run_it_reads(tmp_path):

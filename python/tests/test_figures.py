@@ -3,7 +3,6 @@ naming only what differs, exact solutions drawn, reference slopes on
 convergence plots, and the figures of a sweep."""
 import csv
 import html
-import importlib
 import math
 import os
 import re
@@ -18,35 +17,12 @@ from barimpact.convergence import log_spaced, measured_order, plot_study, plot_s
 from barimpact.plot import Units, compare, legend_labels, load, peak_cells, screen_points
 from conftest import CLI, EXAMPLES
 
-plot_module = importlib.import_module("barimpact.plot")  # barimpact.plot is the function
-convergence_module = importlib.import_module("barimpact.convergence")
 RUN_FIGURES = ("displacement", "reaction", "energy", "stress_map", "snapshots", "impacts")
 
 
 def svg_texts(path):
     """The texts of an SVG matplotlib wrote (it keeps each one as a comment beside its glyphs)."""
     return [html.unescape(t) for t in re.findall(r"<!-- (.*?) -->", path.read_text(encoding="utf-8"))]
-
-
-@pytest.fixture
-def drawn(monkeypatch):
-    """What each saved figure holds, by name: per axes its labels, scales,
-    legend texts and lines (label, x, y)."""
-    figures = {}
-    save = plot_module._save
-
-    def record(fig, out, name, formats, written):
-        figures[name] = [{"xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(), "xscale": ax.get_xscale(),
-                          "yscale": ax.get_yscale(),
-                          "legend": [t.get_text() for t in ax.get_legend().get_texts()] if ax.get_legend() else [],
-                          "lines": [(ln.get_label(), np.asarray(ln.get_xdata(), float),
-                                     np.asarray(ln.get_ydata(), float)) for ln in ax.get_lines()]}
-                         for ax in fig.axes]
-        save(fig, out, name, formats, written)
-
-    monkeypatch.setattr(plot_module, "_save", record)
-    monkeypatch.setattr(convergence_module, "_save", record)
-    return figures
 
 
 def run_dir(tmp_path, case, *sets, name="run"):
@@ -117,29 +93,37 @@ def test_si_labels_carry_units_and_none_leaves_them_bare(tmp_path):
     plain = barimpact.plot(str(run), tmp_path / "plain")
     assert plain
     texts = svg_texts(tmp_path / "plain" / "reaction.svg")
-    assert "R" in texts and "t" in texts and not any(re.search(r"\((N|s)\)", t) for t in texts)
+    assert "obstacle reaction (compression +)" in texts and "time" in texts
+    assert not any(re.search(r"\[(N|s)\]", t) for t in texts)
     with_units(run, "SI")
     barimpact.plot(str(run), tmp_path / "si")
     si = tmp_path / "si"
-    assert {"t (s)", "U (m)"} <= set(svg_texts(si / "displacement.svg"))
-    assert {"t (s)", "R (N)"} <= set(svg_texts(si / "reaction.svg"))
-    assert {"t (s)", "energy (J)"} <= set(svg_texts(si / "energy.svg"))
-    assert {"x (m)", "t (s)", "sigma (Pa), tension > 0"} <= set(svg_texts(si / "stress_map.svg"))
-    assert {"x (m)", "u (m)"} <= set(svg_texts(si / "snapshots.svg"))
+    assert {"time [s]", "near-end displacement (along x +) [m]"} <= set(svg_texts(si / "displacement.svg"))
+    assert {"time [s]", "obstacle reaction (compression +) [N]"} <= set(svg_texts(si / "reaction.svg"))
+    assert {"time [s]", "energy [J]"} <= set(svg_texts(si / "energy.svg"))
+    assert {"position x [m]", "time [s]", "stress (compression +) [Pa]"} <= set(svg_texts(si / "stress_map.svg"))
+    assert {"position x [m]", "displacement (along x +) [m]"} <= set(svg_texts(si / "snapshots.svg"))
     assert "exact" in svg_texts(si / "displacement.svg")  # [units] changes no number of the exact solution
 
 
-def test_si_prefixes_keep_numbers_readable():
+def test_si_engineering_units_keep_numbers_readable():
     si, none = Units("SI"), Units("none")
-    stress = si.axis("sigma", "stress", [-3.2e8, 1e7])
-    assert stress.label == "sigma (MPa)" and stress.factor == pytest.approx(1e-6)
-    assert si.axis("t", "time", [0.0, 1.6e-4]).label == "t (µs)"
-    assert si.axis("E", "energy", [0.5]).label == "E (J)" and si.axis("R", "force", [2.5e5]).label == "R (kN)"
-    assert si.axis("t", "time", [0.0, 5000.0]).label == "t (s)"  # no kiloseconds
-    assert si.axis("v", "velocity", [30.0]).label == "v (m/s)"
-    assert si.axis("rate", "strain_rate").label == "rate (1/s)"
-    assert si.axis("eps_p", "strain", [0.05]).label == "eps_p (-)"
-    assert none.axis("sigma", "stress", [3e8]).label == "sigma" and none.axis("sigma", "stress").factor == 1.0
+    stress = si.axis("stress", "stress", [-3.2e8, 1e7])
+    assert stress.label == "stress (compression +) [MPa]" and stress.factor == pytest.approx(1e-6)
+    assert si.axis("time", "time", [0.0, 1.6e-4]).label == "time [µs]"
+    assert si.axis("time", "time", [0.0, 0.12]).label == "time [ms]"  # a pile blow: ms, not 0.12 s
+    assert si.axis("time", "time", [1.0, 1.0005]).label == "time [µs]"  # from the span, not the values
+    assert si.axis("energy", "energy", [0.5]).label == "energy [J]"
+    assert si.axis("energy", "energy", [3.9e4]).label == "energy [kJ]"
+    assert si.axis("R", "force", [2.5e5]).label == "R (compression +) [kN]"
+    assert si.axis("R", "force", [2.5e6], sign=False).label == "R [MN]"
+    assert si.axis("time", "time", [0.0, 5000.0]).label == "time [s]"  # no kiloseconds
+    assert si.axis("displacement", "displacement", [0.0088]).label == "displacement (along x +) [mm]"
+    assert Units("SI", pile=True).axis("ram velocity", "velocity", [4.4]).label == "ram velocity (up +) [m/s]"
+    assert si.axis("rate", "strain_rate", sign=False).label == "rate [1/s]"
+    assert si.axis("plastic strain", "strain", [0.05]).label == "plastic strain (compression +) [-]"
+    assert none.axis("stress", "stress", [3e8]).label == "stress (compression +)"
+    assert none.axis("stress", "stress").factor == 1.0
 
 
 # --- legends ------------------------------------------------------------------------------------
@@ -150,11 +134,11 @@ def test_legends_name_only_the_keys_that_differ(tmp_path, drawn):
     written = compare([soft, stiff], tmp_path / "both")
     assert {p.name for p in written} == {"compare_U.png", "compare_U.svg", "compare_R.png", "compare_R.svg"}
     legend = drawn["compare_R"][0]["legend"]
-    assert legend == ["near_end.stiffness = 50", "near_end.stiffness = 200"]
+    assert legend == ["near-end stiffness = 50", "near-end stiffness = 200"]
     assert legend_labels([{"a": 1, "b": 2.0, "c": "x"}, {"a": 1, "b": 3.0, "c": "x"}], Units("SI")) == ["b = 2",
                                                                                                            "b = 3"]
     assert legend_labels([{"obstacle.stiffness": 100.0}, {"obstacle.stiffness": 200.0}],
-                         Units("SI")) == ["obstacle.stiffness = 100 N/m", "obstacle.stiffness = 200 N/m"]
+                         Units("SI")) == ["obstacle stiffness = 100 N/m", "obstacle stiffness = 200 N/m"]
 
 
 def test_plot_of_several_run_directories_compares_them(tmp_path):
@@ -163,7 +147,7 @@ def test_plot_of_several_run_directories_compares_them(tmp_path):
     p = subprocess.run([sys.executable, "-m", "barimpact", "plot", str(a), str(b), "--out", str(tmp_path / "c")],
                        capture_output=True, text=True, env=dict(os.environ))
     assert p.returncode == 0, p.stderr
-    assert {"time.step = 0.02", "time.step = 0.01"} <= set(svg_texts(tmp_path / "c" / "compare_U.svg"))
+    assert {"time step = 0.02", "time step = 0.01"} <= set(svg_texts(tmp_path / "c" / "compare_U.svg"))
 
 
 # --- exact solutions ----------------------------------------------------------------------------------
@@ -194,7 +178,7 @@ def test_a_run_at_the_auto_step_is_drawn_at_the_step_it_took(tmp_path, drawn):
     given = run_dir(tmp_path, EXAMPLES / "paper-example1-rigid.toml", "time.scheme=central-difference",
                     "time.step=0.005", name="given")
     compare([auto, given], tmp_path / "both")
-    assert drawn["compare_U"][0]["legend"] == ["time.step = 0.009", "time.step = 0.005"]
+    assert drawn["compare_U"][0]["legend"] == ["time step = 0.009", "time step = 0.005"]
 
 
 def test_no_exact_curve_without_an_exact_solution(tmp_path, drawn):
@@ -215,7 +199,7 @@ def test_convergence_plot_has_reference_slopes_and_names_the_schemes(tmp_path, d
     drawn.clear()
     plot_study(out)
     ax = drawn["convergence"][0]
-    assert ax["xscale"] == "log" and ax["xlabel"] == "h"
+    assert ax["xscale"] == "log" and ax["xlabel"] == "element length h"
     slopes = {label: np.diff(np.log(y)) / np.diff(np.log(x)) for label, x, y in ax["lines"]
               if label.startswith("slope")}
     assert set(slopes) == {"slope 1", "slope 2"}
@@ -253,9 +237,9 @@ def test_a_sweep_gets_one_figure_per_output(sweep_dir, tmp_path, drawn):
         assert (tmp_path / "figs" / f"{column}.png").stat().st_size > 5_000
     ax = drawn["max_reaction"][0]
     # k = 100 ... 800 doubling: log-spaced; the zipped bar.elements goes with it; one curve per velocity.
-    assert ax["xscale"] == "log"
-    assert ax["xlabel"] == "obstacle.stiffness, with bar.elements"
-    velocities = ["initial.velocity = -1", "initial.velocity = -0.5", "initial.velocity = -0.25"]
+    assert ax["xscale"] == "log" and ax["title"] == "Largest reaction against obstacle stiffness"
+    assert ax["xlabel"] == "obstacle stiffness, with bar elements" and ax["xticks"] == [100.0, 200.0, 400.0, 800.0]
+    velocities = ["initial velocity = -1", "initial velocity = -0.5", "initial velocity = -0.25"]
     assert ax["legend"] == velocities + ["has warnings (sweep.csv)"]
     assert [len(x) for label, x, _ in ax["lines"] if label in velocities] == [4, 4, 4]
     # k = 800 on a coarse step warns (penalty-unresolved): its three points are ringed.

@@ -8,7 +8,9 @@ import warnings
 import pytest
 
 import barimpact
+from barimpact.style import column_words
 from conftest import CLI, EXAMPLES
+from figure_text import raw_names, time_units
 
 # Sweep files, Hopkinson setups and pile records lie among the examples: not cases.
 NOT_A_CASE = {"case", "axis", "zip", "incident", "transmitted", "record"}
@@ -42,12 +44,18 @@ def test_the_examples_are_found():
 
 
 @pytest.mark.parametrize("example", CASES)
-def test_plot_draws_every_example_with_its_step_and_auto(example, tmp_path):
-    """The figures saved at "auto"; built (not saved) at the case's step, which other tests save."""
+def test_plot_draws_every_example_with_its_step_and_auto(example, tmp_path, drawn):
+    """The figures saved at "auto"; built (not saved) at the case's step,
+    which other tests save. Each in the figures' style: every history
+    column in the words table, no raw column name shown, one time unit a figure."""
     path = EXAMPLES / example
     plot_run(barimpact.Case(path), tmp_path / "given", formats=())
-    drawn = plot_run(auto_step(path), tmp_path / "auto")
-    assert {"displacement", "reaction", "energy", "impacts"} <= drawn, drawn
+    saved = plot_run(auto_step(path), tmp_path / "auto")
+    assert {"displacement", "reaction", "energy", "impacts"} <= saved, saved
+    data = barimpact.load(tmp_path / "auto", with_fields=False)
+    assert [c for c in data.columns if column_words(c, data.case) is None] == []
+    assert raw_names(drawn) == []
+    assert {name: units for name, axes in drawn.items() if len(units := time_units(axes)) > 1} == {}
 
 
 def test_the_command_plots_a_run_whose_step_was_auto(tmp_path):

@@ -123,7 +123,7 @@ expect_full "$disk/hk" hopkinson "$work/analyse.toml" --out "$disk/hk" --no-plot
 # figure does not; the figures' child says so in the one line.
 if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then
   fresh 360k
-  expect_full "$disk/hk/waves." hopkinson "$work/analyse.toml" --out "$disk/hk"
+  expect_full "$disk/hk/figures/waves." hopkinson "$work/analyse.toml" --out "$disk/hk"
   [ -z "$(ls -A "$disk")" ] && ok || bad "hopkinson with figures left: $(ls -A "$disk")"
 fi
 
