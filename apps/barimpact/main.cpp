@@ -24,6 +24,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -862,13 +863,16 @@ int plot_command(const std::string& run_dir, const std::string& figures, bool fo
   const auto holds = [&](std::string_view name) {
     return std::filesystem::is_regular_file(std::filesystem::path(run_dir) / name);
   };
-  const bool tables = holds("hopkinson.csv") || holds("pda.csv") || holds("match.csv");  // figures drawn into DIR
+  // A study's or analysis's table: its figures are drawn where the command draws them, in DIR.
+  constexpr std::array<std::string_view, 7> tables_drawn_in_place{
+      "hopkinson.csv", "pda.csv", "match.csv", "bearing.csv", "drive.csv", "inspector.csv", "convergence.csv"};
+  const bool tables = std::any_of(tables_drawn_in_place.begin(), tables_drawn_in_place.end(), holds);
   if (!holds(barimpact::history_file(barimpact::OutputFormat::csv)) &&
       !holds(barimpact::history_file(barimpact::OutputFormat::hdf5)) && !holds("sweep.csv") && !tables)
-    throw barimpact::InputError(
-        fmt::format("plot: {} holds no history.csv, results.h5, sweep.csv, hopkinson.csv, pda.csv or match.csv "
-                    "(give a directory written by barimpact run, sweep, hopkinson, pda or match)",
-                    run_dir));
+    throw barimpact::InputError(fmt::format(
+        "plot: {} holds no history.csv, results.h5, sweep.csv or a study's table (hopkinson.csv, pda.csv, match.csv, "
+        "bearing.csv, drive.csv, inspector.csv, convergence.csv): give a directory written by barimpact",
+        run_dir));
   // The rule first, then what plotting needs. The Python package makes the
   // figures' directory, and lists DIR/figures in the run's marker, once it
   // has read the results: results it cannot read leave nothing behind.

@@ -645,7 +645,9 @@ def plot(dir, out=None, *, force=False, formats=("png", "svg")):
     """The figures of a run, PNG and SVG (`barimpact plot DIR [--out
     FIGURES]`). `dir` a run directory (written by `barimpact run` or
     `Result.write`): the figures go to DIR/figures (listed as the run's), or
-    `out`. Or `dir` a `Result` (or `RunData`): the figures go to `out`
+    `out`; a sweep's likewise; a hopkinson, pda, match, bearing, drive,
+    inspector or converge directory: its figures where the command draws
+    them (`out` refused). Or `dir` a `Result` (or `RunData`): the figures go to `out`
     (default ./figures). Either way by the command's output rule: a new or
     empty directory, or one barimpact wrote; someone else's only with force
     (beside their files, as --force); never $HOME, / or a parent of the
@@ -658,8 +660,14 @@ def plot(dir, out=None, *, force=False, formats=("png", "svg")):
         return _figures.plot(run_dir, out, formats, force=force)
     if (run_dir / "sweep.csv").is_file():  # each sweep.csv output against the swept keys, as `barimpact plot SWEEP_DIR`
         return _convergence_figures.plot_sweep(run_dir, out, formats, force=force)
-    raise InputError(f"plot: {os.fspath(dir)} holds no history.csv, results.h5 or sweep.csv "
-                     "(give a directory written by barimpact run or sweep)")
+    try:  # a study's or analysis's directory: its figures where the command draws them
+        written = _figures.redraw(run_dir, out)
+    except ValueError as e:
+        raise InputError(f"plot: {e}") from None
+    if written is None:
+        raise InputError(f"plot: {os.fspath(dir)} holds no history.csv, results.h5, sweep.csv or a study's table "
+                         f"({', '.join(_figures.REDRAWN)}): give a directory written by barimpact")
+    return written
 
 
 def exact_example1(x, t, length=1.0, stiffness=1.0, density=1.0, v0=-1.0):

@@ -9,16 +9,16 @@ drawn where the command draws them (hopkinson's into DIR/figures, pda's and
 match's into DIR)."""
 import argparse
 import importlib
-import os
 import sys
 from pathlib import Path
 
 from . import _core
-from .plot import compare, is_run_directory, plot
+from .plot import REDRAWN, compare, is_run_directory, plot, redraw
 
 # The commands whose figures go into the staging directory of their results
 # (COMMAND-plot STAGING --as OUT): each module's plot_COMMAND_into draws them.
 STAGED = ("hopkinson", "pda", "match")
+
 
 
 def _plot(dirs, out, force):
@@ -33,25 +33,10 @@ def _plot(dirs, out, force):
     if (d / "sweep.csv").is_file():
         from .convergence import plot_sweep
         return plot_sweep(d, out, force=force)
-    for command in STAGED:  # their figures beside their tables, as the command draws them
-        if (d / f"{command}.csv").is_file():
-            return _redraw_staged(d, command, out)
-    raise ValueError(f"{d}: no history.csv, results.h5, sweep.csv, hopkinson.csv, pda.csv or match.csv (not a "
-                     "directory written by barimpact run, sweep, hopkinson, pda or match)")
-
-
-def _redraw_staged(d, command, out):
-    """The figures of a hopkinson, pda or match directory drawn again (after
-    --no-plot) where the command draws them: into the directory (hopkinson's
-    into its figures/), which must be the one barimpact wrote; they join its
-    marker, so that a rerun replaces them."""
-    if out is not None:
-        raise ValueError(f"{d}: a barimpact {command} directory's figures go into it, as the command draws them "
-                         "(leave out --out)")
-    module = importlib.import_module(f".{command}", __package__)
-    written = getattr(module, f"plot_{command}")(d)
-    # Each figure's entry in the directory: the figure, or figures/ holding it (hopkinson's).
-    _core._mark_entries(os.fspath(d), sorted({Path(p).relative_to(d).parts[0] for p in written}))
+    written = redraw(d, out)  # a study's or analysis's figures, where the command draws them
+    if written is None:
+        raise ValueError(f"{d}: no history.csv, results.h5, sweep.csv or a study's table ({', '.join(REDRAWN)}): "
+                         "not a directory written by barimpact")
     return written
 
 

@@ -565,12 +565,22 @@ def between_snapshots(cells, snapshot_t, grid_t):
 
 
 def _map_grid(data, snapshot_t):
-    """The time rows of a map: MAP_ROWS over the run's span (the history's), at most."""
+    """The time rows of a map: MAP_ROWS over the snapshots' span (where there
+    is data; the run's, the history's, when they span no time)."""
+    lo, hi = float(snapshot_t[0]), float(snapshot_t[-1])
     t = data.history.get("t", np.empty(0))
-    lo = min(float(snapshot_t[0]), float(t[0]) if t.size else np.inf)
-    hi = max(float(snapshot_t[-1]), float(t[-1]) if t.size else -np.inf)
+    if not hi > lo and t.size:
+        lo, hi = min(lo, float(t[0])), max(hi, float(t[-1]))
     edges = np.linspace(lo, hi, MAP_ROWS + 1)
     return edges, 0.5 * (edges[1:] + edges[:-1])
+
+
+def _run_beyond(data, edges, ts):
+    """The title's note of a run that goes on past the map's last row."""
+    t = data.history.get("t", np.empty(0))
+    if t.size and float(t[-1]) > edges[-1] + 0.01 * (edges[-1] - edges[0]):
+        return f"; the run goes on to {ts.text(t[-1], 3)}"
+    return ""
 
 
 def _mark_snapshots(ax, snapshot_t):
@@ -592,7 +602,7 @@ def _map_figure(data, symbol, name, what, quantity, cmap, out, formats, written)
     ts, vs = units.time(edges), units.axis(what, quantity, limit)
     line = "pile" if units.pile else "line"
     fig, ax = _figure(f"{_capital(what)} along the {line} from {data.field_t.size} snapshots "
-                      "(linear in time between them)", grid=False)
+                      f"(linear in time between them{_run_beyond(data, edges, ts)})", grid=False)
     span = float(np.ptp(data.x)) or 1.0
     for rows in _body_rows(data):
         bins = max(2, round(SCREEN_COLUMNS * float(np.ptp(data.x[rows])) / span))
@@ -972,3 +982,36 @@ def compared(runs, out, formats=("png", "svg"), labels=None, name="compare"):
             ax.legend(fontsize=8)
         _save(fig, out, f"{name}_{column}", formats, written)
     return written
+
+
+# A study's or analysis's table, the command that wrote it, and the module
+# and function that draw its figures where the command draws them.
+REDRAWN = {
+    "hopkinson.csv": ("hopkinson", "hopkinson", "plot_hopkinson"),
+    "pda.csv": ("pda", "pda", "plot_pda"),
+    "match.csv": ("match", "match", "plot_match"),
+    "bearing.csv": ("bearing", "bearing", "plot_bearing"),
+    "drive.csv": ("drive", "drive", "plot_drive"),
+    "inspector.csv": ("inspector", "drive", "plot_inspector"),
+    "convergence.csv": ("converge", "convergence", "plot_study"),
+}
+
+
+def redraw(directory, out=None):
+    """The figures of a hopkinson, pda, match, bearing, drive, inspector or
+    converge directory drawn again (after --no-plot) where the command draws
+    them: into the directory (hopkinson's into its figures/), which must be
+    the one barimpact wrote; they join its marker, so that a rerun replaces
+    them. Returns the paths, or None when `directory` holds no such table."""
+    import importlib
+    d = Path(directory)
+    for table, (command, module, draw) in REDRAWN.items():
+        if (d / table).is_file():
+            if out is not None:
+                raise ValueError(f"{d}: a barimpact {command} directory's figures go into it, as the command draws "
+                                 "them (leave out --out)")
+            written = getattr(importlib.import_module(f".{module}", __package__), draw)(d)
+            # Each figure's entry in the directory: the figure, or figures/ holding it (hopkinson's).
+            _core._mark_entries(os.fspath(d), sorted({Path(p).relative_to(d).parts[0] for p in written}))
+            return written
+    return None

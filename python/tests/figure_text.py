@@ -17,6 +17,7 @@ def figure_texts(fig):
     suptitle = fig._suptitle.get_text() if fig._suptitle else ""
     return [{"suptitle": suptitle, "title": ax.get_title(), "xlabel": ax.get_xlabel(), "ylabel": ax.get_ylabel(),
              "xscale": ax.get_xscale(), "yscale": ax.get_yscale(), "xticks": [float(x) for x in ax.get_xticks()],
+             "ylim": tuple(float(y) for y in ax.get_ylim()),
              "legend": [t.get_text() for t in ax.get_legend().get_texts()] if ax.get_legend() else [],
              "lines": [(ln.get_label(), np.asarray(ln.get_xdata(), float), np.asarray(ln.get_ydata(), float))
                        for ln in ax.get_lines()],

@@ -396,6 +396,21 @@ def test_plot_of_a_run_directory_follows_the_command(tmp_path):
     assert barimpact.plot(r, tmp_path / "of-result", formats=("png",))
 
 
+def test_plot_redraws_a_study_directory_where_the_command_draws(tmp_path):
+    """A bearing written with --no-plot: barimpact.plot(DIR) draws bearing.png
+    into it, as the command would, and lists it as barimpact's; --out for it
+    is refused (before, "holds no history.csv")."""
+    d = tmp_path / "b"
+    cli("bearing", EXAMPLES / "pile" / "steel-pipe-sand.toml", "--out", d, "--capacity", "1e6:2e6:2", "--no-plot")
+    assert not (d / "bearing.png").exists()
+    written = barimpact.plot(d)
+    assert (d / "bearing.png") in [Path(p) for p in written]
+    assert "bearing.png" in json.loads((d / ".barimpact").read_text())["entries"]
+    with pytest.raises(barimpact.InputError, match="leave out --out"):
+        barimpact.plot(d, tmp_path / "elsewhere")
+    assert not (tmp_path / "elsewhere").exists()
+
+
 def test_force_never_writes_over_the_case_being_run(tmp_path):
     """force=True into the case file's own directory: the user's case.toml
     stays as written (comments and all), the resolved case goes to

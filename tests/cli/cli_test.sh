@@ -401,6 +401,18 @@ awk -F, 'NR > 1 && !($12 > 0.5) { bad = 1 } END { exit bad }' "$work/drive-diese
 head -1 "$work/drive-diesel/runs/0000/history.csv" | grep -q "hammer.gas.pressure" && ok || bad "the gas's columns"
 "$bin" inspector "$drv" --out "$work/inspector" --stroke 0.5:1.0:2 --depth 6 --no-plot --set time.end=0.02 > /dev/null 2>&1 && ok || bad "inspector exit"
 [ "$(head -1 "$work/inspector/inspector.csv" | cut -d, -f1-8)" = "stroke,energy,set,blows_per_250mm,blows_per_m,max_compression,max_tension,enthru" ] && ok || bad "inspector columns"
+# --no-plot, then plot DIR: each study's figures drawn where the command draws them.
+if [ -f "$(dirname "$bin")/python/barimpact/__init__.py" ]; then
+  for study in bearing:bearing drive:drive inspector:inspector; do
+    dir=${study%%:*} figure=${study##*:}
+    [ ! -e "$work/$dir/$figure.png" ] && "$bin" plot "$work/$dir" > /dev/null 2>&1 && [ -s "$work/$dir/$figure.png" ] &&
+      ok || bad "plot $dir after --no-plot"
+  done
+  rm "$work/conv/convergence.png" && "$bin" plot "$work/conv" > /dev/null 2>&1 && [ -s "$work/conv/convergence.png" ] &&
+    ok || bad "plot of a converge directory"
+  "$bin" plot "$work/bearing" --out "$work/elsewhere" > /dev/null 2>&1; [ $? -eq 2 ] && [ ! -e "$work/elsewhere" ] &&
+    ok || bad "plot of a bearing directory with --out"
+fi
 expect_refused "--depth is required" inspector "$drv" --out "$work/refused" --stroke 0.5:1.0:2
 expect_refused "diesel hammer, whose stroke follows the soil" inspector "$examples/pile/drive-concrete-diesel.toml" --out "$work/refused" --stroke 1.5:3.0:2 --depth 8
 expect_refused "no [hammer]" inspector "$pipe" --out "$work/refused" --stroke 0.5:1.0:2
