@@ -3,7 +3,9 @@
 The explicit half of the penalty wants k dt^2 / (rho h / 3) below about 1,
 so dt shrinks with k. Lift-off should tend to 2 and the rebound to +1. A
 stiff penalty makes the end chatter: several short contact episodes at
-impact; the last one ends with the final lift-off.
+impact; the last one ends with the final lift-off. At k = 10^4 the
+penalty's time constant Z/k falls below the step, and the run says so with
+a HealthWarning (penalty-unresolved), as it should: the study shows where.
 
     PYTHONPATH=build/release/python /usr/bin/python3 examples/python/penalty_study.py out/penalty
 """

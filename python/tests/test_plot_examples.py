@@ -92,3 +92,17 @@ def test_plot_draws_every_scheme_on_the_papers_examples(tmp_path):
                 plotted.add((scheme, bool(step)))
     assert {scheme for scheme, _ in plotted} == set(SCHEMES)
     assert {scheme for scheme, auto in plotted if auto} >= {"central-difference", "paoli-schatzman"}
+
+
+@pytest.mark.parametrize("example", CASES)
+def test_every_example_runs_clean_or_says_why(example):
+    """An example runs without a health warning, or its header comment names
+    each code it gives and why (the SHPB's contact chatter, a diesel on a
+    rigid stop with no pile to rest)."""
+    path = EXAMPLES / example
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", barimpact.HealthWarning)
+        barimpact.run(barimpact.Case(path, set={"output.fields_at": []}))
+    codes = {str(w.message).split(":")[0] for w in caught if issubclass(w.category, barimpact.HealthWarning)}
+    header = "".join(line for line in path.read_text().splitlines(keepends=True) if line.startswith("#"))
+    assert all(code in header for code in codes), (codes, example)

@@ -1,4 +1,5 @@
 import os
+import re
 import subprocess
 import sys
 
@@ -19,3 +20,7 @@ def test_tutorial_script_runs(script, tmp_path):
                        text=True, env=dict(os.environ), timeout=600)
     assert p.returncode == 0, p.stderr
     assert any(f.suffix == ".png" for f in (tmp_path / "out").rglob("*"))
+    # Clean, or its docstring names each health warning it gives and why.
+    codes = set(re.findall(r"HealthWarning: ([a-z][a-z-]*)", p.stderr))
+    said = script.read_text().split('"""')[1]
+    assert all(code in said for code in codes), (codes, p.stderr)

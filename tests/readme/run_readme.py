@@ -21,6 +21,22 @@ from pathlib import Path
 COMMAND = re.compile(r"^(\(?cd|\S*barimpact|mkdir|cmake|\S*python3|[A-Z_]+=\S+|\S+/bin/\S+)(\s|$)")
 
 
+def readme_notes(text):
+    """Per command (as readme_commands gives them), what the README says of
+    it: its line's comment and the deeper-indented comment lines under it."""
+    notes, lines, at = [], text.splitlines(), -1
+    for command in readme_commands(text):
+        flat = " ".join(command.split())
+        at = next(k for k in range(at + 1, len(lines)) if lines[k].startswith("    ") and
+                  flat.startswith(" ".join(lines[k].rstrip("\\").split())))
+        note = command.partition("#")[2]
+        while at + 1 < len(lines) and lines[at + 1].startswith("     ") and lines[at + 1].lstrip().startswith("#"):
+            at += 1
+            note += " " + lines[at].strip()
+        notes.append(note)
+    return notes
+
+
 def readme_commands(text):
     """The commands of the README's indented blocks, continuation lines joined."""
     commands, in_fence = [], False
@@ -60,17 +76,41 @@ def main(readme, examples, build):
         os.makedirs(os.path.join(root, "build"))
         os.symlink(os.path.abspath(build), os.path.join(root, "build", "release"))
         script = ["set -u"]
-        for c in commands:
+        errors = Path(root) / ".stderr"
+        errors.mkdir()
+        for k, c in enumerate(commands):
             quoted = shlex.quote(c)
             script.append(f"echo + {quoted}")
-            # On lines of their own: a command may end in a comment.
-            script.append(f"{{\n{c}\n}} > /dev/null || {{ echo \"README command failed (exit $?): \"{quoted}; exit 1; }}")
+            # On lines of their own: a command may end in a comment. Its
+            # stderr kept (and shown) to look for health warnings.
+            err = shlex.quote(str(errors / f"{k}.txt"))
+            script.append(f"{{\n{c}\n}} > /dev/null 2> {err} || {{ s=$?; cat {err} >&2; "
+                          f"echo \"README command failed (exit $s): \"{quoted}; exit 1; }}")
+            script.append(f"cat {err} >&2")
         # As on a Debian machine: python3 is Debian's.
         env = dict(os.environ, MPLBACKEND="Agg", PATH="/usr/bin:" + os.environ.get("PATH", ""))
         env.pop("PYTHONPATH", None)
         done = subprocess.run(["bash", "-c", "\n".join(script)], cwd=root, env=env)
         print(f"{len(commands)} README commands", "ran" if done.returncode == 0 else "did not all run")
-        return done.returncode
+        warned = unexpected_warnings(commands, readme_notes(Path(readme).read_text()), errors)
+        for c, w in warned:
+            print(f"README command warned ({w}), and its line does not say it will: {c}")
+        return done.returncode or (1 if warned else 0)
+
+
+def unexpected_warnings(commands, notes, errors):
+    """The commands that printed a health warning ("barimpact: warning: CODE")
+    without the README saying so (a comment on its line or under it naming
+    the code): a README snippet runs clean, or says why not."""
+    out = []
+    for k, (c, note) in enumerate(zip(commands, notes)):
+        path = errors / f"{k}.txt"
+        text = path.read_text(errors="replace") if path.exists() else ""
+        codes = sorted(set(re.findall(r"barimpact: warning: (?:\d+: )?([a-z][a-z-]*)", text)))
+        unsaid = [code for code in codes if code not in note]
+        if unsaid:
+            out.append((c, ", ".join(unsaid)))
+    return out
 
 
 if __name__ == "__main__":
