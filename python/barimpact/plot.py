@@ -781,14 +781,43 @@ def _blow_figures(data, out, formats, written):
         _envelope_figure(data, blow, env, out, formats, written)
 
 
+def _round_trip(data, blow):
+    """The pile's wave round trip 2 L / c from the case (None: not numbers)."""
+    pile = next((b for b in data.case.get("body", []) if b.get("name") == blow.get("pile")), None)
+    try:
+        return 2.0 * float(pile["length"]) / (float(pile["modulus"]) / float(pile["density"])) ** 0.5
+    except (TypeError, KeyError, ValueError, ZeroDivisionError):
+        return None
+
+
+def _blow_rows(data, blow):
+    """The history's rows of the blow, and the title's note: from impact to
+    six wave round trips past the soil's last slip, never past the ram's
+    re-strike; every row when the round trip is unknown."""
+    t = np.asarray(data.history["t"], dtype=float)
+    end = float(t[-1])
+    trip = _round_trip(data, blow)
+    if trip:
+        since = max(float(blow.get("last_slip_time") or 0.0), float(blow.get("impact_time") or 0.0))
+        end = min(end, since + 6.0 * trip)
+    if blow.get("restrike_time") is not None:
+        end = min(end, float(blow["restrike_time"]))
+    rows = t <= end
+    if rows.all():
+        return rows, ""
+    ts = data.units.time(t)
+    return rows, f"\n(the blow: to {ts.text(end, 3)} of a run to {ts.text(t[-1], 3)})"
+
+
 def _head_figure(data, gauge, z, out, formats, written):
-    h, units = data.history, data.units
+    rows, note = _blow_rows(data, data.summary["blow"])
+    h, units = {k: np.asarray(v)[rows] for k, v in data.history.items()}, data.units
     force = -h[f"gauge.{gauge}.force"]  # compression positive
     zv = -z * h[f"gauge.{gauge}.velocity"]  # downward positive: Z v = F in a wave going down
     ts = units.time(h["t"])
     fs = units.axis("force, Z v", "force", np.concatenate([force, zv]), sign="compression +, Z v: down +")
     fig, ax = _figure(f"Pile {words_of(f'gauge.{gauge}.force', data.case).removesuffix(' force')}: force and "
-                      "impedance times velocity")
+                      f"impedance times velocity{note}")
     _line(ax, ts(h["t"]), fs(force), lw=1.1, label="force F")
     _line(ax, ts(h["t"]), fs(zv), lw=1.1, label=f"Z v, Z = {units.axis('', 'impedance', z).text(z)}")
     ax.set_xlabel(ts.label)
@@ -798,13 +827,14 @@ def _head_figure(data, gauge, z, out, formats, written):
 
 
 def _toe_figure(data, blow, out, formats, written):
-    h, units = data.history, data.units
+    rows, note = _blow_rows(data, blow)
+    h, units = {k: np.asarray(v)[rows] for k, v in data.history.items()}, data.units
     ts = units.time(h["t"])
     words, rs = _column(data, "R", h["R"])
     penetration = -h["U"]  # the toe's displacement is up the pile: into the soil is down
     ps = units.axis("toe penetration", "displacement", np.append(penetration, blow.get("set", 0.0)),
                     sign=units.sign("penetration"))
-    fig, ax = _figure("Toe resistance and penetration, Smith soil")
+    fig, ax = _figure(f"Toe resistance and penetration, Smith soil{note}")
     _line(ax, ts(h["t"]), rs(h["R"]), lw=1.1, color="tab:brown", label=words)
     ax.set_xlabel(ts.label)
     ax.set_ylabel(rs.label)
