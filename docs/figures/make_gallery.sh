@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Regenerates the gallery of docs/figures.md: runs each command on an
-# example into a temporary directory and copies its main figures to
-# docs/figures/gallery-*.png.
+# Regenerates the figures of the docs (all but docs/verification.sh's): the
+# gallery of docs/figures.md (docs/figures/gallery-*.png, each command's
+# main figures) and those README.md, docs/pile.md and docs/tutorial.md show,
+# from the examples run into a temporary directory.
 #   bash docs/figures/make_gallery.sh [BUILD_DIR]    (default build/release)
 #   KEEP=DIR bash docs/figures/make_gallery.sh ...   (keeps every output in DIR)
 set -euo pipefail
@@ -35,6 +36,21 @@ quiet "$bin" hopkinson "$out/analyse-run.toml" --out "$out/hopkinson"
 quiet "$bin" pda "$ex/pda/steel-pipe.toml" --out "$out/pda"
 quiet "$bin" match "$ex/pda/steel-pipe.toml" --out "$out/match" --jobs 2
 
+# The figures the README and the docs show.
+quiet "$bin" run "$ex/paper-example2.toml" --out "$out/example2"
+quiet "$bin" plot "$out/example2"
+quiet "$bin" bearing "$ex/pile/steel-pipe-sand.toml" --out "$out/bearing-docs" --capacity 0.5e6:4e6:20 --jobs 2
+quiet "$bin" run "$ex/pile/concrete-clay.toml" --out "$out/concrete"
+quiet "$bin" plot "$out/concrete"
+for lines in drop-mass hopkinson pile-hammer saint-venant; do
+  quiet "$bin" run "$ex/lines/$lines.toml" --out "$out/lines-$lines"
+  quiet "$bin" plot "$out/lines-$lines"
+done
+for plastic in taylor-bar paper-example1-yielding pipe-whip; do
+  quiet "$bin" run "$ex/plastic/$plastic.toml" --out "$out/plastic-$plastic"
+  quiet "$bin" plot "$out/plastic-$plastic"
+done
+
 # The chosen figures, PNG only.
 pick() {  # source figure, gallery name
   cp "$out/$1" "docs/figures/gallery-$2.png"
@@ -53,4 +69,26 @@ pick hopkinson/figures/stress_strain.png hopkinson-stress-strain
 pick hopkinson/figures/waves.png hopkinson-waves
 pick pda/force_velocity.png pda
 pick match/force_match.png match
+docs() {  # source figure, the docs' name
+  cp "$out/$1" "docs/figures/$2.png"
+}
+docs example1/figures/displacement.png example1-displacement
+docs example1/figures/energy.png example1-energy
+docs example1/figures/snapshots.png example1-snapshots
+docs example1/figures/stress_map.png example1-stress-map
+docs example2/figures/impacts.png example2-impacts
+docs pile/figures/blow_head.png pile-steel-pipe-head
+docs pile/figures/blow_toe.png pile-steel-pipe-toe
+docs pile/figures/blow_envelopes.png pile-steel-pipe-envelopes
+docs bearing-docs/bearing.png pile-steel-pipe-bearing
+docs concrete/figures/blow_head.png pile-concrete-head
+docs concrete/figures/blow_envelopes.png pile-concrete-envelopes
+docs lines-drop-mass/figures/joint_forces.png lines-drop-mass-joint-forces
+docs lines-hopkinson/figures/gauges.png lines-hopkinson-gauges
+docs lines-pile-hammer/figures/joint_forces.png lines-pile-hammer-joint-forces
+docs lines-saint-venant/figures/stress_map.png lines-saint-venant-stress-map
+docs plastic-taylor-bar/figures/plastic_map.png plastic-taylor-bar-plastic-map
+docs plastic-paper-example1-yielding/figures/energy.png plastic-paper-example1-energy
+docs plastic-paper-example1-yielding/figures/stress_map.png plastic-paper-example1-stress-map
+docs plastic-pipe-whip/figures/plastic_map.png plastic-pipe-whip-plastic-map
 ls -l docs/figures/gallery-*.png
