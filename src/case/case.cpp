@@ -293,11 +293,13 @@ void read_output(const Reader& r, Case& c) {
   c.output.compression = static_cast<int>(level);
 }
 
-// [units] system: how figures label the case's numbers; the solver is unit-free.
+// [units] system: how the console and figures show the case's numbers, which
+// are SI under "SI" and "US" (US customary units are a display only); the
+// solver is unit-free.
 void read_units(const Reader& r, Case& c) {
   c.units = r.word("units", "system", c.units);
-  if (c.units != "SI" && c.units != "none")
-    r.fail("units", "system", fmt::format("must be \"SI\" or \"none\" (got \"{}\")", c.units));
+  if (c.units != "SI" && c.units != "US" && c.units != "none")
+    r.fail("units", "system", fmt::format("must be \"SI\", \"US\" or \"none\" (got \"{}\")", c.units));
 }
 
 // The last step's time, where the loads are checked: t_N, or time.end while
@@ -670,13 +672,13 @@ void read_gauges(Reader& r, Case& c, const BodyIndex& body_index) {
 }
 
 // A pile's material in SI (Smith's soil is; a blow without soil is checked
-// under [units] system = "SI" only): a modulus or density no pile has is a
+// under [units] system = "SI" or "US", whose numbers are SI): a modulus or density no pile has is a
 // unit slip, refused with the unit it was probably meant in. Piles are timber (about 10 GPa, 400 to 900 kg/m^3),
 // concrete (25 to 45 GPa, 2400), steel (210 GPa, 7850), or plastic and
 // composite (1 to 40 GPa, 900 to 2000): the bounds below are wide of them.
 void check_pile(const Reader& r, const Case& c) {
   const BodyData* pile = c.pile();
-  if (pile == nullptr || !(c.smith_soil() || c.units == "SI")) return;
+  if (pile == nullptr || !(c.smith_soil() || c.units != "none")) return;
   const std::string s = "body." + pile->name;
   struct Check {
     const char* key;

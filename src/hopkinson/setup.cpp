@@ -55,7 +55,7 @@ struct RunGauge {
   HopkinsonBar bar;
   double gauge_to_specimen = 0.0;
   double specimen_length = 0.0, specimen_area = 0.0;
-  bool si = true;  ///< the run's case says [units] system = "SI"
+  bool si = true;  ///< the run's case holds SI numbers ([units] system = "SI" or "US")
 };
 
 // Sets the channel's file: the run's history.csv, or its results.h5.
@@ -114,7 +114,7 @@ RunGauge read_run_gauge(const SetupReader& r, ChannelSetup& ch, const std::strin
   out.gauge_to_specimen = gb == sp + 1 ? g->at : b.length - g->at;
   out.specimen_length = spec.length;
   out.specimen_area = spec.area;
-  out.si = c.units == "SI";
+  out.si = c.units != "none";  // "US" cases hold SI numbers too
   return out;
 }
 
