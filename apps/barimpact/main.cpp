@@ -693,8 +693,10 @@ void print_drive(const barimpact::DrivePlan& plan, const std::vector<barimpact::
   const auto t = barimpact::drive_totals(plan, rows);
   const barimpact::units::Display* d = barimpact::units::display(plan.base().units);
   // A depth or stress with its display unit (m and MPa, ft and ksi), bare under "none".
+  // SI depths as the case gives them (12 m); in ft to 4 digits (2 m is 6.562 ft).
+  const int digits = d && d->system == "US" ? 4 : 6;
   auto depth = [&](double v) {
-    return d ? fmt::format("{:g} {}", d->depth(v), d->depth.name) : fmt::format("{:g}", v);
+    return d ? fmt::format("{:.{}g} {}", d->depth(v), digits, d->depth.name) : fmt::format("{:g}", v);
   };
   auto stress = [&](double v) {
     return d ? fmt::format("{:.4g} {}", d->stress(v), d->stress.name) : fmt::format("{:.4g}", v);
