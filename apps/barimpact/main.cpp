@@ -50,6 +50,7 @@
 #include <thread>
 
 #include "barimpact/case/case.hpp"
+#include "barimpact/case/units.hpp"
 #include "barimpact/hopkinson/analysis.hpp"
 #include "barimpact/pda/case_method.hpp"
 #include "barimpact/run/check.hpp"
@@ -676,8 +677,12 @@ int bearing_command(const BearingArgs& a) {
   poll_signals();  // between capacities and in their time loops
   const auto rows = barimpact::write_bearing(plan, a.out, a.options, a.flags.force);
   const PileStudyEnd e = end_pile_study(rows, a, "bearing-plot");
-  fmt::print("{} capacities from {:.4g} to {:.4g} N (toe share {:.3g}): {} complete; bearing.csv{} in {}\n",
-             rows.size(), o.from, o.to, plan.toe_share(), e.complete, e.plotted ? " and bearing.png" : "", a.out);
+  // The capacities in newtons, or kip under [units] system = "US".
+  const bool us = plan.sweep().case_at(plan.sweep().points().front()).units == "US";
+  const double scale = us ? 1.0 / barimpact::units::kip : 1.0;
+  fmt::print("{} capacities from {:.4g} to {:.4g} {} (toe share {:.3g}): {} complete; bearing.csv{} in {}\n",
+             rows.size(), scale * o.from, scale * o.to, us ? "kip" : "N", plan.toe_share(), e.complete,
+             e.plotted ? " and bearing.png" : "", a.out);
   print_study_warnings(e.runs);
   return study_exit({"cases", "bearing.csv", rows.size(), e.complete, e.stopped, e.warned}, a.flags);
 }
@@ -686,18 +691,29 @@ int bearing_command(const BearingArgs& a) {
 void print_drive(const barimpact::DrivePlan& plan, const std::vector<barimpact::DriveRow>& rows, bool plotted,
                  const std::string& out) {
   const auto t = barimpact::drive_totals(plan, rows);
-  const bool si = plan.base().units == "SI";
-  const char* m = si ? " m" : "";
-  const std::string reached =
-      t.refusal_depth
-          ? fmt::format("refusal ({:g} blows per 250 mm) at {:g}{}", plan.drive().refusal, *t.refusal_depth, m)
-          : fmt::format("driven to {:g}{}", rows.empty() ? 0.0 : rows.back().depth, m);
+  const barimpact::units::Display* d = barimpact::units::display(plan.base().units);
+  // A depth or stress with its display unit (m and MPa, ft and ksi), bare under "none".
+  // SI depths as the case gives them (12 m); in ft to 4 digits (2 m is 6.562 ft).
+  const int digits = d && d->system == "US" ? 4 : 6;
+  auto depth = [&](double v) {
+    return d ? fmt::format("{:.{}g} {}", d->depth(v), digits, d->depth.name) : fmt::format("{:g}", v);
+  };
+  auto stress = [&](double v) {
+    return d ? fmt::format("{:.4g} {}", d->stress(v), d->stress.name) : fmt::format("{:.4g}", v);
+  };
+  // The refusal is a count per 250 mm in the case; under "US" also per ft.
+  const double refusal = plan.drive().refusal;
+  const std::string criterion = d && d->system == "US" ? fmt::format("{:g} blows per 250 mm, {:.3g} blows/ft", refusal,
+                                                                     refusal / 0.25 * d->count_length)
+                                                       : fmt::format("{:g} blows per 250 mm", refusal);
+  const std::string reached = t.refusal_depth
+                                  ? fmt::format("refusal ({}) at {}", criterion, depth(*t.refusal_depth))
+                                  : fmt::format("driven to {}", depth(rows.empty() ? 0.0 : rows.back().depth));
   fmt::print(
-      "{} depths: {}; {:.0f} blows, {:.1f} min at {:g} blows/min; max compression {:.4g}{} at {:g}{}, max "
-      "tension {:.4g}{} at {:g}{}; drive.csv, summary.json{} in {}\n",
-      rows.size(), reached, t.total_blows, t.driving_time, plan.drive().blow_rate,
-      si ? t.max_compression * 1e-6 : t.max_compression, si ? " MPa" : "", t.max_compression_depth, m,
-      si ? t.max_tension * 1e-6 : t.max_tension, si ? " MPa" : "", t.max_tension_depth, m,
+      "{} depths: {}; {:.0f} blows, {:.1f} min at {:g} blows/min; max compression {} at {}, max "
+      "tension {} at {}; drive.csv, summary.json{} in {}\n",
+      rows.size(), reached, t.total_blows, t.driving_time, plan.drive().blow_rate, stress(t.max_compression),
+      depth(t.max_compression_depth), stress(t.max_tension), depth(t.max_tension_depth),
       plotted ? " and drive.png" : "", out);
 }
 

@@ -38,20 +38,22 @@ def read_study_table(directory, name):
 
 def _capacity_axes(ax, ax2, rows, units):
     """The bearing graph (capacity against blow count) and the driving stresses at each capacity."""
-    moved = [r for r in rows if math.isfinite(r["blows_per_250mm"])]
-    refused = [r for r in rows if r["blows_per_250mm"] == math.inf]
+    words, per = units.blow_count()  # per 250 mm, or per ft under US
+    count = {id(r): per * r["blows_per_m"] for r in rows}
+    moved = [r for r in rows if math.isfinite(count[id(r)])]
+    refused = [r for r in rows if count[id(r)] == math.inf]
     cs = units.axis("static capacity", "force", [r["capacity"] for r in rows], sign=False)
     if moved:
-        ax.plot([r["blows_per_250mm"] for r in moved], cs([r["capacity"] for r in moved]), "o-", label="blow count")
+        ax.plot([count[id(r)] for r in moved], cs([r["capacity"] for r in moved]), "o-", label="blow count")
     unfinished = [r for r in moved if not r["finished"]]
     if unfinished:
-        ax.plot([r["blows_per_250mm"] for r in unfinished], cs([r["capacity"] for r in unfinished]), "x",
+        ax.plot([count[id(r)] for r in unfinished], cs([r["capacity"] for r in unfinished]), "x",
                 color="tab:red", label="pile not yet at rest")
     if refused:
-        right = max([r["blows_per_250mm"] for r in moved], default=1.0)
+        right = max([count[id(r)] for r in moved], default=1.0)
         ax.plot([right] * len(refused), cs([r["capacity"] for r in refused]), ">", color="tab:gray",
                 label="refusal (set 0)")
-    ax.set_xlabel("blows per 250 mm")
+    ax.set_xlabel(words)
     ax.set_ylabel(cs.label)
     ax.set_title("Bearing graph")
     ax.set_xlim(left=0)

@@ -3,9 +3,10 @@ sweep, bearing, drive, hopkinson, pda, match): units, signs and words.
 
 - Units: under a case's `[units] system = "SI"` each axis gets the
   engineering unit that keeps its numbers readable (kN or MN, MPa, mm, ms
-  or µs, kJ), chosen per quantity from UNIT_SYSTEMS; any other system (the
-  default "none") leaves the numbers as they are and names no unit. Another
-  system (US customary: kip, ft, in, ksi) is one more table there.
+  or µs, kJ), chosen per quantity from UNIT_SYSTEMS; under "US" the US
+  customary ones (kip, ft, in, ksi, kip-ft, ft/s; time still in s, ms or
+  µs) from the SI numbers the files hold; "none" (the default) leaves the
+  numbers as they are and names no unit.
 - Signs: one convention per quantity in every figure, said on the axis
   (SIGNS): forces, stresses and strains compression positive; displacements
   and velocities along x, which runs from the near end (a pile's toe) up
@@ -50,7 +51,37 @@ UNIT_SYSTEMS = {
     },
 }
 
-# What a value in a legend or title is written in: the SI unit of size 1.
+# US customary units, exact in SI (the international foot and pound, 1959).
+FOOT, INCH, POUND = 0.3048, 0.0254, 0.45359237
+POUND_FORCE = 4.4482216152605
+KIP = 1000.0 * POUND_FORCE
+UNIT_SYSTEMS["US"] = {
+    "time": UNIT_SYSTEMS["SI"]["time"],
+    "length": (("in", INCH, 0.0), ("ft", FOOT, 3 * FOOT)),  # a pile in ft, a specimen in in
+    "displacement": (("in", INCH, 0.0),),  # a pile's set and penetration in inches
+    "opening": (("in", INCH, 0.0),),
+    "velocity": (("ft/s", FOOT, 0.0),),
+    "acceleration": (("ft/s²", FOOT, 0.0),),
+    "force": (("lbf", POUND_FORCE, 0.0), ("kip", KIP, KIP)),
+    "stress": (("psi", POUND_FORCE / INCH**2, 0.0), ("ksi", KIP / INCH**2, KIP / INCH**2)),
+    "pressure": (("psi", POUND_FORCE / INCH**2, 0.0), ("ksi", KIP / INCH**2, KIP / INCH**2)),
+    "energy": (("ft-lb", POUND_FORCE * FOOT, 0.0), ("kip-ft", KIP * FOOT, KIP * FOOT)),
+    "strain": UNIT_SYSTEMS["SI"]["strain"],
+    "strain_rate": UNIT_SYSTEMS["SI"]["strain_rate"],
+    "stiffness": (("kip/in", KIP / INCH, 0.0),),
+    "impedance": (("kip s/ft", KIP / FOOT, 0.0),),
+    "area": (("in²", INCH**2, 0.0),),
+    "mass": (("lb", POUND, 0.0),),
+    "density": (("lb/ft³", POUND / FOOT**3, 0.0),),
+    "line_density": (("lb/ft", POUND / FOOT, 0.0),),
+    "cpu_time": UNIT_SYSTEMS["SI"]["cpu_time"],
+}
+
+# A blow count's length, per system: blows per 250 mm (SI), per ft (US).
+BLOW_COUNTS = {"SI": ("blows per 250 mm", 0.25), "US": ("blows/ft", FOOT)}
+
+# What a value in a legend or title is written in: the SI unit of size 1;
+# under US the unit its axis takes for a value that size (kip, ksi, kip/in).
 BASE_UNITS = {quantity: next((name for name, size, _ in units if size == 1.0), None)
               for quantity, units in UNIT_SYSTEMS["SI"].items()}
 BASE_UNITS["impedance"] = "N s/m"
@@ -125,6 +156,7 @@ class Units:
         self.system = str(system)
         self.table = UNIT_SYSTEMS.get(self.system.upper(), {})
         self.si = self.system.upper() == "SI"
+        self.us = self.system.upper() == "US"
         self.pile = pile
 
     def sign(self, quantity):
@@ -137,7 +169,9 @@ class Units:
         leaves the sign out (a magnitude); a text gives it."""
         said = self.sign(quantity) if sign is True else (sign or None)
         label = f"{name} ({said})" if said else name
-        unit = choose_unit(self.table, quantity, values, quantity == "time" if span is None else span)
+        # No values: a label for numbers drawn as the files hold them, in SI's base units.
+        table = UNIT_SYSTEMS["SI"] if values is None and self.us else self.table
+        unit = choose_unit(table, quantity, values, quantity == "time" if span is None else span)
         if unit is None:
             return Scale(label)
         return Scale(f"{label} [{unit[0]}]", 1.0 / unit[1], unit[0])
@@ -148,10 +182,18 @@ class Units:
         return self.axis("time", "time", values)
 
     def value(self, number, quantity):
-        """A number with its base unit, for legends and titles: "100 N/m"."""
+        """A number (SI) with its unit, for legends and titles: "100 N/m";
+        under US converted ("5.709e+04 kip/in")."""
+        if self.us and quantity and isinstance(number, (int, float)) and self.table.get(quantity):
+            name, size = choose_unit(self.table, quantity, [number])
+            return f"{number / size:.4g} {name}" if name != "-" else f"{number:.4g}"
         text = f"{number:.4g}" if isinstance(number, (int, float)) else str(number)
         unit = BASE_UNITS.get(quantity) if self.si and quantity else None
         return f"{text} {unit}" if unit and unit != "-" else text
+
+    def blow_count(self):
+        """(words, length in m) of a blow count: per 250 mm, or per ft under US."""
+        return BLOW_COUNTS["US" if self.us else "SI"]
 
 
 # --- words ----------------------------------------------------------------------

@@ -8,7 +8,7 @@ import numpy as np
 RAW_COLUMN = re.compile(r"\b(joint|gauge|body|hammer)\.[\w-]+\.\w+|\bfar_end\.\w+")
 UNIT = re.compile(r"\[([^\]]+)\]$")
 # Axis labels that hold no physical quantity with a unit: counts, ratios, scales.
-UNITLESS = ("blows per 250 mm", "equilibrium ratio")
+UNITLESS = ("blows per 250 mm", "blows/ft", "equilibrium ratio")
 
 
 def figure_texts(fig):

@@ -1,6 +1,7 @@
 """The figures' one style across the commands: words instead of column
 names, a unit on every axis under SI, one time unit a figure, stress maps
 only where snapshots are, Hopkinson figures in DIR/figures."""
+import importlib
 import json
 import re
 import subprocess
@@ -78,6 +79,52 @@ def test_units_come_from_a_table_per_system():
     assert choose_unit(si, "time", [0.0, 4e-4], span=True) == ("µs", 1e-6)
     assert choose_unit({}, "force", [2.5e6]) is None  # a system without a table: no unit, numbers as they are
     assert Units("none").axis("force", "force", [2.5e6]).factor == 1.0
+
+
+def test_us_customary_units_are_a_table_of_exact_factors():
+    us = UNIT_SYSTEMS["US"]
+    assert choose_unit(us, "force", [9e5]) == ("kip", 4448.2216152605)
+    assert choose_unit(us, "stress", [2.2e8]) == ("ksi", 4448.2216152605 / 0.0254**2)
+    assert choose_unit(us, "length", [20.0]) == ("ft", 0.3048) and choose_unit(us, "length", [0.5]) == ("in", 0.0254)
+    assert choose_unit(us, "energy", [3.9e4]) == ("kip-ft", 4448.2216152605 * 0.3048)
+    assert Units("US").value(5e9, "stiffness") == "2.855e+04 kip/in"
+    assert Units("US").axis("stroke", "length", None, sign=False).label == "stroke [m]"  # SI numbers drawn as they are
+
+
+US_FIGURE_UNITS = {"reaction": "toe resistance (compression +) [kip]", "gauges": "force (compression +) [kip]",
+                   "displacement": "toe displacement (up +) [in]", "energy": "energy [kip-ft]"}
+
+
+def test_a_us_pile_runs_figures_label_kip_ft_in_and_ksi(tmp_path, drawn):
+    """[units] system = "US": the files in SI, the figures in kip, ft, in,
+    ksi, kip-ft, ft/s (time still in ms); every axis names its unit."""
+    out = tmp_path / "us"
+    cli("run", EXAMPLES / "pile" / "steel-pipe-sand.toml", "--out", out, "--set", "units.system=US")
+    barimpact.plot(out, tmp_path / "figs", formats=())
+    assert axes_without_unit(drawn) == [] and raw_names(drawn) == []
+    assert {name: drawn[name][0]["ylabel"] for name in US_FIGURE_UNITS} == US_FIGURE_UNITS
+    assert drawn["stress_map"][0]["xlabel"] == "height above the toe x [ft]"
+    assert drawn["blow_envelopes"][0]["xlabel"] == "largest stress, a magnitude [ksi]"
+    assert drawn["blow_toe"][1]["ylabel"] == "toe penetration (down +) [in]"
+    assert time_units(drawn["reaction"]) == {"ms"}
+    labels = " ".join(t for axes in drawn.values() for ax in axes for t in (ax["xlabel"], ax["ylabel"]))
+    assert not re.search(r"\[(k?N|MN|mm|m|M?Pa|k?J|m/s)\]", labels), labels
+    data = barimpact.load(out, with_fields=False)
+    (_, _, toe), = drawn["reaction"][0]["lines"]
+    assert toe.max() == pytest.approx(data["R"].max() / 4448.2216152605)  # drawn from the SI file in kip
+
+
+def test_a_us_bearing_graph_counts_blows_per_foot(tmp_path, drawn):
+    out = tmp_path / "bearing"
+    p = cli("bearing", EXAMPLES / "pile" / "steel-pipe-sand.toml", "--out", out, "--capacity", "0.5e6:1.5e6:2",
+            "--set", "units.system=US", "--no-plot")
+    assert "capacities from 112.4 to 337.2 kip" in p.stdout
+    barimpact.plot(out, formats=())
+    graph, stresses = drawn["bearing"]
+    assert graph["xlabel"] == "blows/ft" and graph["ylabel"] == "static capacity [kip]"
+    assert stresses["xlabel"] == "largest stress in the pile, a magnitude [ksi]"
+    rows = importlib.import_module("barimpact.bearing").read_bearing(out)  # barimpact.bearing is the function
+    assert graph["lines"][0][1] == pytest.approx([0.3048 * r["blows_per_m"] for r in rows])
 
 
 def test_a_stress_map_is_drawn_only_over_its_snapshots(tmp_path, drawn):

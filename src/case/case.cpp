@@ -293,11 +293,13 @@ void read_output(const Reader& r, Case& c) {
   c.output.compression = static_cast<int>(level);
 }
 
-// [units] system: how figures label the case's numbers; the solver is unit-free.
+// [units] system: how the console and figures show the case's numbers, which
+// are SI under "SI" and "US" (US customary units are a display only); the
+// solver is unit-free.
 void read_units(const Reader& r, Case& c) {
   c.units = r.word("units", "system", c.units);
-  if (c.units != "SI" && c.units != "none")
-    r.fail("units", "system", fmt::format("must be \"SI\" or \"none\" (got \"{}\")", c.units));
+  if (c.units != "SI" && c.units != "US" && c.units != "none")
+    r.fail("units", "system", fmt::format("must be \"SI\", \"US\" or \"none\" (got \"{}\")", c.units));
 }
 
 // The last step's time, where the loads are checked: t_N, or time.end while
@@ -372,9 +374,9 @@ std::vector<std::string_view> law_keys(JointLaw law) {
 
 // Smith's soil keys of `section`: ultimate, quake, damping, damping_law.
 SoilSpring read_soil(const Reader& r, const std::string& section, SoilSpring soil) {
-  soil.ultimate = r.number(section, "ultimate", soil.ultimate);
-  soil.quake = r.number(section, "quake", soil.quake);
-  soil.damping = r.number(section, "damping", soil.damping);
+  soil.ultimate = r.quantity(section, "ultimate", soil.ultimate, Dimension::force);
+  soil.quake = r.quantity(section, "quake", soil.quake, Dimension::length);
+  soil.damping = r.quantity(section, "damping", soil.damping, Dimension::damping);
   if (!(soil.ultimate >= 0)) r.fail(section, "ultimate", fmt::format("must be >= 0 (got {})", soil.ultimate));
   if (!(soil.quake > 0)) r.fail(section, "quake", fmt::format("must be > 0 (got {})", soil.quake));
   if (!std::isfinite(soil.ultimate / soil.quake))
@@ -454,7 +456,7 @@ ShaftData read_shaft(Reader& r, const std::string& body, const toml::node& node,
   }
   if (r.node(s, "ultimate") == nullptr) r.fail(s, "ultimate", "is required: the total static shaft capacity, in N");
   d.soil = read_soil(r, s, d.soil);
-  d.embedded = r.number(s, "embedded", length);
+  d.embedded = r.quantity(s, "embedded", length, Dimension::length);
   if (!(d.embedded > 0 && d.embedded <= length))
     r.fail(s, "embedded", fmt::format("must lie in (0, {}], the body's length (got {})", length, d.embedded));
   const std::string dist = r.word(s, "distribution", "uniform");
@@ -515,9 +517,9 @@ LawData read_law(const Reader& r, const std::string& section, bool end) {
                            keys.empty() ? std::string("it takes no other key")
                                         : fmt::format("it uses {}", fmt::join(keys, ", "))));
     }
-  d.stiffness = r.number(section, "stiffness", d.stiffness);
+  d.stiffness = r.quantity(section, "stiffness", d.stiffness, Dimension::stiffness);
   d.viscosity = r.number(section, "viscosity", d.viscosity);
-  d.gap = r.number(section, "gap", d.gap);
+  d.gap = r.quantity(section, "gap", d.gap, Dimension::length);
   d.restitution_given = r.node(section, "restitution") != nullptr;
   d.restitution = r.number(section, "restitution", d.law == JointLaw::rigid ? 0.0 : 1.0);
   d.value = r.expression(section, "value", d.value);
@@ -537,9 +539,10 @@ LawData read_law(const Reader& r, const std::string& section, bool end) {
   return d;
 }
 
-// A mass's displacement or velocity: a number (or a constant written as text).
-std::string constant(const Reader& r, const std::string& section, std::string_view key) {
-  const std::string text = r.expression(section, key, "0");
+// A mass's displacement or velocity: a number (or a constant written as
+// text, or a number and a unit of `d`).
+std::string constant(const Reader& r, const std::string& section, std::string_view key, Dimension d) {
+  const std::string text = r.expression_or_quantity(section, key, "0", d);
   try {
     const Expression e(text);
     if (!e.depends_on_x() && !e.depends_on_t()) return fmt::format("{}", e(0.0, 0.0));
@@ -570,17 +573,17 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
              b.kind == BodyKind::mass ? "is not used by a mass (it uses mass, displacement, velocity)"
                                       : "is not used by a bar (a mass's key)");
   if (b.kind == BodyKind::mass) {
-    b.mass = r.number(s, "mass", b.mass);
+    b.mass = r.quantity(s, "mass", b.mass, Dimension::mass);
     if (b.mass <= 0) r.fail(s, "mass", fmt::format("must be > 0 (got {})", b.mass));
-    b.displacement = constant(r, s, "displacement");
-    b.velocity = constant(r, s, "velocity");
+    b.displacement = constant(r, s, "displacement", Dimension::length);
+    b.velocity = constant(r, s, "velocity", Dimension::velocity);
     return b;
   }
-  b.length = r.number(s, "length", b.length);
+  b.length = r.quantity(s, "length", b.length, Dimension::length);
   const long long elements = r.integer(s, "elements", b.elements);
-  b.area = r.number(s, "area", b.area);
-  b.modulus = r.number(s, "modulus", b.modulus);
-  b.density = r.number(s, "density", b.density);
+  b.area = r.quantity(s, "area", b.area, Dimension::area);
+  b.modulus = r.quantity(s, "modulus", b.modulus, Dimension::stress);
+  b.density = r.quantity(s, "density", b.density, Dimension::density);
   b.viscosity = r.number(s, "viscosity", b.viscosity);
   for (auto [key, v] : {std::pair{"length", b.length}, std::pair{"area", b.area}, std::pair{"modulus", b.modulus},
                         std::pair{"density", b.density}})
@@ -590,7 +593,7 @@ BodyData read_body(Reader& r, const toml::table& t, std::size_t index) {
   if (elements > max_elements) r.fail(s, "elements", fmt::format("must be <= {} (got {})", max_elements, elements));
   b.elements = static_cast<int>(elements);
   b.displacement = r.expression(s, "displacement", b.displacement);
-  b.velocity = r.expression(s, "velocity", b.velocity);
+  b.velocity = r.expression_or_quantity(s, "velocity", b.velocity, Dimension::velocity);
   b.material = read_material(r, s, b.modulus, "modulus");
   if (const auto* shaft = t.get("shaft")) b.shaft = read_shaft(r, s, *shaft, b.length);
   return b;
@@ -662,7 +665,7 @@ void read_gauges(Reader& r, Case& c, const BodyIndex& body_index) {
     if (b == c.bodies.size()) r.fail(s, "body", fmt::format("names no body of the line (got \"{}\")", g.body));
     if (c.bodies[b].kind != BodyKind::bar) r.fail(s, "body", fmt::format("must be a bar (\"{}\" is a mass)", g.body));
     if (r.node(s, "at") == nullptr) r.fail(s, "at", "is required: the distance from the body's near end");
-    g.at = r.number(s, "at", 0.0);
+    g.at = r.quantity(s, "at", 0.0, Dimension::length);
     if (g.at < 0 || g.at > c.bodies[b].length)
       r.fail(s, "at", fmt::format("must lie in the body, [0, {}] (got {})", c.bodies[b].length, g.at));
     c.gauges.push_back(g);
@@ -670,13 +673,13 @@ void read_gauges(Reader& r, Case& c, const BodyIndex& body_index) {
 }
 
 // A pile's material in SI (Smith's soil is; a blow without soil is checked
-// under [units] system = "SI" only): a modulus or density no pile has is a
+// under [units] system = "SI" or "US", whose numbers are SI): a modulus or density no pile has is a
 // unit slip, refused with the unit it was probably meant in. Piles are timber (about 10 GPa, 400 to 900 kg/m^3),
 // concrete (25 to 45 GPa, 2400), steel (210 GPa, 7850), or plastic and
 // composite (1 to 40 GPa, 900 to 2000): the bounds below are wide of them.
 void check_pile(const Reader& r, const Case& c) {
   const BodyData* pile = c.pile();
-  if (pile == nullptr || !(c.smith_soil() || c.units == "SI")) return;
+  if (pile == nullptr || !(c.smith_soil() || c.units != "none")) return;
   const std::string s = "body." + pile->name;
   struct Check {
     const char* key;

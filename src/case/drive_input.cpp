@@ -116,8 +116,8 @@ std::vector<double> read_depths(const Reader& r, double length) {
 
 SoilSpring read_layer_soil(const Reader& r, const std::string& s, const char* quake, const char* damping,
                            SoilSpring soil, DampingLaw law) {
-  soil.quake = r.number(s, quake, soil.quake);
-  soil.damping = r.number(s, damping, soil.damping);
+  soil.quake = r.quantity(s, quake, soil.quake, Dimension::length);
+  soil.damping = r.quantity(s, damping, soil.damping, Dimension::damping);
   soil.damping_law = law;
   if (!(soil.quake > 0)) r.fail(s, quake, fmt::format("must be > 0 (got {})", soil.quake));
   if (soil.quake > 0.1) r.fail(s, quake, fmt::format("= {}: mm? quakes are a few mm, in m (0.00254)", soil.quake));
@@ -133,8 +133,8 @@ LayerData read_layer(Reader& r, const toml::table& t, std::size_t i, double top)
   LayerData l;
   for (const char* key : {"top", "bottom", "shaft", "toe"})
     if (r.node(s, key) == nullptr) r.fail(s, key, "is required");
-  l.top = r.number(s, "top", 0.0);
-  l.bottom = r.number(s, "bottom", 0.0);
+  l.top = r.quantity(s, "top", 0.0, Dimension::length);
+  l.bottom = r.quantity(s, "bottom", 0.0, Dimension::length);
   if (l.top != top)
     r.fail(s, "top",
            i == 0 ? fmt::format("must be 0: the layers start at the ground (got {})", l.top)
@@ -145,7 +145,7 @@ LayerData read_layer(Reader& r, const toml::table& t, std::size_t i, double top)
   if (shaft.empty() || shaft.size() > 2) r.fail(s, "shaft", "must be a number or [at the top, at the bottom] (Pa)");
   l.shaft_top = shaft.front();
   l.shaft_bottom = shaft.back();
-  l.toe = r.number(s, "toe", 0.0);
+  l.toe = r.quantity(s, "toe", 0.0, Dimension::stress);
   if (!(l.shaft_top >= 0 && l.shaft_bottom >= 0)) r.fail(s, "shaft", "must be >= 0 (Pa)");
   if (!(l.toe >= 0)) r.fail(s, "toe", fmt::format("must be >= 0 (Pa; got {})", l.toe));
   // Unit resistances in kPa (or kN) are the likely slip: no soil resists so little
@@ -257,7 +257,7 @@ void read_stroke(const Reader& r, const Case& c, const BodyIndex& index, HammerD
   if (stroke && energy) r.fail("hammer", "energy", "cannot be given with stroke (energy = m g stroke)");
   if (!h.entry && !diesel && !stroke && !energy)
     r.fail("hammer", "stroke", "is required (m), or energy (J, rated: m g stroke)");
-  h.stroke = stroke                ? r.number("hammer", "stroke", 0.0)
+  h.stroke = stroke                ? r.quantity("hammer", "stroke", 0.0, Dimension::length)
              : energy              ? r.number("hammer", "energy", 0.0) / (mass * g)
              : diesel              ? h.diesel.max_stroke
              : h.entry->stroke > 0 ? h.entry->stroke

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "barimpact/model/input_error.hpp"
+#include "quantity.hpp"
 #include "toml_input.hpp"
 
 namespace barimpact::detail {
@@ -200,6 +201,27 @@ class Reader {
       fail(section, key, fmt::format("must be a number (got {})", toml_type_name(*n)));
     if (!std::isfinite(v)) fail(section, key, fmt::format("must be a finite number (got {})", v));
     return v;
+  }
+
+  /// A number in SI, or a text of a number and a unit of `d` ("900 kN"), converted to SI.
+  double quantity(std::string_view section, std::string_view key, double fallback, Dimension d) const {
+    const auto* n = node(section, key);
+    if (n == nullptr || !n->is_string()) return number(section, key, fallback);
+    std::string why;
+    const auto v = si_value(n->as_string()->get(), d, why);
+    if (!v) fail(section, key, why);
+    return *v;
+  }
+
+  /// An expression, whose text may instead be a number and a unit of `d`
+  /// ("-14.5 ft/s"): then that number in SI, as text.
+  std::string expression_or_quantity(std::string_view section, std::string_view key, std::string_view fallback,
+                                     Dimension d) const {
+    std::string text = expression(section, key, fallback);
+    std::string why;
+    const auto v = suffixed_value(text, d, why);
+    if (!why.empty()) fail(section, key, why);
+    return v ? fmt::format("{}", *v) : text;
   }
 
   long long integer(std::string_view section, std::string_view key, long long fallback) const {

@@ -42,8 +42,8 @@ double circle_area(double diameter) {
 
 // A bar's or the specimen's cross-section: `diameter` or `area`, not both.
 std::optional<double> read_area(const SetupReader& r, std::string_view section) {
-  const auto d = r.positive(section, "diameter");
-  const auto a = r.positive(section, "area");
+  const auto d = r.positive(section, "diameter", Dimension::length);
+  const auto a = r.positive(section, "area", Dimension::area);
   if (d && a) r.fail(section, "area", "and diameter both given: give one");
   if (d) return circle_area(*d);
   return a;
@@ -55,7 +55,7 @@ struct RunGauge {
   HopkinsonBar bar;
   double gauge_to_specimen = 0.0;
   double specimen_length = 0.0, specimen_area = 0.0;
-  bool si = true;  ///< the run's case says [units] system = "SI"
+  bool si = true;  ///< the run's case holds SI numbers ([units] system = "SI" or "US")
 };
 
 // Sets the channel's file: the run's history.csv, or its results.h5.
@@ -114,7 +114,7 @@ RunGauge read_run_gauge(const SetupReader& r, ChannelSetup& ch, const std::strin
   out.gauge_to_specimen = gb == sp + 1 ? g->at : b.length - g->at;
   out.specimen_length = spec.length;
   out.specimen_area = spec.area;
-  out.si = c.units == "SI";
+  out.si = c.units != "none";  // "US" cases hold SI numbers too
   return out;
 }
 
@@ -214,7 +214,7 @@ ChannelSetup read_channel(const SetupReader& r, std::string_view s, const std::f
     read_columns(r, s, ch);
     read_file_layout(r, s, ch);
   }
-  if (const auto d = r.positive(s, "gauge_to_specimen"))
+  if (const auto d = r.positive(s, "gauge_to_specimen", Dimension::length))
     ch.gauge_to_specimen = *d;
   else if (!run)
     r.fail(s, "gauge_to_specimen", "is missing: the distance from the gauge to the specimen's face");
@@ -230,9 +230,9 @@ ChannelSetup read_channel(const SetupReader& r, std::string_view s, const std::f
 HopkinsonBar read_bar(const SetupReader& r, const std::optional<RunGauge>& from_run) {
   HopkinsonBar b;
   if (from_run) b = from_run->bar;
-  if (const auto v = r.positive("bar", "modulus")) b.modulus = *v;
-  if (const auto v = r.positive("bar", "density")) b.density = *v;
-  const auto d = r.positive("bar", "diameter");
+  if (const auto v = r.positive("bar", "modulus", Dimension::stress)) b.modulus = *v;
+  if (const auto v = r.positive("bar", "density", Dimension::density)) b.density = *v;
+  const auto d = r.positive("bar", "diameter", Dimension::length);
   if (const auto a = read_area(r, "bar")) {
     b.area = *a;
     b.diameter = d ? *d : std::sqrt(4.0 * *a / std::numbers::pi);
@@ -242,7 +242,7 @@ HopkinsonBar read_bar(const SetupReader& r, const std::optional<RunGauge>& from_
   if (!(b.density > 0)) r.fail("bar", "density", fmt::format("is missing: the bars' density{}", given));
   if (!(b.area > 0)) r.fail("bar", "diameter", fmt::format("is missing: the bars' diameter (or area){}", given));
   b.wave_speed = std::sqrt(b.modulus / b.density);
-  if (const auto c = r.positive("bar", "wave_speed")) b.wave_speed = *c;
+  if (const auto c = r.positive("bar", "wave_speed", Dimension::velocity)) b.wave_speed = *c;
   if (const auto nu = r.number("bar", "poisson")) {
     if (!(*nu > 0 && *nu < 0.5)) r.fail("bar", "poisson", fmt::format("must be in (0, 0.5) (got {})", *nu));
     b.poisson = *nu;
@@ -356,7 +356,7 @@ HopkinsonSetup HopkinsonSetup::from_string(const std::string& toml, const std::f
     s.specimen.length = any_run->specimen_length;
     s.specimen.area = any_run->specimen_area;
   }
-  if (const auto l = r.positive("specimen", "length")) s.specimen.length = *l;
+  if (const auto l = r.positive("specimen", "length", Dimension::length)) s.specimen.length = *l;
   if (const auto a = read_area(r, "specimen")) s.specimen.area = *a;
   if (!(s.specimen.length > 0)) r.fail("specimen", "length", "is missing: the specimen's initial length");
   if (!(s.specimen.area > 0)) r.fail("specimen", "diameter", "is missing: the specimen's initial diameter (or area)");

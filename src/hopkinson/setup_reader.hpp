@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "../case/quantity.hpp"
 #include "../case/toml_input.hpp"
 #include "barimpact/model/input_error.hpp"
 
@@ -71,9 +72,20 @@ class SetupReader {
     return one_number(section, key, *n);
   }
 
-  // A number > 0 (when given).
-  [[nodiscard]] std::optional<double> positive(std::string_view section, std::string_view key) const {
-    const auto v = number(section, key);
+  /// A number in SI, or a text of a number and a unit of `d` ("210 GPa"), converted to SI.
+  [[nodiscard]] std::optional<double> quantity(std::string_view section, std::string_view key, Dimension d) const {
+    const auto* n = node(section, key);
+    if (n == nullptr || !n->is_string()) return number(section, key);
+    std::string why;
+    const auto v = si_value(n->as_string()->get(), d, why);
+    if (!v) fail(section, key, why);
+    return v;
+  }
+
+  // A number > 0 (when given); with a dimension, also a number and a unit of it.
+  [[nodiscard]] std::optional<double> positive(std::string_view section, std::string_view key,
+                                               std::optional<Dimension> d = std::nullopt) const {
+    const auto v = d ? quantity(section, key, *d) : number(section, key);
     if (v && !(*v > 0)) fail(section, key, fmt::format("must be > 0 (got {})", *v));
     return v;
   }

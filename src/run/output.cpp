@@ -5,6 +5,7 @@
 #include "barimpact/schemes/registry.hpp"
 #include "field_stream.hpp"
 #include "output_file.hpp"
+#include "summary_units.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -536,15 +537,9 @@ std::string summary_json(const Case& c, const Summary& s) {
       {"energy_error_relative", number_or_null(rel)},
       {"run_seconds", s.run_seconds},
       {"warnings", s.warnings},
-      // What the numbers are in: the case's units, for SI the base units
-      // (the console prints engineering multiples of them).
-      {"units", c.units == "SI" ? nlohmann::json{{"system", "SI"},
-                                                 {"length", "m"},
-                                                 {"time", "s"},
-                                                 {"force", "N"},
-                                                 {"stress", "Pa"},
-                                                 {"energy", "J"}}
-                                : nlohmann::json{{"system", c.units}}},
+      // What the numbers are in (SI, or the case's own under "none") and
+      // what the console prints them in.
+      {"units", units_json(c.units)},
   };
   return j.dump(2) + "\n";
 }
@@ -567,48 +562,143 @@ std::string blow_end_text(const BlowSummary& b) {
   std::string out = !std::isnan(b.rest_time) ? fmt::format("pile at rest from t = {:.4g}", b.rest_time)
                     : b.finished             ? fmt::format("the soil's last slip at t = {:.4g}", b.last_slip_time)
                                              : std::string("the pile had not come to rest");
-  if (b.strikes > 1) out += fmt::format(" after {} strikes (the ram fell back on the pile before it came to rest)", b.strikes);
+  if (b.strikes > 1)
+    out += fmt::format(" after {} strikes (the ram fell back on the pile before it came to rest)", b.strikes);
   if (!std::isnan(b.restrike_time))
     out += fmt::format("; the ram fell back and struck again at t = {:.4g}: the blow ends there", b.restrike_time);
   return out;
 }
 
-// 0 is a refusal only when the pile came to rest; no inf or nan printed.
-// Engineering units (mm, MPa, J) under [units] system = "SI", the case's own
-// numbers without a unit otherwise.
-std::string blow_text(const BlowSummary& b, bool si) {
+// The blow's counts: per 250 mm or per ft under a display system, per unit
+// length without one; 0 is a refusal only when the pile came to rest.
+std::string count_text(const BlowSummary& b, const units::Display* d) {
+  if (b.set > 0)
+    return d ? fmt::format("{:.3g} {}", d->count(b.blows_per_m()), d->count_name)
+             : fmt::format("{:.3g} blows per unit length", b.blows_per_m());
+  return b.finished ? std::string("refusal") : std::string("no set yet: the blow is not finished");
+}
+
+// A number with its display unit, or bare under "none".
+std::string shown(double si, const units::Shown* unit, int digits = 4) {
+  return unit ? fmt::format("{:.{}g} {}", (*unit)(si), digits, unit->name) : fmt::format("{:.{}g}", si, digits);
+}
+
+// The diesel's line: its blows, its next stroke, its gas works.
+std::string diesel_text(const BlowSummary& b, const units::Display* d) {
+  const auto* depth = d ? &d->depth : nullptr;
+  const auto* energy = d ? &d->energy : nullptr;
+  return fmt::format("  diesel: {}next stroke {}; gas works W_c {}, W_e {}\n",
+                     b.blows_run > 1 ? fmt::format("blow {} from a stroke of {} (the first set {}); ", b.blows_run,
+                                                   shown(b.stroke, depth), shown(b.first_set, d ? &d->set : nullptr))
+                                     : std::string(),
+                     std::isnan(b.next_stroke) ? std::string("not reached (the ram has not risen past the ports)")
+                                               : shown(b.next_stroke, depth),
+                     shown(b.compression_work, energy), shown(b.expansion_work, energy));
+}
+
+// The blow's console lines: "no impact" when the ram never struck; no inf or
+// nan printed. Engineering units (mm, MPa, J; in, ksi, kip-ft) under a
+// display system, the case's own numbers without a unit under "none".
+std::string blow_text(const BlowSummary& b, const units::Display* d) {
   if (!b.impact)
     return fmt::format(
         "  blow: no impact: the ram \"{}\" never struck the pile (check its velocity's sign, towards "
         "the pile, and [blow] ram)\n",
         b.ram);
-  const std::string counts = b.set > 0    ? si ? fmt::format("{:.3g} blows per 250 mm", b.blows_per_250mm())
-                                               : fmt::format("{:.3g} blows per unit length", b.blows_per_m())
-                                : b.finished ? std::string("refusal")
-                                          : std::string("no set yet: the blow is not finished");
+  const auto* stress = d ? &d->stress : nullptr;
+  const auto* energy = d ? &d->energy : nullptr;
   std::string out =
-      si ? fmt::format("  blow: set {:.4g} mm ({}), max compression {:.4g} MPa, max tension {:.4g} MPa\n", 1e3 * b.set,
-                       counts, 1e-6 * b.max_compression.value, 1e-6 * b.max_tension.value)
-         : fmt::format("  blow: set {:.4g} ({}), max compression {:.4g}, max tension {:.4g} (the case's units)\n",
-                       b.set, counts, b.max_compression.value, b.max_tension.value);
-  const char* joules = si ? " J" : "";
+      fmt::format("  blow: set {} ({}), max compression {}, max tension {}{}\n", shown(b.set, d ? &d->set : nullptr),
+                  count_text(b, d), shown(b.max_compression.value, stress), shown(b.max_tension.value, stress),
+                  d ? "" : " (the case's units)");
   const std::string ratio = std::isnan(b.transfer_ratio())
                                 ? std::string(" (no transfer ratio: the ram brought no energy)")
                                 : fmt::format(" (transfer ratio {:.3g})", b.transfer_ratio());
   out +=
-      fmt::format("  hammer energy {:.4g}{} at t = {:.4g}; ENTHRU {}{}; {}\n", b.hammer_energy, joules, b.impact_time,
+      fmt::format("  hammer energy {} at t = {:.4g}; ENTHRU {}{}; {}\n", shown(b.hammer_energy, energy), b.impact_time,
                   std::isnan(b.enthru) ? std::string("not measured (no gauge on the pile)")
-                                       : fmt::format("{:.4g}{} at {}", b.enthru, joules, b.gauge),
+                                       : fmt::format("{} at {}", shown(b.enthru, energy), b.gauge),
                   std::isnan(b.enthru) ? "" : ratio, blow_end_text(b));
-  if (b.diesel)
-    out += fmt::format("  diesel: {}next stroke {}; gas works W_c {:.4g}{}, W_e {:.4g}{}\n",
-                       b.blows_run > 1 ? fmt::format("blow {} from a stroke of {:.4g} m (the first set {:.4g} mm); ",
-                                                     b.blows_run, b.stroke, 1e3 * b.first_set)
-                                       : std::string(),
-                       std::isnan(b.next_stroke) ? std::string("not reached (the ram has not risen past the ports)")
-                                                 : fmt::format("{:.4g} m", b.next_stroke),
-                       b.compression_work, joules, b.expansion_work, joules);
+  if (b.diesel) out += diesel_text(b, d);
   return out;
+}
+
+}  // namespace
+
+namespace {
+
+// The console's other numbers: under "US" in kip, in, ft/s and kip-ft
+// (a US reader has no use for bare newtons); under "SI" and "none" bare,
+// the case's own numbers.
+struct LineUnits {
+  const units::Shown *force = nullptr, *length = nullptr, *velocity = nullptr, *energy = nullptr;
+};
+
+LineUnits line_units(const Case& c) {
+  if (c.units != "US") return {};
+  const auto& us = units::us_display;
+  return {&us.force, &us.set, &us.velocity, &us.energy};
+}
+
+// A velocity with its sign, or what it is when it is not one.
+std::string signed_velocity(double v, const units::Shown* unit) {
+  if (unit == nullptr || !std::isfinite(v)) return signed_number(v);
+  return fmt::format("{:+.4g} {}", (*unit)(v), unit->name);
+}
+
+// The near end's contacts and their largest values.
+std::string contacts_text(const Summary& s, bool obstacle, const LineUnits& u) {
+  std::string out;
+  if (s.contacts.empty() && (obstacle || s.link_names.empty())) out += "  no contact\n";
+  constexpr std::size_t listed = 8;
+  for (std::size_t i = 0; i < std::min(listed, s.contacts.size()); ++i) {
+    const auto& ci = s.contacts[i];
+    if (ci.closed)
+      out +=
+          fmt::format("  contact {}: t = {:.6g} .. {:.6g}, max R = {}, leaves with mean velocity {} (end {})\n", i + 1,
+                      ci.start, ci.end, shown(ci.max_reaction, u.force),
+                      signed_velocity(ci.rebound_velocity, u.velocity), signed_velocity(ci.exit_velocity, u.velocity));
+    else
+      out += fmt::format("  contact {}: t = {:.6g} .. (still in contact at the end), max R = {}\n", i + 1, ci.start,
+                         shown(ci.max_reaction, u.force));
+  }
+  if (s.contacts.size() > listed)
+    out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - listed);
+  if (obstacle || s.link_names.empty())
+    out += fmt::format(
+        "  max penetration {}, max reaction {}{}\n", shown(s.max_penetration, u.length), shown(s.max_reaction, u.force),
+        s.max_impact_impulse > 0.0
+            ? fmt::format(" after the impact steps (largest impact impulse {:.4g} over one step)", s.max_impact_impulse)
+            : std::string());
+  return out;
+}
+
+// The joints' and far end's episodes, and the plastic bodies.
+std::string links_text(const Summary& s, const LineUnits& u) {
+  std::string out;
+  for (std::size_t i = 0; i < s.link_names.size(); ++i) {
+    if (s.link_names[i] == "near_end") continue;  // the contacts above
+    double largest = 0.0;
+    for (const auto& e : s.link_episodes[i]) largest = std::max(largest, e.max_force);
+    out += fmt::format("  {}: {} contact episode(s), largest force {}\n", s.link_names[i], s.link_episodes[i].size(),
+                       shown(largest, u.force));
+  }
+  if (s.plastic) {
+    out += fmt::format("  plastic: largest eps_p {:.4g} in {} at x = {:.4g}, t = {:.4g}; plastic work",
+                       s.plastic->largest_strain, s.plastic->body, s.plastic->x, s.plastic->t);
+    for (const auto& [body, w] : s.plastic->work) out += fmt::format(" {} {:.4g}", body, w);
+    out += "\n";
+  }
+  return out;
+}
+
+std::string energy_text(const Summary& s, const LineUnits& u) {
+  if (!std::isfinite(s.energy_initial)) return "  energy: not known for this solution\n";
+  return fmt::format("  energy: initial {}, final {}, max balance error {}{}\n", shown(s.energy_initial, u.energy, 6),
+                     shown(s.energy_final, u.energy, 6), shown(s.energy_error_max, u.energy, 3),
+                     s.energy_initial != 0.0
+                         ? fmt::format(" ({:.2g}% of initial)", 100.0 * s.energy_error_max / std::abs(s.energy_initial))
+                         : std::string());
 }
 
 }  // namespace
@@ -620,48 +710,11 @@ std::string summary_text(const Case& c, const Summary& s) {
   // The near end's obstacle, when it has one (a line's ends may be free, held or loaded).
   const bool obstacle = std::find(s.link_names.begin(), s.link_names.end(), "near_end") != s.link_names.end() ||
                         (c.one_bar() && c.one_bar()->obstacle.kind != ObstacleKind::none);
-  if (s.contacts.empty() && (obstacle || s.link_names.empty())) out += "  no contact\n";
-  constexpr std::size_t shown = 8;
-  for (std::size_t i = 0; i < std::min(shown, s.contacts.size()); ++i) {
-    const auto& ci = s.contacts[i];
-    if (ci.closed)
-      out += fmt::format("  contact {}: t = {:.6g} .. {:.6g}, max R = {:.4g}, leaves with mean velocity {} (end {})\n",
-                         i + 1, ci.start, ci.end, ci.max_reaction, signed_number(ci.rebound_velocity),
-                         signed_number(ci.exit_velocity));
-    else
-      out += fmt::format("  contact {}: t = {:.6g} .. (still in contact at the end), max R = {:.4g}\n", i + 1, ci.start,
-                         ci.max_reaction);
-  }
-  if (s.contacts.size() > shown)
-    out += fmt::format("  ... {} more contact episodes in summary.json\n", s.contacts.size() - shown);
-  if (obstacle || s.link_names.empty())
-    out += fmt::format(
-        "  max penetration {:.4g}, max reaction {:.4g}{}\n", s.max_penetration, s.max_reaction,
-        s.max_impact_impulse > 0.0
-            ? fmt::format(" after the impact steps (largest impact impulse {:.4g} over one step)", s.max_impact_impulse)
-            : std::string());
-  for (std::size_t i = 0; i < s.link_names.size(); ++i) {
-    if (s.link_names[i] == "near_end") continue;  // the contacts above
-    double largest = 0.0;
-    for (const auto& e : s.link_episodes[i]) largest = std::max(largest, e.max_force);
-    out += fmt::format("  {}: {} contact episode(s), largest force {:.4g}\n", s.link_names[i],
-                       s.link_episodes[i].size(), largest);
-  }
-  if (s.plastic) {
-    out += fmt::format("  plastic: largest eps_p {:.4g} in {} at x = {:.4g}, t = {:.4g}; plastic work",
-                       s.plastic->largest_strain, s.plastic->body, s.plastic->x, s.plastic->t);
-    for (const auto& [body, w] : s.plastic->work) out += fmt::format(" {} {:.4g}", body, w);
-    out += "\n";
-  }
-  if (const auto& b = s.blow) out += blow_text(*b, c.units == "SI");
-  if (std::isfinite(s.energy_initial))
-    out += fmt::format("  energy: initial {:.6g}, final {:.6g}, max balance error {:.3g}{}\n", s.energy_initial,
-                       s.energy_final, s.energy_error_max,
-                       s.energy_initial != 0.0 ? fmt::format(" ({:.2g}% of initial)",
-                                                             100.0 * s.energy_error_max / std::abs(s.energy_initial))
-                                               : std::string());
-  else
-    out += "  energy: not known for this solution\n";
+  const LineUnits u = line_units(c);
+  out += contacts_text(s, obstacle, u);
+  out += links_text(s, u);
+  if (const auto& b = s.blow) out += blow_text(*b, units::display(c.units));
+  out += energy_text(s, u);
   out += fmt::format("  run time {:.3f} s\n", s.run_seconds);
   if (!s.complete) out += fmt::format("  {}\n", s.message);
   return out;

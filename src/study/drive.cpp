@@ -8,6 +8,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "../run/summary_units.hpp"
 #include "barimpact/run/output.hpp"
 #include "barimpact/run/output_directory.hpp"
 #include "barimpact/schemes/registry.hpp"
@@ -156,7 +157,7 @@ std::string summary_json(const DrivePlan& plan, const std::vector<DriveRow>& row
                    {"area", b.area},
                    {"yield_stress", b.material.kind == MaterialKind::plastic ? nlohmann::json(b.material.yield_stress)
                                                                              : nlohmann::json(nullptr)}};
-  j["units"] = {{"system", plan.base().units}};
+  j["units"] = units_json(plan.base().units);
   return j.dump(2) + "\n";
 }
 

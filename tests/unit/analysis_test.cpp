@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -131,6 +132,35 @@ double scale(const std::vector<double>& v) {
   for (double x : v)
     if (std::isfinite(x)) m = std::max(m, std::abs(x));
   return m;
+}
+
+// The setup's sizes and moduli may carry units (docs/hopkinson.md): a
+// GPa/mm setup is its SI twin bit for bit; a unit of another quantity is
+// refused naming the key and the units it takes.
+TEST_F(HopkinsonAnalysis, ASetupInGigapascalsAndMillimetresIsItsSITwin) {
+  write_records(records());
+  std::string metric = setup_text();
+  for (const auto& [si, with_unit] : {std::pair{"modulus = 200e9", "modulus = \"200 GPa\""},
+                                      {"density = 8000.0", "density = \"8 t/m3\""},
+                                      {"area = 3e-4", "area = \"300 mm2\""},
+                                      {"length = 0.005", "length = \"5 mm\""},
+                                      {"area = 1e-4", "area = \"1 cm2\""},
+                                      {"gauge_to_specimen = 1.0", "gauge_to_specimen = \"1000 mm\""},
+                                      {"gauge_to_specimen = 0.5", "gauge_to_specimen = \"50 cm\""}}) {
+    const auto at = metric.find(si);
+    ASSERT_NE(at, std::string::npos) << si;
+    metric.replace(at, std::string(si).size(), with_unit);
+  }
+  const auto a = analyse(setup_text()), b = analyse(metric);
+  ASSERT_EQ(a.columns.size(), b.columns.size());
+  auto same = [](double x, double y) { return x == y || (std::isnan(x) && std::isnan(y)); };  // bit for bit, NaN too
+  for (std::size_t i = 0; i < a.columns.size(); ++i)
+    EXPECT_TRUE(std::equal(a.columns[i].values.begin(), a.columns[i].values.end(), b.columns[i].values.begin(),
+                           b.columns[i].values.end(), same))
+        << a.columns[i].name;
+  std::string wrong = setup_text();
+  wrong.replace(wrong.find("modulus = 200e9"), 15, "modulus = \"200 kN\"");
+  EXPECT_HAS(refusal(wrong), "setup.toml:3: bar.modulus = \"200 kN\": kN is a force; a stress: Pa, kPa, MPa, GPa");
 }
 
 TEST_F(HopkinsonAnalysis, EveryColumnIsItsFormulaOnTheWavesAtTheFaces) {

@@ -74,13 +74,14 @@ TEST(Case, ReadsAShellsPipeWhichHasItsWriter) {
   EXPECT_EQ(c.bodies.front().elements, 7);
 }
 
-TEST(Case, UnitsSystemIsSIOrNoneAndIsWrittenBack) {
+TEST(Case, UnitsSystemIsSIUSOrNoneAndIsWrittenBack) {
   EXPECT_EQ(case_from("").units, "none");
   const Case si = case_from("[units]\nsystem = \"SI\"\n");
   EXPECT_EQ(si.units, "SI");
   EXPECT_NE(si.to_toml().find("[units]\nsystem = \"SI\""), std::string::npos);
   EXPECT_EQ(Case::from_string(si.to_toml(), {}, "again").units, "SI");
-  EXPECT_REFUSED("[units]\nsystem = \"imperial\"", "units.system", "\"SI\" or \"none\"");
+  EXPECT_EQ(case_from("[units]\nsystem = \"US\"\n").units, "US");
+  EXPECT_REFUSED("[units]\nsystem = \"imperial\"", "units.system", "\"SI\", \"US\" or \"none\"");
   EXPECT_REFUSED("[units]\nlength = \"m\"", "unknown key units.length");
 }
 

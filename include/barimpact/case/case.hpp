@@ -213,7 +213,8 @@ struct Case {
   LoadData load;
   TimeData time;
   OutputData output;
-  /// [units] system: "SI" (figures label N, m, s, Pa, J) or "none" (unit-free numbers).
+  /// [units] system: "SI" (figures label N, m, s, Pa, J), "US" (the numbers still SI; the console and
+  /// figures show kip, ft, in, ksi, kip-ft) or "none" (unit-free numbers).
   std::string units = "none";
   /// The case file it was read from (from_file), empty for text: an input
   /// its results never overwrite.

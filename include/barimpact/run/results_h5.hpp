@@ -3,7 +3,7 @@
 // `[output] format = "hdf5"`. The same numbers, bit for bit (float64):
 //
 //   /                 attributes `case` (the resolved case, case.toml's text)
-//                     and `units` ([units] system: "SI" or "none")
+//                     and `units` ([units] system: "SI", "US" or "none")
 //   /history          attribute `columns`: the column names in history.csv's
 //                     order (HDF5 lists a group's members alphabetically)
 //   /history/<name>   one 1-D float64 dataset per history.csv column, one
