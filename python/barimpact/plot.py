@@ -601,7 +601,7 @@ def _map_figure(data, symbol, name, what, quantity, cmap, out, formats, written)
     edges, grid = _map_grid(data, data.field_t)
     ts, vs = units.time(edges), units.axis(what, quantity, limit)
     line = "pile" if units.pile else "line"
-    fig, ax = _figure(f"{_capital(what)} along the {line} from {data.field_t.size} snapshots "
+    fig, ax = _figure(f"{_capital(what)} along the {line} from {data.field_t.size} snapshots\n"
                       f"(linear in time between them{_run_beyond(data, edges, ts)})", grid=False)
     span = float(np.ptp(data.x)) or 1.0
     for rows in _body_rows(data):
