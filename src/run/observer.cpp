@@ -272,11 +272,13 @@ bool ProgressMonitor::observe(const Scheme& s) {
 }
 
 PlasticMonitor::PlasticMonitor(const Line& line, long long every) : every_(every) {
+  work_.assign(line.bodies.size(), 0.0);
+  // An elastic line: no bond to watch, and none to look at (10^6 of them at start-up).
+  if (std::none_of(line.plasticity.begin(), line.plasticity.end(), [](auto p) { return static_cast<bool>(p); })) return;
   for (std::size_t j = 0; j < line.bonds.size(); ++j) {
     const Bond& b = line.bonds[j];
     if (b.kind == BondKind::element && b.body < line.plasticity.size() && line.plasticity[b.body]) bonds_.push_back(j);
   }
-  work_.assign(line.bodies.size(), 0.0);
 }
 
 void PlasticMonitor::begin(const Scheme& /*scheme*/, long long steps) {
