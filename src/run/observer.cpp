@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <tuple>
 
 namespace barimpact {
 
@@ -19,10 +18,8 @@ void HistoryRecorder::begin(const Scheme& /*scheme*/, long long steps) {
 // A row's energies as the scheme completes them, at the step after it.
 void HistoryRecorder::complete(const Scheme& s) {
   s.finish_energies(energies_);
-  HistoryRow& row = rows_.back();
-  const Energies& e = energies_;
-  std::tie(row.E_kin, row.E_strain, row.E_obstacle, row.W_ext, row.D_visc, row.D_contact, row.D_plastic) =
-      std::tie(e.kinetic, e.strain, e.obstacle, e.work, e.dissipation, e.contact, e.plastic);
+  rows_.back().E_kin = energies_.kinetic;
+  rows_.back().E_strain = energies_.strain;
   pending_ = false;
 }
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <type_traits>
 #include <utility>
 
 #include "barimpact/schemes/penalty_links.hpp"
@@ -20,122 +19,6 @@ double along(const Line& line, std::size_t i, const double* x) {
 double entry(const Link& l, std::size_t j) {
   return j == l.b ? 1.0 : j == l.a ? -1.0 : 0.0;
 }
-// A run of equal bonds, nodes first..last: the levels (a, b) scaled by sa, sb,
-// the nodes' point masses, the bonds' mass / 3 and stiffness.
-struct BondRunTerms {
-  const double *za, *zb, *mass;
-  double sa, sb, inv_dt, extra, third, stiffness;
-  bool open;
-};
-
-// The terms of bonds first..first + count - 1 of a run (count <= a block):
-// point mass, bond mass and bond stiffness, in loops free of reductions
-// that the compiler vectorises (half_step_terms.hpp).
-BARIMPACT_ENERGY_CLONES void run_terms(const BondRunTerms& r, std::size_t first, std::size_t count, double* tp,
-                                       double* tk, double* ts) {
-  constexpr std::size_t block = detail::energy_block;
-  double w[block + 1], m[block + 1];
-  detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
-  for (std::size_t i = 0; i < count; ++i) {
-    tp[i] = r.mass[first + i] * w[i] * w[i];
-    tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
-    const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
-    ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
-  }
-}
-
-// The run's kinetic and bond terms into the two sums, a block of nodes at a
-// time: the terms vectorised, then summed node by node (the same operations
-// in the same order as the node loop: the same bits).
-void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum, double& bond_sum) {
-  constexpr std::size_t block = detail::energy_block;
-  double kinetic = kinetic_sum, sum = bond_sum;  // in registers: the references may alias
-  double tp[block], tk[block], ts[block];
-  for (; first < last; first += block) {
-    const std::size_t count = std::min(block, last - first);
-    run_terms(r, first, count, tp, tk, ts);
-    for (std::size_t i = 0; i < count; ++i) {
-      if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
-      kinetic += tk[i];
-      if (!r.open) sum += ts[i];
-    }
-  }
-  kinetic_sum = kinetic;
-  bond_sum = sum;
-}
-
-// A run's constants for run_terms: bond b's, between levels (a, b) scaled by sa, sb.
-BondRunTerms run_constants(const Bond& b, const double* za, double sa, const double* zb, double sb, const double* mass,
-                           double dt, double alpha) {
-  return {
-      za, zb, mass, sa, sb, 1.0 / dt, (alpha - 0.25) * dt * dt, b.mass / 3.0, b.stiffness, b.kind == BondKind::open};
-}
-
-// LinePaper::half_step's sums in node order, next(j) adding bond j - 1 once
-// ahead(j0, j1) has formed the terms of bonds j0 - 1..j1 - 2 (run_terms, a
-// block at most): the sums alone run in order, where the solve's sweeps
-// carry them beside their own chains (TwistedTridiagonal::outward's visit).
-// A bond's stiffness term is kept for the sum it joins and 0 for the other:
-// adding +0 to a sum that starts at +0 keeps its bits.
-template <class Run>
-class BondSums {
- public:
-  static constexpr std::size_t block = detail::energy_block;
-  struct Levels {
-    const double *za, *zb, *mass;
-    double sa, sb, dt, alpha;
-  };
-  BondSums(const Levels& levels, const std::vector<Bond>& bonds, const std::vector<Run>& runs)
-      : levels_(levels), bonds_(bonds), runs_(runs) {}
-  void ahead(std::size_t j0, std::size_t j1);
-  /// Into the caller's variables: in registers, where members would go
-  /// through memory (ahead's call sees the object) at every add.
-  void next(std::size_t j, double& kinetic, double& strain, double& springs) const {
-    const std::size_t i = j - 1 - first_;
-    if (tp_[i] != 0.0) kinetic += tp_[i];  // as add_run
-    kinetic += tk_[i];
-    strain += strain_[i];
-    springs += springs_[i];
-  }
-
- private:
-  Levels levels_;
-  const std::vector<Bond>& bonds_;
-  const std::vector<Run>& runs_;  // bonds first..last - 1 alike
-  std::size_t run_ = 0, first_ = 0;
-  double tp_[block], tk_[block], strain_[block], springs_[block];
-};
-
-template <class Run>
-void BondSums<Run>::ahead(std::size_t j0, std::size_t j1) {
-  first_ = j0 - 1;
-  const std::size_t end = j1 - 1;
-  double ts[block];
-  for (std::size_t e = first_; e < end;) {
-    while (e >= runs_[run_].last) ++run_;  // the visits go in node order
-    const Bond& b = bonds_[runs_[run_].first];
-    const std::size_t stop = std::min(end, runs_[run_].last), at = e - first_, count = stop - e;
-    const Levels& l = levels_;
-    run_terms(run_constants(b, l.za, l.sa, l.zb, l.sb, l.mass, l.dt, l.alpha), e, count, tp_ + at, tk_ + at, ts);
-    const bool open = b.kind == BondKind::open, element = b.kind == BondKind::element;
-    for (std::size_t i = 0; i < count; ++i) {
-      strain_[at + i] = element && !open ? ts[i] : 0.0;
-      springs_[at + i] = !element && !open ? ts[i] : 0.0;
-    }
-    e = stop;
-  }
-}
-
-// BondSums as a sweep's visit, into the sweep's own variables.
-template <class Run>
-struct BondVisit {
-  static constexpr std::size_t block = BondSums<Run>::block;
-  BondSums<Run>& sums;
-  double &kinetic, &strain, &springs;
-  void ahead(std::size_t j0, std::size_t j1) const { sums.ahead(j0, j1); }
-  void operator()(std::size_t j) const { sums.next(j, kinetic, strain, springs); }
-};
-
 }  // namespace
 
 LinePaper::LinePaper(const Case& c, Line line)
@@ -297,8 +180,7 @@ void LinePaper::start_loads() {
   cur_ = levels_[0].data();
   next_ = levels_[1].data();
   n_ = 0;
-  cached_ = pending_ = {};
-  fuse_ = fusing_ = false;
+  cached_ = {};
   for (auto& f : loads_) std::fill(f.begin(), f.end(), 0.0);  // no plastic load of an earlier run
   start_plastic(u0_.data());                                  // p^0 from u0
   if (load_mode_ != LoadMode::zero) line_.load(*body_force_, 0.0, loads_[0]);
@@ -405,8 +287,6 @@ void LinePaper::book_start(double viscous) {
 }
 
 void LinePaper::advance() {
-  fusing_ = fuse_;  // this step's sweeps (each of a plastic iteration's) sum a row's half step
-  fuse_ = false;
   if (soil_.active()) {
     advance_soil();
     return;
@@ -483,19 +363,18 @@ void LinePaper::advance_elastic() {
     if (lambda_ != 0.0)
       for (double& f : soil_rhs_) f /= scale(m);
   }
-  const bool f = fusing_;
   switch (step_mode_) {
     case LoadMode::zero:
-      f ? sweeps<LoadMode::zero, true>(m) : sweeps<LoadMode::zero, false>(m);
+      sweeps<LoadMode::zero>(m);
       break;
     case LoadMode::steady:
-      f ? sweeps<LoadMode::steady, true>(m) : sweeps<LoadMode::steady, false>(m);
+      sweeps<LoadMode::steady>(m);
       break;
     case LoadMode::unsteady:
-      f ? sweeps<LoadMode::unsteady, true>(m) : sweeps<LoadMode::unsteady, false>(m);
+      sweeps<LoadMode::unsteady>(m);
       break;
     case LoadMode::soil:
-      sweeps<LoadMode::soil, false>(m);  // its rows are whole (begin_energies)
+      sweeps<LoadMode::soil>(m);
       break;
   }
   correct(prev_);
@@ -622,7 +501,7 @@ std::array<const double*, 3> LinePaper::level_loads(long long m) {
   return {nullptr, nullptr, nullptr};
 }
 
-template <LinePaper::LoadMode mode, bool fused>
+template <LinePaper::LoadMode mode>
 void LinePaper::sweeps(long long m) {
   const double* __restrict zc = next_;
   const double* __restrict zo = cur_;
@@ -656,18 +535,6 @@ void LinePaper::sweeps(long long m) {
   };
   double* x = prev_;
   const std::size_t last = line_.nodes() - 1, k = last / 2;
-  // fused: the half step (m - 1, m)'s sums in node order (half_step's), the
-  // upper half's in the sweep in, the lower half's in the sweep out.
-  const double sa = scale(m - 1), sb = scale(m);
-  double kinetic = 0.0, strain = 0.0, springs = 0.0;
-  BondSums<BondRun> sums({zo, zc, line_.point_mass.data(), sa, sb, dt_, alpha_}, line_.bonds, bond_runs_);
-  const auto visit = [&] {
-    if constexpr (fused)
-      return BondVisit<BondRun>{sums, kinetic, strain, springs};
-    else
-      return NoRowVisit{};
-  }();
-  using Visit = std::remove_const_t<decltype(visit)>;
   double yt = 0.0, yb = 0.0;
   std::size_t j = 0, jb = last;
   if (last > 2 * k) {  // the lower half's extra row
@@ -678,28 +545,16 @@ void LinePaper::sweeps(long long m) {
     if (b.top == general || b.bottom == general) {
       factor_.inward(row(j), j, yt, x);
       factor_.inward(row(jb), jb, yb, x);
-      visit.ahead(j + 1, j + 2);
-      visit(j + 1);
       ++j, --jb;
       continue;
     }
     const Stencil top = stencils_[b.top], bottom = stencils_[b.bottom];  // constants of the loop
-    for (std::uint32_t c0 = 0; c0 < b.count;) {
-      const std::uint32_t c1 = c0 + static_cast<std::uint32_t>(std::min<std::size_t>(Visit::block, b.count - c0));
-      visit.ahead(j + 1, j + 1 + (c1 - c0));
-      for (std::uint32_t c = c0; c < c1; ++c, ++j, --jb) {
-        factor_.inward(stencil_row(top, j), j, yt, x);
-        factor_.inward(stencil_row(bottom, jb), jb, yb, x);
-        visit(j + 1);
-      }
-      c0 = c1;
+    for (std::uint32_t c = 0; c < b.count; ++c, ++j, --jb) {
+      factor_.inward(stencil_row(top, j), j, yt, x);
+      factor_.inward(stencil_row(bottom, jb), jb, yb, x);
     }
   }
-  factor_.outward(row(k), yt, yb, x, visit);
-  if constexpr (fused) {
-    close_half_step(zo, sa, zc, sb, {kinetic, strain, springs}, cached_.e);
-    cached_.n = m - 1;
-  }
+  factor_.outward(row(k), yt, yb, x);
 }
 
 // (A + sum_J sigma_i h_i h_i^T)^{-1} r = y - sum_J mu_i w_i with
@@ -802,74 +657,64 @@ double LinePaper::velocity_at(std::size_t j) const {
   return (scale(n_ + 1) * next_[j] - scale(n_ - 1) * prev_[j]) / (2.0 * dt_);
 }
 
+namespace {
+
+// A run of equal bonds, nodes first..last: the levels (a, b) scaled by sa, sb,
+// the nodes' point masses, the bonds' mass / 3 and stiffness.
+struct BondRunTerms {
+  const double *za, *zb, *mass;
+  double sa, sb, inv_dt, extra, third, stiffness;
+  bool open;
+};
+
+// The run's kinetic and bond terms into the two sums, a block of nodes at a
+// time: the terms vectorised (half_step_terms.hpp), then summed node by node
+// (the same operations in the same order as the node loop: the same bits).
+BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum,
+                                     double& bond_sum) {
+  constexpr std::size_t block = detail::energy_block;
+  double kinetic = kinetic_sum, sum = bond_sum;  // in registers: the references may alias
+  double w[block + 1], m[block + 1], tp[block], tk[block], ts[block];
+  for (; first < last; first += block) {
+    const std::size_t count = std::min(block, last - first);
+    detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
+    for (std::size_t i = 0; i < count; ++i) {
+      tp[i] = r.mass[first + i] * w[i] * w[i];
+      tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+      const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
+      ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
+      kinetic += tk[i];
+      if (!r.open) sum += ts[i];
+    }
+  }
+  kinetic_sum = kinetic;
+  bond_sum = sum;
+}
+
+}  // namespace
+
 // (1/2)|w|_M^2, and (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 over the bar
 // elements and over the springs, w = (u^b - u^a)/dt, m = (u^b + u^a)/2: the
 // identity (7.1) makes their sum telescope (lambda = 0). Node by node as one
 // sum; a run of equal bonds takes its constants once.
 void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
+  const std::size_t n = line_.nodes();
+  const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;
   const double* mass = line_.point_mass.data();
   double kinetic = 0.0, strain = 0.0, springs = 0.0;
   for (const BondRun& run : bond_runs_) {
     const Bond& b = line_.bonds[run.first];
-    add_run(run_constants(b, za, sa, zb, sb, mass, dt_, alpha_), run.first, run.last, kinetic,
-            b.kind == BondKind::element ? strain : springs);
+    const BondRunTerms terms{za, zb, mass, sa, sb, inv_dt, extra, b.mass / 3.0, b.stiffness, b.kind == BondKind::open};
+    add_run(terms, run.first, run.last, kinetic, b.kind == BondKind::element ? strain : springs);
   }
-  close_half_step(za, sa, zb, sb, {kinetic, strain, springs}, e);
-}
-
-// The last node's point mass into the kinetic sum, and the halves.
-void LinePaper::close_half_step(const double* za, double sa, const double* zb, double sb, std::array<double, 3> sums,
-                                double (&e)[3]) const {
-  const std::size_t n = line_.nodes();
-  const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * (1.0 / dt_);
-  sums[0] += line_.point_mass[n - 1] * wl * wl;
-  for (int i = 0; i < 3; ++i) e[i] = 0.5 * sums[i];
-}
-
-// Row n's terms but the half step n + 1/2's, which the next advance sums
-// inside its sweeps (sweeps<mode, true>): the row's own pass over the
-// line, chained sums, is hidden behind the sweeps' chains. Smith's soil's
-// iteration takes its steps again: its rows are whole.
-bool LinePaper::begin_energies(Energies& e) const {
-  if (n_ == 0 || soil_.active()) {
-    e = energies();
-    return true;
-  }
-  e = Energies{};
-  for (std::size_t i = 0; i < line_.links.size(); ++i) e.obstacle += line_.links[i].law.energy(link_c_[i], c_max_[i]);
-  e.contact = link_hysteresis();
-  pending_ = cached_;
-  if (cached_.n != n_ - 1) half_step(prev_, scale(n_ - 1), cur_, scale(n_), pending_.e);
-  pending_.n = n_;
-  e.work = work_half_ - 0.5 * work_last_;
-  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
-  pending_plastic_ = 0.0;
-  if (plastic_.active()) {
-    const double* u[3];
-    displacements(n_ - 1, u);
-    pending_plastic_ = plastic_.strain_energy(u[0], u[1], u[2]);
-    e.work -= plastic_.load_work();
-    e.plastic = plastic_.work();
-  }
-  fuse_ = true;
-  return false;
-}
-
-// The pending row's half step n + 1/2: from the sweeps of the advance since
-// (cached_), else summed here from the levels; then as energies() ends.
-void LinePaper::finish_energies(Energies& e) const {
-  const long long p = pending_.n;
-  if (cached_.n != p) {
-    const bool moved = n_ == p + 1;
-    half_step(moved ? prev_ : cur_, scale(p), moved ? cur_ : next_, scale(p + 1), cached_.e);
-    cached_.n = p;
-  }
-  const double* before = pending_.e;
-  const double* after = cached_.e;
-  e.kinetic = 0.5 * (before[0] + after[0]);
-  e.strain = 0.5 * (before[1] + after[1]);
-  e.obstacle += 0.5 * (before[2] + after[2]);
-  if (plastic_.active()) e.strain += pending_plastic_;
+  const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * inv_dt;
+  kinetic += mass[n - 1] * wl * wl;
+  e[0] = 0.5 * kinetic;
+  e[1] = 0.5 * strain;
+  e[2] = 0.5 * springs;
 }
 
 Energies LinePaper::energies() const {

@@ -20,8 +20,6 @@ namespace barimpact::detail {
 // Visit::block of them announced first by visit.ahead(first, end): a sum in
 // node order carried beside the sweeps' chains, its terms formed a block
 // ahead outside the loops that carry them.
-// (TwistedTridiagonal's NoRowVisit: this header stands alone, for the
-// batch kernel's builds.)
 struct NoVisit {
   static constexpr std::size_t block = std::numeric_limits<std::size_t>::max();
   void ahead(std::size_t /*first*/, std::size_t /*end*/) const {}

@@ -3,9 +3,7 @@
 // kernels that fuse their right-hand side into the sweeps read the factors.
 #pragma once
 
-#include <algorithm>
 #include <cstddef>
-#include <limits>
 #include <span>
 #include <vector>
 
@@ -72,15 +70,6 @@ class FactoredTridiagonal {
 /// two independent chains of multiply-subtracts (one per half), which a
 /// latency-bound processor runs in the time of one: the paper scheme's solve
 /// (paper_scheme.hpp) with per-row coefficients.
-/// A solve's visit of no rows (TwistedTridiagonal::outward, twisted_solve):
-/// a visit sees rows in node order, each run of at most `block` of them
-/// announced first by ahead(first, end), then each row by (j).
-struct NoRowVisit {
-  static constexpr std::size_t block = std::numeric_limits<std::size_t>::max();
-  void ahead(std::size_t /*first*/, std::size_t /*end*/) const {}
-  void operator()(std::size_t /*j*/) const {}
-};
-
 class TwistedTridiagonal {
  public:
   TwistedTridiagonal() = default;
@@ -118,33 +107,21 @@ class TwistedTridiagonal {
     y = r * inv_[j] - inward_[j] * y;
     x[j] = y;
   }
-  /// `visit` sees rows k + 1..n - 1 in order, as the lower half's sweep
-  /// out reaches them (NoRowVisit). Inlined: a visit's sums stay in the
-  /// caller's registers.
-  template <class Visit = NoRowVisit>
-  [[gnu::always_inline]] void outward(double r_twist, double y_top, double y_bottom, double* x, Visit visit = {}) const {
+  void outward(double r_twist, double y_top, double y_bottom, double* x) const {
     const std::size_t last = inv_.size() - 1, k = last / 2;
     const double* __restrict out = outward_.data();
     const double xk = (r_twist - lower_ * y_top - upper_ * y_bottom) * inv_[k];  // row k meets both halves
     x[k] = xk;
     double xt = xk, xb = xk;
-    for (std::size_t i0 = 1; i0 <= k;) {
-      const std::size_t i1 = i0 + std::min(Visit::block, k + 1 - i0);
-      visit.ahead(k + i0, k + i1);
-      for (std::size_t i = i0; i < i1; ++i) {
-        xt = x[k - i] - out[k - i] * xt;
-        x[k - i] = xt;
-        xb = x[k + i] - out[k + i] * xb;
-        x[k + i] = xb;
-        visit(k + i);
-      }
-      i0 = i1;
+    for (std::size_t i = 1; i <= k; ++i) {
+      xt = x[k - i] - out[k - i] * xt;
+      x[k - i] = xt;
+      xb = x[k + i] - out[k + i] * xb;
+      x[k + i] = xb;
     }
     for (std::size_t j = 2 * k + 1; j <= last; ++j) {  // the lower half's extra row
       xb = x[j] - out[j] * xb;
       x[j] = xb;
-      visit.ahead(j, j + 1);
-      visit(j);
     }
   }
 

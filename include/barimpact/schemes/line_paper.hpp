@@ -94,8 +94,6 @@ class LinePaper final : public LineScheme {
   [[nodiscard]] double displacement_at(std::size_t j) const override { return scale(n_) * cur_[j]; }
   [[nodiscard]] double velocity_at(std::size_t j) const override;
   [[nodiscard]] Energies energies() const override;
-  [[nodiscard]] bool begin_energies(Energies& e) const override;
-  void finish_energies(Energies& e) const override;
   [[nodiscard]] bool finite() const override;
   [[nodiscard]] double plastic_strain(std::size_t bond) const override {
     return plastic_.active() ? plastic_.current()[bond] : 0.0;
@@ -147,8 +145,7 @@ class LinePaper final : public LineScheme {
   void record_plastic(long long m, bool yielded);
   /// u at levels first, first + 1, first + 2 (z scaled into scaled_ when lambda != 0).
   void displacements(long long first, const double* (&u)[3]) const;
-  /// fused: also the half step (m - 1, m)'s sums, into cached_.
-  template <LoadMode mode, bool fused>
+  template <LoadMode mode>
   void sweeps(long long m);
   /// A row outside the stretches: B1 z^m + B0 z^{m-1} + F + extra, the held rows.
   [[nodiscard]] double special_row(std::size_t j, double load);
@@ -164,9 +161,6 @@ class LinePaper final : public LineScheme {
   /// (D_contact) at level n, u^n = s u_kept.
   void add_soil(Energies& e, const double* u_kept, double s) const;
   void half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const;
-  /// half_step's end: the last node's point mass, and the halves of the sums.
-  void close_half_step(const double* za, double sa, const double* zb, double sb, std::array<double, 3> sums,
-                       double (&e)[3]) const;
 
   double alpha_, lambda_;
   LoadMode load_mode_ = LoadMode::zero;  // F's own: zero, steady or unsteady
@@ -224,10 +218,6 @@ class LinePaper final : public LineScheme {
     double e[3] = {0, 0, 0};
   };
   mutable HalfStep cached_;
-  mutable HalfStep pending_;              // a history row's half step n - 1/2 while n + 1/2 is summed (begin_energies)
-  mutable double pending_plastic_ = 0.0;  // its plastic strains' share of E_strain
-  mutable bool fuse_ = false;             // the next advance's sweeps sum their half step (m - 1, m) into cached_
-  bool fusing_ = false;                   // this advance's
   double work_half_ = 0.0, dissipation_half_ = 0.0;  // sums up to t_{n+1/2}
   double work_last_ = 0.0, dissipation_last_ = 0.0;  // level n's increments
 
