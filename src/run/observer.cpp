@@ -12,12 +12,28 @@ void HistoryRecorder::begin(const Scheme& /*scheme*/, long long steps) {
   rows_.reserve(static_cast<std::size_t>(steps / every_ + 2));
   extra_.clear();
   if (probes_ != nullptr) extra_.reserve(rows_.capacity() * probes_->size());
+  pending_ = false;
+}
+
+// A row's energies as the scheme completes them, at the step after it.
+void HistoryRecorder::complete(const Scheme& s) {
+  s.finish_energies(energies_);
+  rows_.back().E_kin = energies_.kinetic;
+  rows_.back().E_strain = energies_.strain;
+  pending_ = false;
+}
+
+void HistoryRecorder::end(const Scheme& s) {
+  if (pending_) complete(s);
 }
 
 bool HistoryRecorder::observe(const Scheme& s) {
+  if (pending_) complete(s);
   const long long n = s.step();
   if (n % every_ != 0 && n != last_) return true;
-  const Energies e = s.energies();
+  // The last row whole: no step follows to complete it.
+  pending_ = n == last_ ? (energies_ = s.energies(), false) : !s.begin_energies(energies_);
+  const Energies& e = energies_;
   rows_.push_back({s.time(), s.end_displacement(), s.end_velocity(), s.reaction(), e.kinetic, e.strain, e.obstacle,
                    e.work, e.dissipation, e.contact, e.plastic});
   if (probes_ != nullptr && probes_->size() > 0) {
@@ -253,11 +269,13 @@ bool ProgressMonitor::observe(const Scheme& s) {
 }
 
 PlasticMonitor::PlasticMonitor(const Line& line, long long every) : every_(every) {
+  work_.assign(line.bodies.size(), 0.0);
+  // An elastic line: no bond to watch, and none to look at (10^6 of them at start-up).
+  if (std::none_of(line.plasticity.begin(), line.plasticity.end(), [](auto p) { return static_cast<bool>(p); })) return;
   for (std::size_t j = 0; j < line.bonds.size(); ++j) {
     const Bond& b = line.bonds[j];
     if (b.kind == BondKind::element && b.body < line.plasticity.size() && line.plasticity[b.body]) bonds_.push_back(j);
   }
-  work_.assign(line.bodies.size(), 0.0);
 }
 
 void PlasticMonitor::begin(const Scheme& /*scheme*/, long long steps) {

@@ -82,6 +82,8 @@ std::vector<LoopResult> simulate(LaneStepper& lanes, long long steps, std::span<
       break;
     }
   }
+  for (std::size_t l = 0; l < count; ++l)
+    for (auto* o : observers[l]) o->end(lanes.lane(l));
   return results;
 }
 

@@ -80,6 +80,97 @@ double stiffness_form(double coefficient, double h, std::span<const double> a, s
   return coefficient / h * s;
 }
 
+// One half-step's energy sums, element by element: the levels' values at a
+// node come in as (a, b), already scaled.
+struct HalfStepSums {
+  double inv_dt, wm = 0.0, wk = 0.0, mk = 0.0, w_left = 0.0, m_left = 0.0;
+  void first(double a, double b) {
+    w_left = (b - a) * inv_dt;  // a multiply: this runs on every history row
+    m_left = 0.5 * (b + a);
+  }
+  void next(double a, double b) {
+    const double w_right = (b - a) * inv_dt, m_right = 0.5 * (b + a);
+    wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
+    wk += (w_right - w_left) * (w_right - w_left);
+    mk += (m_right - m_left) * (m_right - m_left);
+    w_left = w_right;
+    m_left = m_right;
+  }
+};
+
+// Each element's terms of HalfStepSums::next for elements 0..count-1 of
+// levels (a, b) on a unit stride, in loops free of reductions that the
+// compiler vectorises: the same operations, the same bits.
+BARIMPACT_ENERGY_CLONES void element_terms(const double* za, double sa, const double* zb, double sb, double inv_dt,
+                                           std::size_t count, double* tw, double* tk, double* tm) {
+  double w[detail::energy_block + 1], m[detail::energy_block + 1];
+  detail::rates_and_means(za, sa, zb, sb, inv_dt, count, w, m);
+  for (std::size_t i = 0; i < count; ++i) {
+    tw[i] = 2.0 * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+    tk[i] = (w[i + 1] - w[i]) * (w[i + 1] - w[i]);
+    tm[i] = (m[i + 1] - m[i]) * (m[i + 1] - m[i]);
+  }
+}
+
+// HalfStepSums of levels (a, b) on a unit stride summed node by node in node
+// order, next(j) adding element j - 1 (j = 1, 2, ...) once ahead(j0, j1)
+// has formed the terms of nodes j0..j1-1 (element_terms, a block at most):
+// the sums alone run in order, where a solve's sweeps carry them beside
+// their own chains (twisted_solve's visit).
+class UnitStrideSums {
+ public:
+  static constexpr std::size_t block = detail::energy_block;
+  UnitStrideSums(const double* za, double sa, const double* zb, double sb, double inv_dt)
+      : za_(za), zb_(zb), sa_(sa), sb_(sb), inv_dt_(inv_dt) {}
+  void ahead(std::size_t j0, std::size_t j1) {
+    first_ = j0 - 1;
+    element_terms(za_ + first_, sa_, zb_ + first_, sb_, inv_dt_, j1 - j0, tw_, tk_, tm_);
+  }
+  /// The sums in the caller's variables: in registers, where a member's
+  /// would go through memory (ahead's call sees the object).
+  void next(std::size_t j, double& wm, double& wk, double& mk) const {
+    const std::size_t i = j - 1 - first_;
+    wm += tw_[i];
+    wk += tk_[i];
+    mk += tm_[i];
+  }
+
+ private:
+  const double *za_, *zb_;
+  double sa_, sb_, inv_dt_;
+  std::size_t first_ = 0;
+  double tw_[block], tk_[block], tm_[block];
+};
+
+// UnitStrideSums as twisted_solve's visit, into the solve's own variables.
+struct HalfStepVisit {
+  static constexpr std::size_t block = UnitStrideSums::block;
+  UnitStrideSums& sums;
+  double &wm, &wk, &mk;
+  void ahead(std::size_t j0, std::size_t j1) const { sums.ahead(j0, j1); }
+  void operator()(std::size_t j) const { sums.next(j, wm, wk, mk); }
+};
+
+// The sums of the whole half step in one pass (a history row's own).
+void unit_stride_sums(const double* za, double sa, const double* zb, double sb, std::size_t n, HalfStepSums& s) {
+  UnitStrideSums u(za, sa, zb, sb, s.inv_dt);
+  double wm = 0.0, wk = 0.0, mk = 0.0;
+  for (std::size_t j0 = 1; j0 < n; j0 += UnitStrideSums::block) {
+    const std::size_t j1 = std::min(n, j0 + UnitStrideSums::block);
+    u.ahead(j0, j1);
+    for (std::size_t j = j0; j < j1; ++j) u.next(j, wm, wk, mk);
+  }
+  s.wm = wm;
+  s.wk = wk;
+  s.mk = mk;
+}
+
+// E_kin and E_strain of one half step from its sums; `c`: PaperScheme::energy_constants().
+void half_step_of(const HalfStepSums& s, const std::array<double, 3>& c, double& kinetic, double& strain) {
+  kinetic = 0.5 * c[0] * s.wm;
+  strain = 0.5 * c[1] * (s.mk + c[2] * s.wk);
+}
+
 }  // namespace
 
 PaperScheme::PaperScheme(const Case& c) : PaperScheme(c, one_bar_of(c), build_line(c)) {}
@@ -245,7 +336,8 @@ void PaperScheme::start() {
     prev_[j * st] = u0_[j];
   }
   n_ = 0;
-  cached_ = {};
+  cached_ = pending_ = {};
+  fuse_ = false;
   start_kinetic_ = 0.5 * uniform_quadratic_form(density_ * h_ / 3.0, density_ * h_ / 6.0, v0_);
   start_strain_ = 0.5 * stiffness_form(a_, h_, u0_, u0_);
   book_first_half_step();
@@ -293,7 +385,7 @@ std::vector<double> PaperScheme::initial_acceleration() const {
 // B1 z^m + B0 z^{m-1} + F^{m,alpha} + contact is formed row by row inside
 // the first sweep of the prefactored two-ended solve, then one sweep back:
 // two passes over memory, two chains per pass, no allocation.
-template <PaperScheme::LoadMode mode>
+template <PaperScheme::LoadMode mode, bool fused>
 void PaperScheme::solve_level(long long m) {
   const std::size_t n = line_.nodes();
   const double* __restrict zc = next_;
@@ -344,14 +436,28 @@ void PaperScheme::solve_level(long long m) {
   const double r0 = loaded(b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1], 0) + contact;
   const double r_last =
       loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);
+  // fused: the half step (m - 1, m)'s energy sums in node order, inside the
+  // sweeps (a history row's, which begin_energies left to this step).
+  double wm = 0.0, wk = 0.0, mk = 0.0;
+  UnitStrideSums sums(zo, scale(m - 1), zc, scale(m), 1.0 / dt_);
+  const auto visit = [&] {
+    if constexpr (fused)
+      return HalfStepVisit{sums, wm, wk, mk};
+    else
+      return detail::NoVisit{};
+  }();
   twisted_solve(
       last, a_off_, r0, r_last,
       [&](std::size_t j) {
         return loaded(b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]), j);
       },
       [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
-      [&](std::size_t j, double v) { zn[j] = v; });
+      [&](std::size_t j, double v) { zn[j] = v; }, visit);
   if (sigma != 0.0) add_dashpot(sigma, zn);
+  if constexpr (fused) {
+    cached_.n = m - 1;
+    half_step_of(HalfStepSums{0.0, wm, wk, mk}, energy_constants(), cached_.kinetic, cached_.strain);
+  }
 }
 
 // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
@@ -408,15 +514,17 @@ double PaperScheme::viscoelastic_row(const double* zc, const double* zo, double 
 
 void PaperScheme::advance() {
   const long long m = n_ + 1;
+  const bool fused = fuse_;
+  fuse_ = false;
   switch (load_mode_) {
     case LoadMode::zero:
-      solve_level<LoadMode::zero>(m);
+      fused ? solve_level<LoadMode::zero, true>(m) : solve_level<LoadMode::zero, false>(m);
       break;
     case LoadMode::steady:
-      solve_level<LoadMode::steady>(m);
+      fused ? solve_level<LoadMode::steady, true>(m) : solve_level<LoadMode::steady, false>(m);
       break;
     case LoadMode::unsteady:
-      solve_level<LoadMode::unsteady>(m);
+      fused ? solve_level<LoadMode::unsteady, true>(m) : solve_level<LoadMode::unsteady, false>(m);
       break;
   }
   finish_level(m);
@@ -515,56 +623,10 @@ void PaperScheme::velocity(std::span<double> out) const {
     out[j] = (sp * next_[j * stride_] - sm * prev_[j * stride_]) / (2.0 * dt_);
 }
 
-namespace {
-// One half-step's energy sums, element by element: the levels' values at a
-// node come in as (a, b), already scaled.
-struct HalfStepSums {
-  double inv_dt, wm = 0.0, wk = 0.0, mk = 0.0, w_left = 0.0, m_left = 0.0;
-  void first(double a, double b) {
-    w_left = (b - a) * inv_dt;  // a multiply: this runs on every history row
-    m_left = 0.5 * (b + a);
-  }
-  void next(double a, double b) {
-    const double w_right = (b - a) * inv_dt, m_right = 0.5 * (b + a);
-    wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
-    wk += (w_right - w_left) * (w_right - w_left);
-    mk += (m_right - m_left) * (m_right - m_left);
-    w_left = w_right;
-    m_left = m_right;
-  }
-};
-
-// HalfStepSums of levels (a, b) on a unit stride, block by block: the
-// elements' terms vectorised, then summed in element order (the same
-// operations in the same order: the same bits).
-BARIMPACT_ENERGY_CLONES void unit_stride_sums(const double* za, double sa, const double* zb, double sb, std::size_t n,
-                                              HalfStepSums& s) {
-  constexpr std::size_t block = detail::energy_block;
-  double w[block + 1], m[block + 1], tw[block], tk[block], tm[block];
-  for (std::size_t first = 0; first + 1 < n; first += block) {
-    const std::size_t count = std::min(block, n - 1 - first);
-    detail::rates_and_means(za + first, sa, zb + first, sb, s.inv_dt, count, w, m);
-    for (std::size_t i = 0; i < count; ++i) {
-      tw[i] = 2.0 * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
-      tk[i] = (w[i + 1] - w[i]) * (w[i + 1] - w[i]);
-      tm[i] = (m[i + 1] - m[i]) * (m[i + 1] - m[i]);
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      s.wm += tw[i];
-      s.wk += tk[i];
-      s.mk += tm[i];
-    }
-  }
-}
-}  // namespace
-
 void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
                                      double sc, double (&kinetic)[2], double (&strain)[2]) const {
-  // Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
-  const double h = h_;
   const std::size_t st = stride_, n = line_.nodes();
-  const double mass_c = density_ * h / 6.0, stiff_c = a_ / h;
-  const double extra = (alpha_ - 0.25) * dt_ * dt_, inv_dt = 1.0 / dt_;
+  const double inv_dt = 1.0 / dt_;
   HalfStepSums ab{inv_dt}, bc{inv_dt};
   auto pass = [&](auto both) {
     ab.first(sa * za[0], sb * zb[0]);
@@ -581,11 +643,50 @@ void PaperScheme::half_step_energies(const double* za, double sa, const double* 
     unit_stride_sums(za, sa, zb, sb, n, ab);
   else
     pass(std::false_type{});
-  const HalfStepSums* sums[2] = {&ab, &bc};
-  for (int i = 0; i < 2; ++i) {
-    kinetic[i] = 0.5 * mass_c * sums[i]->wm;
-    strain[i] = 0.5 * stiff_c * (sums[i]->mk + extra * sums[i]->wk);
+  half_step_of(ab, energy_constants(), kinetic[0], strain[0]);
+  half_step_of(bc, energy_constants(), kinetic[1], strain[1]);
+}
+
+// Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
+std::array<double, 3> PaperScheme::energy_constants() const {
+  return {density_ * h_ / 6.0, a_ / h_, (alpha_ - 0.25) * dt_ * dt_};
+}
+
+// Row n's terms but E_kin and E_strain, whose half step n + 1/2 the next
+// advance sums inside its sweeps (solve_level<mode, true>): the row's own
+// pass over the bar, three chained sums, is hidden behind the sweeps'.
+bool PaperScheme::begin_energies(Energies& e) const {
+  if (n_ == 0 || batched_) {
+    e = energies();
+    return true;
   }
+  e = Energies{};
+  e.obstacle = end_energy(end_displacement());
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  pending_ = {n_, cached_.kinetic, cached_.strain};
+  if (cached_.n != n_ - 1) {
+    double k[2], s[2];
+    half_step_energies(prev_, scale(n_ - 1), cur_, scale(n_), nullptr, 0.0, k, s);
+    pending_.kinetic = k[0];
+    pending_.strain = s[0];
+  }
+  fuse_ = true;
+  return false;
+}
+
+// The pending row's half step n + 1/2: from the sweeps of the advance since
+// (cached_), else summed here from the levels as energies() would.
+void PaperScheme::finish_energies(Energies& e) const {
+  const long long p = pending_.n;
+  if (cached_.n != p) {
+    const bool moved = n_ == p + 1;
+    double k[2], s[2];
+    half_step_energies(moved ? prev_ : cur_, scale(p), moved ? cur_ : next_, scale(p + 1), nullptr, 0.0, k, s);
+    cached_ = {p, k[0], s[0]};
+  }
+  e.kinetic = 0.5 * (pending_.kinetic + cached_.kinetic);
+  e.strain = 0.5 * (pending_.strain + cached_.strain);
 }
 
 Energies PaperScheme::energies() const {

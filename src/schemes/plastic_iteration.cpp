@@ -23,9 +23,12 @@ void PlasticIteration::set_matrix(const Tridiagonal& a, const std::vector<std::s
   links_in_matrix_ = links_in_matrix;
   held_ = held;
   c_ = c;
-  diag_.assign(a.size(), 0.0);
-  off_.assign(a.off.size(), 0.0);
-  du_.assign(a.size(), 0.0);
+  // The tangent's arrays reserved, not filled: newton() writes them whole,
+  // so a bar that never yields never faults their pages in.
+  for (auto* v : {&diag_, &off_, &du_}) v->clear();
+  diag_.reserve(a.size());
+  off_.reserve(a.off.size());
+  du_.reserve(a.size());
 }
 
 void PlasticIteration::start(const double* u0) {
@@ -121,9 +124,9 @@ void PlasticIteration::add_links(const double* force) {
 
 void PlasticIteration::newton(const double* u, const double* force, double scale) {
   const std::size_t n = a_.size();
-  std::copy(a_.diag.begin(), a_.diag.end(), diag_.begin());
-  std::copy(a_.off.begin(), a_.off.end(), off_.begin());
-  std::fill(du_.begin(), du_.end(), 0.0);
+  diag_.assign(a_.diag.begin(), a_.diag.end());  // within set_matrix's reserve: no allocation
+  off_.assign(a_.off.begin(), a_.off.end());
+  du_.assign(n, 0.0);
   for (const Range& r : ranges_) {
     // E / (E + H), kept below 1 so that a massless node between perfectly
     // plastic elements (mass-redistribution's faces) keeps a pivot.

@@ -27,6 +27,8 @@ class Observer {
   virtual void begin(const Scheme& /*scheme*/, long long /*steps*/) {}
   /// Called at steps 0, 1, ..., N. Returning false stops the run.
   virtual bool observe(const Scheme& scheme) = 0;
+  /// Called once after the last step observed, whatever ended the run.
+  virtual void end(const Scheme& /*scheme*/) {}
 };
 
 /// One row of history.csv, at t_n.
@@ -61,6 +63,7 @@ class HistoryRecorder final : public Observer {
   explicit HistoryRecorder(int every, const Probes* probes = nullptr) : every_(every), probes_(probes) {}
   void begin(const Scheme& scheme, long long steps) override;
   bool observe(const Scheme& scheme) override;
+  void end(const Scheme& scheme) override;
   [[nodiscard]] const std::vector<HistoryRow>& rows() const { return rows_; }
   /// The probes' values, row-major (probes->size() per row).
   [[nodiscard]] const std::vector<double>& extra() const { return extra_; }
@@ -71,6 +74,10 @@ class HistoryRecorder final : public Observer {
   long long last_ = 0;
   std::vector<HistoryRow> rows_;
   std::vector<double> extra_;
+  // The last row's energies while the scheme completes them (begin_energies).
+  bool pending_ = false;
+  Energies energies_;
+  void complete(const Scheme& s);
 };
 
 /// Field snapshots, snapshot-major: u[s * x.size() + j] is u at row j, t_s.

@@ -65,6 +65,8 @@ class PaperScheme final : public Scheme {
   void displacement(std::span<double> out) const override;
   void velocity(std::span<double> out) const override;
   [[nodiscard]] Energies energies() const override;
+  [[nodiscard]] bool begin_energies(Energies& e) const override;
+  void finish_energies(Energies& e) const override;
   [[nodiscard]] bool finite() const override;
   [[nodiscard]] double displacement_at(std::size_t j) const override;
   [[nodiscard]] double velocity_at(std::size_t j) const override;
@@ -86,7 +88,8 @@ class PaperScheme final : public Scheme {
   void respond_to_dashpot();
   /// The levels, the loads and the initial values' expressions.
   void allocate(const Case& c, const OneBar& one);
-  template <LoadMode mode>
+  /// fused: also the half step (m - 1, m)'s energy sums, into cached_.
+  template <LoadMode mode, bool fused>
   void solve_level(long long m);
   /// F^{m,alpha}'s loads and weights (paper_scheme.cpp).
   struct AlphaLoad {
@@ -128,6 +131,8 @@ class PaperScheme final : public Scheme {
   void half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc, double sc,
                           double (&kinetic)[2], double (&strain)[2]) const;
   void accumulate_budget(long long m);
+  /// The half-step energies' constants: rho h / 6, a / h, (alpha - 1/4) dt^2.
+  [[nodiscard]] std::array<double, 3> energy_constants() const;
 
   Line line_;
   const ContactLaw* law_ = nullptr;  // the near link's (elastic or viscoelastic), null without one
@@ -167,6 +172,8 @@ class PaperScheme final : public Scheme {
     double kinetic = 0.0, strain = 0.0;
   };
   mutable HalfStep cached_;
+  mutable HalfStep pending_;   // a history row's half step n - 1/2 while n + 1/2 is summed (begin_energies)
+  mutable bool fuse_ = false;  // the next advance sums its half step (m - 1, m) into cached_
 
   long long n_ = 0;
   double start_kinetic_ = 0.0, start_strain_ = 0.0;  // E_kin, E_strain at t = 0 (the mass matrix is not kept)

@@ -56,6 +56,15 @@ class Scheme {
   /// v(x_j, t_n) into `out` (size nodes()).
   virtual void velocity(std::span<double> out) const = 0;
   [[nodiscard]] virtual Energies energies() const = 0;
+  /// energies() in two parts, for a history row at every step: true when
+  /// `e` is whole; false when E_kin and E_strain are left to
+  /// finish_energies(e), called at this step or after one advance, which
+  /// may form their sums inside its own sweeps. The same bits either way.
+  [[nodiscard]] virtual bool begin_energies(Energies& e) const {
+    e = energies();
+    return true;
+  }
+  virtual void finish_energies(Energies& /*e*/) const {}
   /// u and v at node j at t_n, in the line's numbering (line.hpp).
   [[nodiscard]] virtual double displacement_at(std::size_t j) const = 0;
   [[nodiscard]] virtual double velocity_at(std::size_t j) const = 0;
