@@ -399,20 +399,7 @@ void PaperScheme::solve_level(long long m) {
   const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
 
   const AlphaLoad f = alpha_load<mode>(m, em1, e0, ep1, ebar);
-  const double* __restrict fp = f.fp;
-  const double* __restrict f0 = f.f0;
-  const double* __restrict fm = f.fm;
-  const double cp = f.cp, c0 = f.c0, cm = f.cm;
-  auto load = [&](std::size_t j) {
-    if constexpr (mode == LoadMode::zero) {
-      (void)j;
-      return 0.0;
-    } else if constexpr (mode == LoadMode::steady) {
-      return c0 * f0[j];
-    } else {
-      return cp * fp[j] + c0 * f0[j] + cm * fm[j];
-    }
-  };
+  const LoadedRow<mode> loaded{f.fp, f.f0, f.fm, f.cp, f.c0, f.cm};
 
   // The explicit half of the penalty, (k/2)|z_0 + g e^{-lambda t_m}|, and the
   // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
@@ -424,15 +411,6 @@ void PaperScheme::solve_level(long long m) {
   const double b1d = b1_diag_[1], b0d = b0_diag_[1];
   const std::size_t last = n - 1;
 
-  // A zero load adds nothing, not even the + 0.0 that IEEE rules would keep.
-  auto loaded = [&](double r, std::size_t j) {
-    if constexpr (mode == LoadMode::zero) {
-      (void)j;
-      return r;
-    } else {
-      return r + load(j);
-    }
-  };
   const double r0 = loaded(b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1], 0) + contact;
   const double r_last =
       loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);

@@ -80,6 +80,26 @@ class PaperScheme final : public Scheme {
   PaperScheme(const Case& c, const OneBar& one, Line line);
   friend class PaperBatch;
   enum class LoadMode { zero, steady, unsteady };
+  /// A row of the right-hand side with the alpha-mean load F^{m,alpha}
+  /// added: cp f^{m+1} + c0 f^m + cm f^{m-1} (steady: c0 f^m alone). A zero
+  /// load adds nothing, not even the + 0.0 that IEEE rules would keep.
+  template <LoadMode mode>
+  struct LoadedRow {
+    const double* __restrict fp;
+    const double* __restrict f0;
+    const double* __restrict fm;
+    double cp, c0, cm;
+    double operator()(double r, std::size_t j) const {
+      if constexpr (mode == LoadMode::zero) {
+        (void)j;
+        return r;
+      } else if constexpr (mode == LoadMode::steady) {
+        return r + c0 * f0[j];
+      } else {
+        return r + (cp * fp[j] + c0 * f0[j] + cm * fm[j]);
+      }
+    }
+  };
 
   /// A, B1 and B0 on their three distinct rows (members) and A's diagonal there.
   [[nodiscard]] std::array<double, 3> form_matrices();
