@@ -771,11 +771,13 @@ def _blow_figures(data, out, formats, written):
     blow = data.summary.get("blow")
     if not blow:
         return
+    rows, note = _blow_rows(data, blow)
+    h = {k: np.asarray(v)[rows] for k, v in data.history.items()}  # the blow's rows, for its head and toe
     gauge = blow.get("gauge")
-    if gauge and f"gauge.{gauge}.force" in data.history and blow.get("impedance"):
-        _head_figure(data, gauge, blow["impedance"], out, formats, written)
+    if gauge and f"gauge.{gauge}.force" in h and blow.get("impedance"):
+        _head_figure(data, h, note, gauge, blow["impedance"], out, formats, written)
     if data.case.get("near_end", {}).get("law") == "smith":
-        _toe_figure(data, blow, out, formats, written)
+        _toe_figure(data, h, note, blow, out, formats, written)
     env = blow.get("envelope")
     if env and env.get("x"):
         _envelope_figure(data, blow, env, out, formats, written)
@@ -809,9 +811,8 @@ def _blow_rows(data, blow):
     return rows, f"\n(the blow: to {ts.text(end, 3)} of a run to {ts.text(t[-1], 3)})"
 
 
-def _head_figure(data, gauge, z, out, formats, written):
-    rows, note = _blow_rows(data, data.summary["blow"])
-    h, units = {k: np.asarray(v)[rows] for k, v in data.history.items()}, data.units
+def _head_figure(data, h, note, gauge, z, out, formats, written):
+    units = data.units
     force = -h[f"gauge.{gauge}.force"]  # compression positive
     zv = -z * h[f"gauge.{gauge}.velocity"]  # downward positive: Z v = F in a wave going down
     ts = units.time(h["t"])
@@ -826,9 +827,8 @@ def _head_figure(data, gauge, z, out, formats, written):
     _save(fig, out, "blow_head", formats, written)
 
 
-def _toe_figure(data, blow, out, formats, written):
-    rows, note = _blow_rows(data, blow)
-    h, units = {k: np.asarray(v)[rows] for k, v in data.history.items()}, data.units
+def _toe_figure(data, h, note, blow, out, formats, written):
+    units = data.units
     ts = units.time(h["t"])
     words, rs = _column(data, "R", h["R"])
     penetration = -h["U"]  # the toe's displacement is up the pile: into the soil is down

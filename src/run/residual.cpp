@@ -143,16 +143,16 @@ void touch_ram(const Case& c, const Line& line, LineScheme::SoilRest& rest) {
 // on it has no static rest: the pile sinks under its own weight (a capacity
 // in kN read as N, most likely).
 void check_soil_holds(const Case& c, const Line& line, double weight) {
-  const bool smith_toe = !line.links.empty() && line.links.front().name == "near_end";
-  if (smith_toe && line.links.front().law.kind != LawKind::smith) return;  // a stop that holds any weight
-  const double toe = smith_toe ? line.links.front().law.soil.ultimate : 0.0;
+  const bool toe_link = !line.links.empty() && line.links.front().name == "near_end";
+  if (toe_link && line.links.front().law.kind != LawKind::smith) return;  // a stop that holds any weight
+  const double toe = toe_link ? line.links.front().law.soil.ultimate : 0.0;
   const double capacity = toe + std::accumulate(line.shaft.ultimate.begin(), line.shaft.ultimate.end(), 0.0);
   if (capacity >= weight) return;
-  c.refuse(smith_toe ? "near_end.ultimate" : "body.shaft.ultimate",
+  c.refuse(toe_link ? "near_end.ultimate" : "body.shaft.ultimate",
            fmt::format("= {:g}: the soil's static capacity, toe and shaft, {:.4g} N, is below the weight resting on "
                        "it under [load] gravity ({:.4g} N, the pile and what sits on it): no static rest (capacities "
                        "are in N: kN?)",
-                       smith_toe ? toe : capacity, capacity, weight));
+                       toe_link ? toe : capacity, capacity, weight));
 }
 
 }  // namespace
