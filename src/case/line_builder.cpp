@@ -197,7 +197,7 @@ Line build(const Case& c) {
   std::size_t nodes = 0;  // reserved: a bar of 10^6 elements grows no copies
   for (const auto& b : c.bodies) nodes += b.kind == BodyKind::bar ? static_cast<std::size_t>(b.elements) + 1 : 1;
   detail::reserve_huge(line.x, nodes);
-  detail::reserve_huge(line.bonds, nodes);
+  line.bonds.reserve(nodes);
   detail::reserve_huge(line.point_mass, nodes);
   double x = 0.0;
   const BodyIndex index(c.bodies);

@@ -29,7 +29,7 @@ std::string_view to_string(LawKind kind) {
 
 namespace {
 // Assembles per-bond coefficients c_j as c_j [[p, q], [q, p]].
-Tridiagonal assemble(const std::vector<Bond>& bonds, std::size_t nodes, double Bond::*field, double p, double q) {
+Tridiagonal assemble(const Bonds& bonds, std::size_t nodes, double Bond::*field, double p, double q) {
   poll_setup();  // line-sized: a study's case polls its interrupt between such phases
   Tridiagonal t{std::vector<double>(nodes, 0.0), std::vector<double>(nodes > 0 ? nodes - 1 : 0, 0.0)};
   for (std::size_t j = 0; j < bonds.size(); ++j) {

@@ -71,6 +71,12 @@ TEST(BuildLine, BodiesAreNodeRangesAndJointsBondsOrLinks) {
   EXPECT_EQ(line.bonds[6].stiffness, 50.0);
   EXPECT_EQ(line.bonds[6].mass, 0.0);
   EXPECT_EQ(line.bonds[7].kind, BondKind::open);
+  // Each body's elements are one bond kept once; the spring and the open bond each.
+  EXPECT_EQ(line.bonds.kept(), 4u);
+  std::size_t walked = 0;
+  for (const Bond& bond : line.bonds) EXPECT_EQ(&bond, &line.bonds[walked++]);
+  EXPECT_EQ(walked, 8u);
+  EXPECT_EQ(&line.bonds.back(), &line.bonds[7]);
   EXPECT_EQ(line.point_mass[7], 3.0);
   EXPECT_EQ(line.point_mass[8], 1.5);
   // The lumped mass is every body's: 1 (a) + 2 (b) + 3 + 1.5.

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -45,6 +46,53 @@ struct Bond {
   std::size_t body = 0;    ///< the body the element belongs to (elements only)
   double axial = 0.0;      ///< E A (elements), so that stresses read (E A du + eta A dv) / h / A
   double damping = 0.0;    ///< eta A (elements)
+  friend bool operator==(const Bond&, const Bond&) = default;
+};
+
+/// The bonds of a line in order, bond j joining nodes j and j + 1. A bar's
+/// elements are one bond repeated, so each run of equal bonds keeps it once
+/// and every position holds an index: 4 bytes an element instead of a
+/// Bond's 72 (at 10^6 elements, 4 MB instead of 72 MB faulted in at start-up).
+class Bonds {
+ public:
+  class const_iterator {
+   public:
+    using value_type = Bond;
+    using difference_type = std::ptrdiff_t;
+    const_iterator() = default;
+    const_iterator(const Bonds* bonds, std::size_t j) : bonds_(bonds), j_(j) {}
+    const Bond& operator*() const { return (*bonds_)[j_]; }
+    const Bond* operator->() const { return &(*bonds_)[j_]; }
+    const_iterator& operator++() {
+      ++j_;
+      return *this;
+    }
+    const_iterator operator++(int) { return {bonds_, j_++}; }
+    friend bool operator==(const const_iterator& a, const const_iterator& b) { return a.j_ == b.j_; }
+
+   private:
+    const Bonds* bonds_ = nullptr;
+    std::size_t j_ = 0;
+  };
+
+  /// Appends bond b (kept once while it repeats the last one appended).
+  void push_back(const Bond& b) {
+    if (distinct_.empty() || !(distinct_.back() == b)) distinct_.push_back(b);
+    which_.push_back(static_cast<std::uint32_t>(distinct_.size() - 1));
+  }
+  void reserve(std::size_t n) { which_.reserve(n); }
+  [[nodiscard]] const Bond& operator[](std::size_t j) const { return distinct_[which_[j]]; }
+  [[nodiscard]] const Bond& back() const { return distinct_[which_.back()]; }
+  [[nodiscard]] std::size_t size() const { return which_.size(); }
+  [[nodiscard]] bool empty() const { return which_.empty(); }
+  [[nodiscard]] const_iterator begin() const { return {this, 0}; }
+  [[nodiscard]] const_iterator end() const { return {this, which_.size()}; }
+  /// How many bonds are kept: one per run of equal bonds.
+  [[nodiscard]] std::size_t kept() const { return distinct_.size(); }
+
+ private:
+  std::vector<Bond> distinct_;
+  std::vector<std::uint32_t> which_;
 };
 
 /// A unilateral law on the opening y = u_b - u_a + gap (y < 0: penetrating)
@@ -108,7 +156,7 @@ struct Shaft {
 
 struct Line {
   std::vector<double> x;           ///< reference positions of the nodes
-  std::vector<Bond> bonds;         ///< x.size() - 1 of them
+  Bonds bonds;                     ///< x.size() - 1 of them
   std::vector<double> point_mass;  ///< masses lumped on nodes (mass bodies)
   std::vector<BodyRange> bodies;   ///< in line order
   std::vector<Link> links;         ///< near end first, then joints in line order, then far end
