@@ -72,6 +72,7 @@
 #include "barimpact/run/simulate.hpp"
 #include "barimpact/schemes/simd.hpp"
 #include "barimpact/study/paper_batch.hpp"
+#include "huge_heap.hpp"
 
 namespace {
 
@@ -1279,6 +1280,7 @@ int exec_mpi_program(char** argv) {
 #endif
 
 int main(int argc, char** argv) {
+  barimpact_cli::prefer_huge_pages();
 #ifdef BARIMPACT_MPI_PROGRAM
   if (argc > 1 && std::string_view(argv[1]) == "sweep" && std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr)
     return exec_mpi_program(argv);
