@@ -104,6 +104,9 @@ void LinePaper::plan_rows() {
     else
       bond_runs_.push_back({j, j + 1});
   }
+  for (BondRun& run : bond_runs_)
+    for (std::size_t j = run.first; j < run.last && !run.point_masses; ++j)
+      run.point_masses = line_.point_mass[j] != 0.0;
 }
 
 // The responses w = A^{-1} h of the links whose status changes A, and W
@@ -670,6 +673,9 @@ struct BondRunTerms {
 // The run's kinetic and bond terms into the two sums, a block of nodes at a
 // time: the terms vectorised (half_step_terms.hpp), then summed node by node
 // (the same operations in the same order as the node loop: the same bits).
+// Without point masses (a bar's inner nodes) their stream is not read: a
+// node's +0 was never added.
+template <bool point_masses>
 BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum,
                                      double& bond_sum) {
   constexpr std::size_t block = detail::energy_block;
@@ -679,13 +685,14 @@ BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, s
     const std::size_t count = std::min(block, last - first);
     detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
     for (std::size_t i = 0; i < count; ++i) {
-      tp[i] = r.mass[first + i] * w[i] * w[i];
+      if constexpr (point_masses) tp[i] = r.mass[first + i] * w[i] * w[i];
       tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
       const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
       ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
     }
     for (std::size_t i = 0; i < count; ++i) {
-      if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
+      if constexpr (point_masses)
+        if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
       kinetic += tk[i];
       if (!r.open) sum += ts[i];
     }
@@ -708,7 +715,9 @@ void LinePaper::half_step(const double* za, double sa, const double* zb, double 
   for (const BondRun& run : bond_runs_) {
     const Bond& b = line_.bonds[run.first];
     const BondRunTerms terms{za, zb, mass, sa, sb, inv_dt, extra, b.mass / 3.0, b.stiffness, b.kind == BondKind::open};
-    add_run(terms, run.first, run.last, kinetic, b.kind == BondKind::element ? strain : springs);
+    double& bond_sum = b.kind == BondKind::element ? strain : springs;
+    run.point_masses ? add_run<true>(terms, run.first, run.last, kinetic, bond_sum)
+                     : add_run<false>(terms, run.first, run.last, kinetic, bond_sum);
   }
   const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * inv_dt;
   kinetic += mass[n - 1] * wl * wl;

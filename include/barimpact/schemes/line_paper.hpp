@@ -186,6 +186,7 @@ class LinePaper final : public LineScheme {
   // Bonds first..last - 1 alike in kind, mass and stiffness (half_step's runs).
   struct BondRun {
     std::size_t first, last;
+    bool point_masses = false;  // whether a node first..last - 1 carries one
   };
   std::vector<BondRun> bond_runs_;
   std::vector<double> viscosity_;  // c_j per bond
