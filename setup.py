@@ -88,14 +88,16 @@ class CMakeBuild(build_ext):
                          f"-DBARIMPACT_PYTHON={sys.executable}"]
             subprocess.run(configure, check=True)
         subprocess.run(["cmake", "--build", str(build), "-j", jobs, "--target", "barimpact_python", "barimpact_cli",
-                        "barimpact_hdf5_module"], check=True)
+                        "barimpact_hdf5_module", "barimpact_fit_module"], check=True)
         core = next((build / "python" / "barimpact").glob("_core*.so"))
         target = Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         self.copy_file(str(core), str(target))
-        # results.h5's HDF5 module, which the library looks for beside the package's _core.
-        for module in (build / "python" / "barimpact").glob("libbarimpact_hdf5.so.*"):
-            self.copy_file(str(module), str(target.parent))
+        # results.h5's HDF5 module and signal matching's fitting module, which the
+        # library looks for beside the package's _core.
+        for pattern in ("libbarimpact_hdf5.so.*", "libbarimpact_fit.so.*"):
+            for module in (build / "python" / "barimpact").glob(pattern):
+                self.copy_file(str(module), str(target.parent))
         # The command, for build_scripts (which runs after build_ext).
         scripts = Path(self.build_temp).resolve() / "scripts"
         scripts.mkdir(parents=True, exist_ok=True)

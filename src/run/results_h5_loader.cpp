@@ -1,4 +1,3 @@
-#include <dlfcn.h>
 #include <fmt/format.h>
 
 #include <string>
@@ -8,6 +7,8 @@
 
 #include "barimpact/model/input_error.hpp"
 
+#include "../model/module_loader.hpp"
+
 #include "results_h5_module.hpp"
 
 namespace barimpact {
@@ -16,56 +17,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Where the module may be, relative to the file holding this code (the
-// command, the Python module, a test): beside it (the Python package),
-// python/barimpact below it (a build tree's command) or beside it (a build
-// tree's tests/ and bench/), the package from an installed command's bin/
-// (as the command finds it for its figures); then the install prefix's
-// package, by absolute path (other programs). No path of the build tree is
-// compiled in: an installed library must not reach back into it.
-std::vector<fs::path> module_candidates() {
-  std::vector<fs::path> dirs;
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&module_candidates), &info) != 0 && info.dli_fname != nullptr) {
-    // The main program's name is as it was started (relative to a working
-    // directory the process may since have left): its own link names it whole.
-    fs::path file(info.dli_fname);
-    std::error_code ec;
-    if (file.is_relative()) file = fs::read_symlink("/proc/self/exe", ec);
-    const fs::path here = file.parent_path();
-    // Debian's pip names the package's place dist-packages.
-    std::string dist = BARIMPACT_PYTHON_FROM_BIN;
-    if (const auto at = dist.rfind("site-packages"); at != std::string::npos) dist.replace(at, 13, "dist-packages");
-    dirs = {here, here / "python" / "barimpact", here.parent_path() / "python" / "barimpact",
-            here / BARIMPACT_PYTHON_FROM_BIN / "barimpact", here / dist / "barimpact"};
-  }
-  dirs.emplace_back(BARIMPACT_MODULE_INSTALL_DIR);
-  for (auto& d : dirs) d /= BARIMPACT_HDF5_MODULE;
-  return dirs;
-}
-
-const detail::Hdf5Module* load_module() {
-  std::string tried;
-  for (const fs::path& file : module_candidates()) {
-    if (std::error_code ec; !fs::exists(file, ec)) continue;
-    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);  // never closed: loaded once per process
-    if (handle == nullptr) {
-      tried = dlerror();
-      continue;
-    }
-    using Entry = const detail::Hdf5Module* (*)();
-    if (auto entry = reinterpret_cast<Entry>(dlsym(handle, detail::hdf5_module_entry))) return entry();
-    tried = fmt::format("{}: no {}", file.string(), detail::hdf5_module_entry);
-  }
-  throw Hdf5Error(
-      fmt::format("results.h5 needs the HDF5 module {} ({})", BARIMPACT_HDF5_MODULE,
-                  tried.empty() ? std::string("not found beside the program or its Python package") : tried));
-}
-
 // Loaded the first time a results.h5 is written or read; a failure is
 // reported each time (a thrown static initialisation is tried again).
 const detail::Hdf5Module& hdf5_module() {
-  static const detail::Hdf5Module* module = load_module();
+  static const detail::Hdf5Module* module = detail::load_module<detail::Hdf5Module, Hdf5Error>(
+      BARIMPACT_HDF5_MODULE, detail::hdf5_module_entry, "results.h5", "HDF5 module");
   return *module;
 }
 

@@ -1,9 +1,9 @@
 // Signal matching's fit: the unknowns (shaft resistances, toe, quakes,
-// dampings) scaled to order one, bounded, and found by Ceres Solver's
-// Levenberg-Marquardt on the force difference over the window, from the
-// Case method's estimate and further starts; forward differences for the
-// Jacobian, its columns' runs spread over the cores a start has.
-#include <ceres/ceres.h>
+// dampings) scaled to order one, bounded, and found by Levenberg-Marquardt
+// (Ceres Solver's, in the fitting module: least_squares.hpp) on the force
+// difference over the window, from the Case method's estimate and further
+// starts; forward differences for the Jacobian, its columns' runs spread
+// over the cores a start has.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,6 +16,8 @@
 #include "barimpact/model/input_error.hpp"
 #include "barimpact/study/executor.hpp"
 #include "barimpact/study/match.hpp"
+
+#include "least_squares.hpp"
 
 namespace barimpact {
 
@@ -66,11 +68,10 @@ class Unknowns {
     each(s, [&](double&, double sc, double lo, double hi) { out.emplace_back(lo / sc, hi / sc); });
     return out;
   }
-  void bounds(ceres::Problem& p, double* x) const {
-    const auto l = limits();
-    for (std::size_t k = 0; k < l.size(); ++k) {
-      p.SetParameterLowerBound(x, static_cast<int>(k), l[k].first);
-      if (std::isfinite(l[k].second)) p.SetParameterUpperBound(x, static_cast<int>(k), l[k].second);
+  void bounds(detail::LeastSquaresProblem& p) const {
+    for (const auto& [lo, hi] : limits()) {
+      p.lower.push_back(lo);
+      p.upper.push_back(hi);
     }
   }
 
@@ -82,7 +83,7 @@ class Unknowns {
 
 // The residuals r_k = (F_computed - F_measured) / F_max at the window's
 // samples, and their forward-difference Jacobian (columns on `threads`).
-class ForceMisfit final : public ceres::CostFunction {
+class ForceMisfit final : public detail::ResidualBlock {
  public:
   ForceMisfit(const MatchModel& model, const Unknowns& unknowns, const MatchSoil& base,
               const std::vector<double>& measured, std::size_t first, double scale, int threads,
@@ -95,16 +96,14 @@ class ForceMisfit final : public ceres::CostFunction {
         inv_scale_(1.0 / scale),
         threads_(threads),
         evaluations_(evaluations),
-        limits_(unknowns.limits()) {
-    set_num_residuals(static_cast<int>(measured.size()));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(unknowns.size()));
-  }
+        limits_(unknowns.limits()) {}
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+  [[nodiscard]] std::size_t residuals() const override { return measured_.size(); }
+
+  bool evaluate(const double* x, double* residuals, double* jacobian) const override {
     const std::size_t n = unknowns_.size(), m = measured_.size();
-    const double* x = parameters[0];
     if (!residuals_at(x, residuals)) return false;
-    if (jacobians == nullptr || jacobians[0] == nullptr) return true;
+    if (jacobian == nullptr) return true;
     std::atomic<bool> ok{true};
     auto column = [&](std::size_t i) {
       std::vector<double> xi(x, x + n), ri(m);
@@ -116,7 +115,7 @@ class ForceMisfit final : public ceres::CostFunction {
         ok = false;
         return;
       }
-      for (std::size_t k = 0; k < m; ++k) jacobians[0][k * n + i] = (ri[k] - residuals[k]) / h;
+      for (std::size_t k = 0; k < m; ++k) jacobian[k * n + i] = (ri[k] - residuals[k]) / h;
     };
     if (threads_ <= 1)
       for (std::size_t i = 0; i < n; ++i) column(i);
@@ -148,19 +147,16 @@ class ForceMisfit final : public ceres::CostFunction {
 // Tikhonov's penalty on the shaft's curvature: w (R_{i-1} - 2 R_i + R_{i+1})
 // / F_max for each inner segment (the first `segments` variables, scaled by
 // `scale`); zero on any linear distribution.
-class ShaftSmoothing final : public ceres::CostFunction {
+class ShaftSmoothing final : public detail::ResidualBlock {
  public:
   ShaftSmoothing(std::size_t segments, std::size_t size, double weight)
-      : segments_(segments), size_(size), weight_(weight) {
-    set_num_residuals(static_cast<int>(segments - 2));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(size));
-  }
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const double* x = parameters[0];
+      : segments_(segments), size_(size), weight_(weight) {}
+  [[nodiscard]] std::size_t residuals() const override { return segments_ - 2; }
+  bool evaluate(const double* x, double* residuals, double* jacobian) const override {
     for (std::size_t i = 1; i + 1 < segments_; ++i) {
       residuals[i - 1] = weight_ * (x[i - 1] - 2.0 * x[i] + x[i + 1]);
-      if (jacobians != nullptr && jacobians[0] != nullptr) {
-        double* row = jacobians[0] + (i - 1) * size_;
+      if (jacobian != nullptr) {
+        double* row = jacobian + (i - 1) * size_;
         std::fill(row, row + size_, 0.0);
         row[i - 1] = weight_;
         row[i] = -2.0 * weight_;
@@ -253,18 +249,6 @@ Window match_window(const CaseMethodResult& pda) {
   return w;
 }
 
-// Ends a start's fit at its next iteration once `interrupt` is set (a signal).
-class StopOnSignal final : public ceres::IterationCallback {
- public:
-  explicit StopOnSignal(const std::atomic<bool>* interrupt) : interrupt_(interrupt) {}
-  ceres::CallbackReturnType operator()(const ceres::IterationSummary&) override {
-    return interrupt_ != nullptr && interrupt_->load() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
-  }
-
- private:
-  const std::atomic<bool>* interrupt_;
-};
-
 // What every start's fit shares: the model, the settings, the measured
 // force over the window from sample `first`, its largest value, the
 // resistances' scale, the threads a start has and the interrupt.
@@ -278,7 +262,7 @@ struct FitInputs {
   const std::atomic<bool>* interrupt;
 };
 
-// One start's fit: Ceres' Levenberg-Marquardt within the bounds.
+// One start's fit: Levenberg-Marquardt within the bounds, ended early by the interrupt.
 MatchStart fit_from(const FitInputs& in, const MatchSoil& start) {
   const auto& [model, m, measured, first, force_scale, scale, threads, interrupt] = in;
   MatchStart out;
@@ -287,30 +271,19 @@ MatchStart fit_from(const FitInputs& in, const MatchSoil& start) {
   std::vector<double> x(unknowns.size());
   unknowns.to_x(start, x.data());
   std::atomic<long long> evaluations{0};
-  ceres::Problem problem;
-  problem.AddResidualBlock(new ForceMisfit(model, unknowns, start, measured, first, force_scale, threads, evaluations),
-                           nullptr, x.data());
-  if (m.smoothing > 0.0 && m.fits("shaft") && model.segments() > 2)
-    problem.AddResidualBlock(new ShaftSmoothing(model.segments(), unknowns.size(), m.smoothing * scale / force_scale),
-                             nullptr, x.data());
-  unknowns.bounds(problem, x.data());
-  ceres::Solver::Options options;
-  options.minimizer_type = ceres::TRUST_REGION;
-  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 60;
-  options.function_tolerance = 1e-9;
-  options.parameter_tolerance = 1e-8;
-  options.logging_type = ceres::SILENT;
-  options.minimizer_progress_to_stdout = false;
-  StopOnSignal stop(interrupt);
-  options.callbacks.push_back(&stop);
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  const ForceMisfit misfit(model, unknowns, start, measured, first, force_scale, threads, evaluations);
+  const ShaftSmoothing smoothing(model.segments(), unknowns.size(), m.smoothing * scale / force_scale);
+  detail::LeastSquaresProblem problem;
+  problem.parameters = unknowns.size();
+  problem.blocks.push_back(&misfit);
+  if (m.smoothing > 0.0 && m.fits("shaft") && model.segments() > 2) problem.blocks.push_back(&smoothing);
+  unknowns.bounds(problem);
+  problem.interrupt = interrupt;
+  const detail::LeastSquaresSummary summary = detail::solve_least_squares(problem, x.data());
   out.soil = unknowns.from_x(start, x.data());
-  out.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  out.iterations = static_cast<int>(summary.iterations) - 1;
   out.evaluations = evaluations.load();
-  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.converged = summary.converged;
   out.message = summary.message;
   out.objective = 2.0 * summary.final_cost / static_cast<double>(measured.size());
   out.computed.assign(measured.size(), 0.0);
@@ -372,6 +345,7 @@ MatchResult match_pile(const PileRecord& record, int jobs, const std::atomic<boo
   const int starts = record.match.starts;
   const FitInputs in{model, record.match, measured, w.first, fmax, scale, std::max(1, cores / starts), interrupt};
   r.starts.resize(static_cast<std::size_t>(starts));
+  detail::load_least_squares();  // here: a start's thread must not throw
   run_parallel(static_cast<std::size_t>(starts), std::min(cores, starts), [&](std::size_t k) {
     if (interrupt != nullptr && interrupt->load()) return;
     const MatchSoil start = k == 0 ? estimate : other_start(estimate, record.match, static_cast<int>(k));

@@ -83,5 +83,17 @@ wait "$pid"
 [ $? -eq 130 ] && ok || bad "SIGINT's exit"
 [ ! -e "$work/signalled" ] && ! ls -a "$work" | grep -q partial && ok || bad "a signalled match left files"
 
+# Ceres Solver is the fitting module's, loaded when a match fits: the
+# command's start-up loads neither it nor the libraries it links.
+needed=$(readelf -d "$bin" | grep NEEDED)
+echo "$needed" | grep -qiE "ceres|glog|gflags|cholmod|gfortran|lapack|hdf5" && bad "the command needs: $needed" || ok
+# Without its module (a command copied alone), a match ends on one line naming it; nothing written.
+mkdir "$work/alone" && cp "$bin" "$work/alone/barimpact"
+"$work/alone/barimpact" match "$examples/pda/steel-pipe.toml" --out "$work/alone/out" --no-plot > /dev/null 2> "$work/err"
+code=$?
+[ $code -eq 1 ] && [ "$(wc -l < "$work/err")" -eq 1 ] && grep -q "needs the fitting module libbarimpact_fit.so" "$work/err" &&
+  [ ! -e "$work/alone/out" ] && ! ls -a "$work/alone" | grep -q partial && ok ||
+  bad "a match without its module: exit $code: $(cat "$work/err")"
+
 echo "match: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

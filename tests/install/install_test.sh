@@ -24,6 +24,10 @@ for f in bin/barimpact lib/libbarimpact.a include/barimpact/case/case.hpp lib/cm
 done
 site=$(ls -d "$prefix"/lib/python3*/site-packages)
 [ -f "$site/barimpact/__init__.py" ] && ls "$site"/barimpact/_core*.so > /dev/null 2>&1 && ok || bad "Python package not installed"
+# The modules the library loads when a process needs them: results.h5's (HDF5) and signal matching's (Ceres).
+for module in hdf5 fit; do
+  ls "$site"/barimpact/libbarimpact_$module.so.* > /dev/null 2>&1 && ok || bad "the $module module not installed"
+done
 
 # A consumer project: find_package(barimpact), the paper's Example 1.
 cmake -S "$source_dir/tests/consumer" -B "$work/consumer" -DCMAKE_PREFIX_PATH="$prefix" > "$work/consumer.log" 2>&1 &&

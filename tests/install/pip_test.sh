@@ -49,6 +49,10 @@ mkdir -p "$work/user" && cd "$work/user"
 for venv in venv wheel-venv; do
   v="$work/$venv"
   [ -x "$v/bin/barimpact" ] && ok || bad "$venv: no barimpact command in bin/"
+  for module in hdf5 fit; do
+    ls "$v"/lib/python3*/site-packages/barimpact/libbarimpact_$module.so.* > /dev/null 2>&1 && ok ||
+      bad "$venv: the $module module not installed"
+  done
   "$v/bin/python" -c "import barimpact, os; assert barimpact.__file__.startswith('$v'), barimpact.__file__" && ok ||
     bad "$venv: import barimpact does not find the installed package"
   "$v/bin/barimpact" run "$source_dir/examples/paper-example1.toml" --out "$venv-run" > /dev/null &&
