@@ -106,10 +106,12 @@ void add_body(Line& line, const BodyData& b, std::size_t index, bool welded, con
     const double h = b.length / b.elements;
     const double ea = b.modulus * b.area, eta_a = b.viscosity * b.area;
     const Bond e{BondKind::element, h, ea / h, eta_a / h, b.density * b.area * h, b.area, index, ea, eta_a};
+    line.bonds.append(e, static_cast<std::size_t>(b.elements));
     for (int k = 1; k <= b.elements; ++k) {
       if (k % setup_poll_nodes == 0) poll_setup();  // a line of millions of nodes takes seconds
-      add_node(line, start + static_cast<double>(k) * h, e);
+      line.x.push_back(start + static_cast<double>(k) * h);
     }
+    line.point_mass.resize(line.x.size(), 0.0);
   }
   range.last = line.x.size() - 1;
   line.bodies.push_back(range);

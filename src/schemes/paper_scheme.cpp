@@ -308,9 +308,12 @@ double PaperScheme::scale(long long m) const {
 
 void PaperScheme::start() {
   const std::size_t n = line_.nodes();
-  for (std::size_t j = 0; j < n; ++j) {
-    u0_[j] = (*initial_displacement_)(line_.x[j], 0.0);
-    v0_[j] = (*initial_velocity_)(line_.x[j], 0.0);
+  // A constant (the usual bar at rest, or moving as one) fills its values without a call per node.
+  for (auto [values, initial] : {std::pair{&u0_, initial_displacement_.get()}, {&v0_, initial_velocity_.get()}}) {
+    if (!initial->depends_on_x())
+      std::fill(values->begin(), values->end(), (*initial)(0.0, 0.0));
+    else
+      for (std::size_t j = 0; j < n; ++j) (*values)[j] = (*initial)(line_.x[j], 0.0);
   }
   if (!batched_) {
     prev_ = levels_[2].data();

@@ -80,6 +80,12 @@ class Bonds {
     if (distinct_.empty() || !(distinct_.back() == b)) distinct_.push_back(b);
     which_.push_back(static_cast<std::uint32_t>(distinct_.size() - 1));
   }
+  /// Appends bond b `count` times (a bar's elements).
+  void append(const Bond& b, std::size_t count) {
+    if (count == 0) return;
+    push_back(b);
+    which_.insert(which_.end(), count - 1, which_.back());
+  }
   void reserve(std::size_t n) { which_.reserve(n); }
   [[nodiscard]] const Bond& operator[](std::size_t j) const { return distinct_[which_[j]]; }
   [[nodiscard]] const Bond& back() const { return distinct_[which_.back()]; }
