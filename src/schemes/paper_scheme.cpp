@@ -49,6 +49,9 @@ double uniform_quadratic_form(double p, double q, std::span<const double> x) {
 // the last row the identity when `fix_last`.
 void uniform_solve(double p, double q, bool fix_last, std::vector<double>& x) {
   const std::size_t n = x.size();
+  // x = +0 everywhere (a bar at rest or moving as one, unloaded): the sweeps
+  // below would give +0 again (p, q > 0), at two chained passes' cost.
+  if (std::all_of(x.begin(), x.end(), [](double v) { return v == 0.0 && !std::signbit(v); })) return;
   std::vector<double> inv(n, 0.0);
   inv[n - 1] = fix_last ? 0.0 : 1.0 / uniform_diagonal(n, p, n - 1);
   for (std::size_t j = n - 1; j-- > 0;) {
