@@ -295,8 +295,8 @@ void LineCentralDifference::advance() {
   const double* u = next_;
   double* up = prev_;
   advance_levels(um, u, up, t);
-  hold_ends(u, up, t);
-  project(up, 1.0);
+  if (held_ends_) hold_ends(u, up, t);  // the tests here: a short line's step is a few dozen ns
+  if (has_rigid_) project(up, 1.0);
   end_forces(um, u, up, t, 1.0);
   if (plastic_.active()) plastic_.advance(u, up);
   prev_ = cur_;
