@@ -150,6 +150,14 @@ rest down, each measured on whole processes in its commit:
   library opens when a match fits or a results.h5 is written: a run loads
   neither, nor the ~60 libraries they link.
 
+The 400 steps' excess over the bare loop is the history row Example 1
+writes at every step: its half-step energies, whose terms the one-bar
+kernel forms inside the step's sweeps, 64 elements ahead (an eighth of a
+400-step run's CPU time at 10^5 elements in a profile), their sums riding
+on the solve's chains. The fixed cost's share of the kernel zeroing pages
+moves from run to run with the huge pages the kernel has at hand (the peak
+of a small run too: 14 to 21 MB at M = 1,000).
+
 What is left at 10^5 elements is the process's start, the kernel zeroing
 the pages of some ten line-sized arrays (the line, the factors, three
 levels, the initial state), the set-up's passes over them (the line's
