@@ -53,14 +53,15 @@ from . import match as _match_figures
 from . import pda as _pda_figures
 from . import plot as _figures
 from . import _core
-from ._core import Case, InputError, OutOfMemoryError, OutputError, Result
+from ._core import Case, InputError, MissingModuleError, OutOfMemoryError, OutputError, Result
 
 InputError.__module__ = "barimpact"  # tracebacks say barimpact.InputError, where users catch it
 OutputError.__module__ = "barimpact"
 OutOfMemoryError.__module__ = "barimpact"
+MissingModuleError.__module__ = "barimpact"
 from .plot import RunData, load
 
-__all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+__all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "MissingModuleError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
            "PdaTable", "MatchTable",
            "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "match", "plot", "load",
            "read_table", "exact_example1"]

@@ -8,11 +8,12 @@ import numpy.typing as npt
 
 from ._core import Case as Case
 from ._core import InputError as InputError
+from ._core import MissingModuleError as MissingModuleError
 from ._core import OutOfMemoryError as OutOfMemoryError
 from ._core import OutputError as OutputError
 from ._core import Result as Result
 
-__all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
+__all__ = ["Case", "Result", "InputError", "OutputError", "OutOfMemoryError", "MissingModuleError", "HealthWarning", "StrictError", "Table", "HopkinsonTable",
            "PdaTable", "MatchTable",
            "RunData", "run", "check", "exact", "converge", "sweep", "bearing", "drive", "inspector", "hammers", "hopkinson", "pda", "match", "plot", "load",
            "read_table", "exact_example1"]

@@ -21,6 +21,10 @@ class OutputError(InputError, OSError):
     """What the file system refused while results were written (a full disk):
     the path and the system's reason in one line; nothing half-written is left."""
 
+class MissingModuleError(InputError, ImportError):
+    """A module of the install a feature needs (signal matching's fitting
+    module) missing: one line naming it and where it was looked for."""
+
 class OutOfMemoryError(InputError, MemoryError):
     """A case too large for the memory there is: bad input, and a MemoryError."""
 

@@ -866,6 +866,10 @@ PYBIND11_MODULE(_core, m) {
   // What the file system refused (a full disk): caught as either kind.
   py::register_exception<OutputError>(m, "OutputError",
                                       py::make_tuple(m.attr("InputError"), py::handle(PyExc_OSError)));
+  // A module of the install missing (the fitting module): bad input's one
+  // line, and an ImportError to code that catches one.
+  py::register_exception<MissingModule>(m, "MissingModuleError",
+                                        py::make_tuple(m.attr("InputError"), py::handle(PyExc_ImportError)));
   // A case too large for the memory there is: bad input as any other (the
   // command line's words), and still a MemoryError to code that catches one.
   static py::exception<std::bad_alloc> out_of_memory(

@@ -3,6 +3,7 @@
 #include <dlfcn.h>
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <system_error>
 #include <vector>
@@ -37,6 +38,10 @@ std::vector<fs::path> module_dirs() {
             here / BARIMPACT_PYTHON_FROM_BIN / "barimpact", here / dist / "barimpact"};
   }
   dirs.emplace_back(BARIMPACT_MODULE_INSTALL_DIR);
+  // First of all: a program using an install moved from its configured
+  // prefix names the package's directory itself.
+  if (const char* dir = std::getenv("BARIMPACT_MODULE_DIR"); dir != nullptr && *dir != '\0')
+    dirs.insert(dirs.begin(), fs::path(dir));
   return dirs;
 }
 

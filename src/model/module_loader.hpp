@@ -13,7 +13,7 @@
 namespace barimpact::detail {
 
 /// A module's entry, `entry` in the module file `file_name`, from the first
-/// place it is found: beside the program (or the Python module) holding
+/// place it is found: $BARIMPACT_MODULE_DIR if set, beside the program (or the Python module) holding
 /// the library, in its build tree's python/barimpact, in the Python package
 /// an installed command finds, then in the install prefix's package.
 /// Loaded once per process (never closed). Null if there is none, with

@@ -44,8 +44,8 @@ struct LeastSquaresSummary {
   double final_cost = 0.0;  ///< 1/2 sum r^2 at the solution
 };
 
-/// Loads the fitting module, once per process: std::runtime_error (one
-/// line) if it cannot be. Before the threads that solve (which must not throw).
+/// Loads the fitting module, once per process: MissingModule (one line)
+/// if it cannot be. Before the threads that solve (which must not throw).
 void load_least_squares();
 
 /// Solves `p` from `x` (p.parameters values), leaving the solution there:

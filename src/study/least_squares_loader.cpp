@@ -1,4 +1,4 @@
-#include <stdexcept>
+#include "barimpact/model/input_error.hpp"
 
 #include "../model/module_loader.hpp"
 #include "least_squares.hpp"
@@ -10,8 +10,8 @@ namespace {
 // Loaded the first time a match fits; a failure is reported each time (a
 // thrown static initialisation is tried again).
 const FitModule& fit_module() {
-  static const FitModule* module = load_module<FitModule, std::runtime_error>(BARIMPACT_FIT_MODULE, fit_module_entry,
-                                                                              "signal matching", "fitting module");
+  static const FitModule* module = load_module<FitModule, MissingModule>(BARIMPACT_FIT_MODULE, fit_module_entry,
+                                                                         "signal matching", "fitting module");
   return *module;
 }
 

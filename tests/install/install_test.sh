@@ -39,6 +39,9 @@ examples="$prefix/share/barimpact/examples"
 bin="$prefix/bin/barimpact"
 mkdir -p "$work/user" && cd "$work/user"
 "$work/consumer/example1" && ok || bad "consumer example 1"
+# Installed away from its configured prefix: the program names the package's directory for the fitting module.
+BARIMPACT_MODULE_DIR="$site/barimpact" "$work/consumer/match" "$examples/pda/steel-pipe.toml" > /dev/null &&
+  ok || bad "consumer match (the fitting module from BARIMPACT_MODULE_DIR)"
 "$bin" check "$examples/paper-example1.toml" > /dev/null && ok || bad "installed check"
 "$bin" run "$examples/paper-example1.toml" --out runs/ex1 > /dev/null && ok || bad "installed run"
 "$bin" plot runs/ex1 > /dev/null && [ -s runs/ex1/figures/displacement.png ] && ok || bad "installed plot"

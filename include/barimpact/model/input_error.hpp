@@ -39,6 +39,14 @@ class OutputError : public InputError {
   std::string reason_;
 };
 
+/// A module of the install that a feature needs (signal matching's fitting
+/// module) is not where the library looks: one line naming it and why, exit
+/// 2 as a file the system refuses; Python raises it as an ImportError too.
+class MissingModule : public InputError {
+ public:
+  using InputError::InputError;
+};
+
 /// A case that needs more memory than is available, refused before it is
 /// built (run/check.hpp): bad input, which Python also raises as a
 /// MemoryError (barimpact.OutOfMemoryError).
