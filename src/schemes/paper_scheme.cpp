@@ -644,10 +644,7 @@ bool PaperScheme::begin_energies(Energies& e) const {
     e = energies();
     return true;
   }
-  e = Energies{};
-  e.obstacle = end_energy(end_displacement());
-  e.work = work_half_ - 0.5 * work_last_;
-  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  e = energies_but_half_steps();
   pending_ = {n_, cached_.kinetic, cached_.strain};
   if (cached_.n != n_ - 1) {
     double k[2], s[2];
@@ -673,14 +670,24 @@ void PaperScheme::finish_energies(Energies& e) const {
   e.strain = 0.5 * (pending_.strain + cached_.strain);
 }
 
-Energies PaperScheme::energies() const {
+// Row n's terms but E_kin and E_strain (n >= 1).
+Energies PaperScheme::energies_but_half_steps() const {
   Energies e;
   e.obstacle = end_energy(end_displacement());
+  e.work = work_half_ - 0.5 * work_last_;
+  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
+  return e;
+}
+
+Energies PaperScheme::energies() const {
   if (n_ == 0) {
+    Energies e;
+    e.obstacle = end_energy(end_displacement());
     e.kinetic = start_kinetic_;
     e.strain = start_strain_;
     return e;
   }
+  Energies e = energies_but_half_steps();
   double k[2] = {0.0, 0.0}, s[2] = {0.0, 0.0}, k1 = 0.0, s1 = 0.0, k2 = 0.0, s2 = 0.0;
   if (cached_.n == n_ - 1) {  // the previous row's n + 1/2 is this row's n - 1/2
     k1 = cached_.kinetic;
@@ -694,8 +701,6 @@ Energies PaperScheme::energies() const {
   cached_ = {n_, k2, s2};
   e.kinetic = 0.5 * (k1 + k2);
   e.strain = 0.5 * (s1 + s2);
-  e.work = work_half_ - 0.5 * work_last_;
-  e.dissipation = dissipation_half_ - 0.5 * dissipation_last_;
   return e;
 }
 

@@ -151,6 +151,8 @@ class PaperScheme final : public Scheme {
   void half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc, double sc,
                           double (&kinetic)[2], double (&strain)[2]) const;
   void accumulate_budget(long long m);
+  /// A row's energies but E_kin and E_strain (n >= 1): the obstacle's, W and D.
+  [[nodiscard]] Energies energies_but_half_steps() const;
   /// The half-step energies' constants: rho h / 6, a / h, (alpha - 1/4) dt^2.
   [[nodiscard]] std::array<double, 3> energy_constants() const;
 
