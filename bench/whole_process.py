@@ -20,19 +20,28 @@ EXAMPLE = os.path.join(HERE, "..", "examples", "paper-example1.toml")
 REPEATS = 5  # the pairs interleaved, medians taken: these machines are noisy
 
 
-def measure(binary, case, sets, work):
-    """CPU seconds (user + system) and peak resident kB of one `barimpact
-    run`, the child's own rusage (by wait4): on a shared machine its wall
-    time counts the other processes' turns too, and a run is one thread."""
-    out = os.path.join(work, "run")
-    args = [binary, "run", case, "--out", out, "--force"]
-    for s in sets + ["output.fields_at=[]"]:
-        args += ["--set", s]
+def usage_of(args):
+    """The rusage of one process, by wait4 (the child's own accounting: on a
+    shared machine its wall time counts the other processes' turns too)."""
     p = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     _, status, usage = os.wait4(p.pid, 0)
     p.returncode = status  # reaped here, for its rusage
     if status != 0:
         raise RuntimeError(f"{' '.join(args)}: exit status {status}")
+    return usage
+
+
+def run_args(binary, case, sets, out):
+    args = [binary, "run", case, "--out", out, "--force"]
+    for s in sets + ["output.fields_at=[]"]:
+        args += ["--set", s]
+    return args
+
+
+def measure(binary, case, sets, work):
+    """CPU seconds (user + system) and peak resident kB of one `barimpact
+    run` (a run is one thread)."""
+    usage = usage_of(run_args(binary, case, sets, os.path.join(work, "run")))
     return usage.ru_utime + usage.ru_stime, usage.ru_maxrss
 
 
@@ -53,31 +62,16 @@ def page_faults(binary, work):
     and the elastic-plastic one (the medians of REPEATS)."""
     out = []
     for extra in ([], ["bar.material=\"plastic\"", "bar.yield_stress=1e9"]):
-        counts = []
-        for _ in range(REPEATS):
-            args = [binary, "run", EXAMPLE, "--out", os.path.join(work, "faults"), "--force"]
-            for s in bar(100_000, 1) + extra + ["output.fields_at=[]"]:
-                args += ["--set", s]
-            p = subprocess.Popen(args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-            _, status, usage = os.wait4(p.pid, 0)
-            if status != 0:
-                raise RuntimeError(f"{' '.join(args)}: exit status {status}")
-            counts.append(usage.ru_minflt)
-        out.append(statistics.median(counts))
+        args = run_args(binary, EXAMPLE, bar(100_000, 1) + extra, os.path.join(work, "faults"))
+        out.append(statistics.median(usage_of(args).ru_minflt for _ in range(REPEATS)))
     return out
 
 
 def process_start(binary):
     """Median CPU seconds of `barimpact --version`: a process's start alone
     (exec, the dynamic loader, the command's set-up), nothing read or written."""
-    times = []
-    for _ in range(4 * REPEATS):
-        p = subprocess.Popen([binary, "--version"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        _, status, usage = os.wait4(p.pid, 0)
-        if status != 0:
-            raise RuntimeError(f"{binary} --version: exit status {status}")
-        times.append(usage.ru_utime + usage.ru_stime)
-    return statistics.median(times)
+    return statistics.median(
+        (u.ru_utime + u.ru_stime) for u in (usage_of([binary, "--version"]) for _ in range(4 * REPEATS)))
 
 
 def bar(m, steps):
