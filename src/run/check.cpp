@@ -57,11 +57,8 @@ double time_steps(const Case& c, long long steps, std::string& trouble) {
 
 // The memory model (bytes a run adds to the process at its peak):
 //   per node: the line, the scheme with its factors and the observers'
-//     per-node arrays: (peak RSS at 10^6 elements - at 10^3) / 10^6 of
-//     `barimpact run` without snapshots (/usr/bin/time -v), rounded up:
-//     below by scheme for an elastic bar, the paper's scheme on a line or
-//     an elastic-plastic bar (its line kernel, not the one-bar one) 420,
-//     an elastic-plastic bar adding what its scheme keeps per element;
+//     per-node arrays, measured scheme by scheme (the scheme table's
+//     bytes_per_node: a bar alone, a line of bodies, an elastic-plastic bar);
 //   per history row: its values, held twice at the end (the recorder's
 //     and the result's);
 //   field snapshots: one (u, v, sigma, eps_p of every node) while they
@@ -69,27 +66,12 @@ double time_steps(const Case& c, long long steps, std::string& trouble) {
 //   results.h5: written as the run goes; HDF5 holds a few chunks of each
 //     of the four fields (its chunk caches, 1 MiB each at most).
 double bytes_per_node(const Case& c) {
-  struct Measured {
-    std::string_view scheme;
-    double elastic, plastic;  // bytes a node
-  };
-  // Characteristic has no elastic-plastic bar: its plastic entry is never read.
-  static constexpr std::array<Measured, 7> measured{{{"paper", 190, 590},
-                                                     {"newmark", 400, 490},
-                                                     {"central-difference", 280, 300},
-                                                     {"mass-redistribution", 280, 350},
-                                                     {"paoli-schatzman", 310, 320},
-                                                     {"moreau-jean", 290, 360},
-                                                     {"characteristic", 200, 200}}};
-  const bool plastic = std::any_of(c.bodies.begin(), c.bodies.end(), [](const BodyData& b) {
-    return b.kind == BodyKind::bar && b.material.kind == MaterialKind::plastic;
+  const NodeBytes& b = scheme_info(c.time.scheme).bytes_per_node;
+  const bool plastic = std::any_of(c.bodies.begin(), c.bodies.end(), [](const BodyData& body) {
+    return body.kind == BodyKind::bar && body.material.kind == MaterialKind::plastic;
   });
-  for (const auto& m : measured)
-    if (m.scheme == c.time.scheme) {
-      if (plastic) return m.plastic;
-      return m.scheme == "paper" && !c.one_bar() ? 420.0 : m.elastic;
-    }
-  return 600.0;  // a scheme not measured: above every measured one
+  if (plastic) return b.plastic;
+  return c.one_bar() ? b.one_bar : b.line;
 }
 
 // Bytes of a history value and of a fields.csv row as written (shortest

@@ -39,6 +39,15 @@ struct NewmarkFamily {
   std::string_view rule;  ///< the condition in the scheme's own parameters, e.g. "alpha < 1/4"
 };
 
+/// Bytes a node adds to a run's peak memory with this scheme (check's
+/// estimate): measured as (peak RSS at 10^6 elements - at 10^3) / 10^6 of
+/// `barimpact run` without snapshots, rounded up.
+struct NodeBytes {
+  double one_bar;  ///< an elastic bar alone (its one-bar kernel, if any)
+  double line;     ///< an elastic line of several bodies
+  double plastic;  ///< an elastic-plastic bar
+};
+
 struct SchemeInfo {
   std::string_view name;
   /// Makes the scheme on the case's built line (the line must fit: scheme_misfit).
@@ -52,6 +61,7 @@ struct SchemeInfo {
   /// About three times the largest budget drift, relative to the run's
   /// energy, of a resolved run on the examples (health.hpp's energy-balance).
   double energy_tolerance;
+  NodeBytes bytes_per_node;
   /// What else the scheme cannot run (a row of its own rules), or null.
   std::optional<SchemeMisfit> (*misfit)(const Case& c, const Line& line);
   /// Its (beta, gamma) when it is of Newmark's family, or null.
