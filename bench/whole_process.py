@@ -164,7 +164,10 @@ rest down, each measured on whole processes in its commit:
   arrays up to 32 MiB come from a heap grown once by 64 MiB of address space
   and advised for 2 MiB pages, so that the kernel faults a line's arrays in a
   few 2 MiB pages instead of thousands of 4 KiB ones, and what a set-up frees
-  is reused. A one-step run at 10^5 elements takes {faults[0]:,.0f} page faults
+  is reused. The heap's unaligned head, below its first 2 MiB boundary, is
+  held untouched, so that the first arrays (the line's nodes) are on huge
+  pages too: 679 faults and 6.8 ms of CPU became 228 and 5.6 ms at the
+  commit that did it (perf stat, 20 runs each). A one-step run at 10^5 elements takes {faults[0]:,.0f} page faults
   in this run, the elastic-plastic one {faults[1]:,.0f}; in 4 KiB pages they took
   2,690 and 12,400 (perf stat, at the commit that made the change). Huge
   pages count whole: a small run's peak is a few MB above what it touches

@@ -32,15 +32,23 @@ inline void prefer_huge_pages() {
   mallopt(M_MMAP_THRESHOLD, largest_from_heap);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   mallopt(M_TOP_PAD, reserve);
+  // One allocation grows the heap and fills its unaligned head: it ends just
+  // below the first 2 MiB boundary past the break, where malloc writes the
+  // new top's header, and moves brk by the 64 MiB pad past it. Nothing else
+  // is touched, so that every 2 MiB page from that boundary on can be a huge
+  // one, the first arrays a run makes (the line's nodes) among them. Kept
+  // for the process's life, never touched.
   const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
-  // Past the top: brk moves by 65 MiB. Through a volatile pointer, so that
-  // the compiler does not drop an allocation nothing reads.
-  void* volatile grow = std::malloc(std::size_t{1} << 20);
+  const std::uintptr_t top = before - mallinfo2().keepcost;  // the heap's free top
+  constexpr std::uintptr_t header = 128;                     // more than malloc's chunk headers
+  std::uintptr_t first = (before + huge - 1) & ~(huge - 1);
+  if (first < before + header) first += huge;  // the request must outgrow the free top
+  static void* head = nullptr;
+  head = std::malloc(first - top - header);
   const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
-  std::free(grow);
   mallopt(M_TOP_PAD, 128 << 10);  // glibc's default: later growth as usual
-  const std::uintptr_t first = (before + huge - 1) & ~(huge - 1), last = after & ~(huge - 1);
-  if (after > before && last > first) (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  const std::uintptr_t last = after & ~(huge - 1);
+  if (head != nullptr && last > first) (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
 #endif
 }
 
