@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <span>
 #include <type_traits>
 
@@ -91,104 +92,132 @@ bool at_rest_inside(const Expression& initial, const std::vector<double>& values
   return !initial.depends_on_x() && std::isfinite(values[0]);
 }
 
-// One half-step's energy sums, element by element: the levels' values at a
-// node come in as (a, b), already scaled.
+// One half step's three energy sums (PaperScheme::half_step_energies) over
+// the elements of levels (a, b), element j - 1 added at node j = 1..n-1, in
+// an order the nodes alone fix, however a caller splits them: blocks of
+// energy_block nodes from node 1, within a block four lanes by (j - 1) mod 4,
+// each in node order, a block's lanes folded as (0 + 1) + (2 + 3) into the
+// totals block by block. Four lanes are one vector register's adds: the sums
+// cost a few instructions per four elements, where three adds chained node
+// by node held a history row's step back by a fifth. With d = b - a and
+// s = b + a at each node (the levels scaled), element by element:
+//   wm = sum d0 (d0 + d1) + d1^2,  wk = sum (d1 - d0)^2,  mk = sum (s1 - s0)^2,
+// the factors dt and 1/2 of w = d / dt and m = s / 2 left to half_step_of.
 struct HalfStepSums {
-  double inv_dt, wm = 0.0, wk = 0.0, mk = 0.0, w_left = 0.0, m_left = 0.0;
-  void first(double a, double b) {
-    w_left = (b - a) * inv_dt;  // a multiply: this runs on every history row
-    m_left = 0.5 * (b + a);
-  }
-  void next(double a, double b) {
-    const double w_right = (b - a) * inv_dt, m_right = 0.5 * (b + a);
-    wm += 2.0 * (w_left * w_left + w_left * w_right + w_right * w_right);
-    wk += (w_right - w_left) * (w_right - w_left);
-    mk += (m_right - m_left) * (m_right - m_left);
-    w_left = w_right;
-    m_left = m_right;
-  }
+  double wm = 0.0, wk = 0.0, mk = 0.0;
 };
 
-// Each element's terms of HalfStepSums::next for elements 0..count-1 of
-// levels (a, b) on a unit stride, in loops free of reductions that the
-// compiler vectorises: the same operations, the same bits.
-BARIMPACT_ENERGY_CLONES void element_terms(const double* za, double sa, const double* zb, double sb, double inv_dt,
-                                           std::size_t count, double* tw, double* tk, double* tm) {
-  double w[detail::energy_block + 1], m[detail::energy_block + 1];
-  detail::rates_and_means(za, sa, zb, sb, inv_dt, count, w, m);
-  for (std::size_t i = 0; i < count; ++i) {
-    tw[i] = 2.0 * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
-    tk[i] = (w[i + 1] - w[i]) * (w[i + 1] - w[i]);
-    tm[i] = (m[i + 1] - m[i]) * (m[i + 1] - m[i]);
-  }
+struct LevelPair {
+  const double *za, *zb;
+  double sa, sb;
+};
+
+// Four doubles, one lane per (j - 1) mod 4 (GCC's vector extension: one
+// AVX2 register, or two SSE2 ones).
+using Lanes = double __attribute__((vector_size(32)));
+
+// The three terms of elements j - 1 for four nodes j (or one, in every
+// lane) from the levels' values at nodes j - 1 (za0, zb0) and j (za1, zb1):
+// T is Lanes or double. By reference: a vector passed by value would change
+// the calling convention between the AVX2 and the default builds.
+template <class T>
+struct ElementTerms {
+  T w, k, m;
+};
+template <class T>
+[[gnu::always_inline]] inline void element_terms(const LevelPair& p, const T& za0, const T& zb0, const T& za1,
+                                                 const T& zb1, ElementTerms<T>& t) {
+  const T a0 = p.sa * za0, b0 = p.sb * zb0, a1 = p.sa * za1, b1 = p.sb * zb1;
+  const T d0 = b0 - a0, d1 = b1 - a1, s0 = b0 + a0, s1 = b1 + a1;
+  t.w = d0 * (d0 + d1) + d1 * d1;
+  t.k = (d1 - d0) * (d1 - d0);
+  t.m = (s1 - s0) * (s1 - s0);
 }
 
-// HalfStepSums of levels (a, b) on a unit stride summed node by node in node
-// order, next(j) adding element j - 1 (j = 1, 2, ...) once ahead(j0, j1)
-// has formed the terms of nodes j0..j1-1 (element_terms, a block at most):
-// the sums alone run in order, where a solve's sweeps carry them beside
-// their own chains (twisted_solve's visit).
-class UnitStrideSums {
+// Elements j - 1 of nodes j0..j1-1 into lanes[sum][(j - 1) mod 4]; j0..j1-1
+// inside one block. Four at a time on unit stride (compiled for AVX2 too),
+// one at a time otherwise: the same operations lane by lane, the same bits.
+BARIMPACT_ENERGY_CLONES void add_elements(const LevelPair& p, std::size_t st, std::size_t j0, std::size_t j1,
+                                          double (&lanes)[3][4]) {
+  auto one = [&](std::size_t j) {
+    ElementTerms<double> t;
+    element_terms(p, p.za[(j - 1) * st], p.zb[(j - 1) * st], p.za[j * st], p.zb[j * st], t);
+    const std::size_t l = (j - 1) & 3;
+    lanes[0][l] += t.w, lanes[1][l] += t.k, lanes[2][l] += t.m;
+  };
+  std::size_t j = j0;
+  if (st == 1) {
+    for (; j < j1 && ((j - 1) & 3) != 0; ++j) one(j);
+    ElementTerms<Lanes> sum, t;
+    std::memcpy(&sum.w, lanes[0], sizeof(Lanes));
+    std::memcpy(&sum.k, lanes[1], sizeof(Lanes));
+    std::memcpy(&sum.m, lanes[2], sizeof(Lanes));
+    for (; j + 4 <= j1; j += 4) {
+      Lanes za0, zb0, za1, zb1;
+      std::memcpy(&za0, p.za + j - 1, sizeof(Lanes));
+      std::memcpy(&zb0, p.zb + j - 1, sizeof(Lanes));
+      std::memcpy(&za1, p.za + j, sizeof(Lanes));
+      std::memcpy(&zb1, p.zb + j, sizeof(Lanes));
+      element_terms(p, za0, zb0, za1, zb1, t);
+      sum.w += t.w, sum.k += t.k, sum.m += t.m;
+    }
+    std::memcpy(lanes[0], &sum.w, sizeof(Lanes));
+    std::memcpy(lanes[1], &sum.k, sizeof(Lanes));
+    std::memcpy(lanes[2], &sum.m, sizeof(Lanes));
+  }
+  for (; j < j1; ++j) one(j);
+}
+
+// HalfStepSums in that order, its nodes added in runs (add), each run
+// continuing the last: a whole pass's blocks, or a solve's sweeps' runs
+// (twisted_solve's visit), which meet the blocks anywhere.
+class LaneSums {
  public:
   static constexpr std::size_t block = detail::energy_block;
-  UnitStrideSums(const double* za, double sa, const double* zb, double sb, double inv_dt)
-      : za_(za), zb_(zb), sa_(sa), sb_(sb), inv_dt_(inv_dt) {}
-  void ahead(std::size_t j0, std::size_t j1) {
-    first_ = j0 - 1;
-    element_terms(za_ + first_, sa_, zb_ + first_, sb_, inv_dt_, j1 - j0, tw_, tk_, tm_);
+  LaneSums(const LevelPair& p, std::size_t stride) : p_(p), stride_(stride) {}
+  void add(std::size_t j0, std::size_t j1) {
+    while (j0 < j1) {
+      const std::size_t end = std::min(j1, block_end_);
+      add_elements(p_, stride_, j0, end, lanes_);
+      if (end == block_end_) fold();
+      j0 = end;
+    }
   }
-  /// The sums in the caller's variables: in registers, where a member's
-  /// would go through memory (ahead's call sees the object).
-  void next(std::size_t j, double& wm, double& wk, double& mk) const {
-    const std::size_t i = j - 1 - first_;
-    wm += tw_[i];
-    wk += tk_[i];
-    mk += tm_[i];
+  /// The totals with the block under way folded in.
+  [[nodiscard]] HalfStepSums totals() const {
+    LaneSums s = *this;
+    s.fold();
+    return s.totals_;
   }
 
  private:
-  const double *za_, *zb_;
-  double sa_, sb_, inv_dt_;
-  std::size_t first_ = 0;
-  double tw_[block], tk_[block], tm_[block];
-};
-
-// UnitStrideSums as twisted_solve's visit, into the solve's own variables.
-struct HalfStepVisit {
-  static constexpr std::size_t block = UnitStrideSums::block;
-  UnitStrideSums& sums;
-  double &wm, &wk, &mk;
-  void ahead(std::size_t j0, std::size_t j1) const { sums.ahead(j0, j1); }
-  void operator()(std::size_t j) const { sums.next(j, wm, wk, mk); }
-};
-
-// The sums of the whole half step (a, b) in one pass (a history row's own),
-// and with `zc` those of (b, c) beside them: six independent chains in one
-// pass where two passes would run three each.
-void unit_stride_sums(const double* za, double sa, const double* zb, double sb, const double* zc, double sc,
-                      std::size_t n, HalfStepSums& ab, HalfStepSums& bc) {
-  UnitStrideSums u(za, sa, zb, sb, ab.inv_dt), w(zb, sb, zc, sc, bc.inv_dt);
-  double wm = 0.0, wk = 0.0, mk = 0.0, wm2 = 0.0, wk2 = 0.0, mk2 = 0.0;
-  auto pass = [&](auto both) {
-    for (std::size_t j0 = 1; j0 < n; j0 += UnitStrideSums::block) {
-      const std::size_t j1 = std::min(n, j0 + UnitStrideSums::block);
-      u.ahead(j0, j1);
-      if constexpr (decltype(both)::value) w.ahead(j0, j1);
-      for (std::size_t j = j0; j < j1; ++j) {
-        u.next(j, wm, wk, mk);
-        if constexpr (decltype(both)::value) w.next(j, wm2, wk2, mk2);
-      }
+  void fold() {
+    double* total[3] = {&totals_.wm, &totals_.wk, &totals_.mk};
+    for (std::size_t k = 0; k < 3; ++k) {
+      *total[k] += (lanes_[k][0] + lanes_[k][1]) + (lanes_[k][2] + lanes_[k][3]);
+      for (double& l : lanes_[k]) l = 0.0;
     }
-  };
-  zc != nullptr ? pass(std::true_type{}) : pass(std::false_type{});
-  ab.wm = wm, ab.wk = wk, ab.mk = mk;
-  bc.wm = wm2, bc.wk = wk2, bc.mk = mk2;
-}
+    block_end_ += block;
+  }
+  LevelPair p_;
+  std::size_t stride_;
+  std::size_t block_end_ = 1 + block;
+  double lanes_[3][4] = {};
+  HalfStepSums totals_;
+};
+
+// LaneSums as twisted_solve's visit: each run announced is added at once.
+struct HalfStepVisit {
+  static constexpr std::size_t block = LaneSums::block;
+  LaneSums& sums;
+  void ahead(std::size_t j0, std::size_t j1) const { sums.add(j0, j1); }
+  void operator()(std::size_t /*j*/) const {}
+};
 
 // E_kin and E_strain of one half step from its sums; `c`: PaperScheme::energy_constants().
 void half_step_of(const HalfStepSums& s, const std::array<double, 3>& c, double& kinetic, double& strain) {
-  kinetic = 0.5 * c[0] * s.wm;
-  strain = 0.5 * c[1] * (s.mk + c[2] * s.wk);
+  kinetic = c[0] * s.wm;
+  strain = 0.5 * c[1] * (0.25 * s.mk + c[2] * s.wk);
 }
 
 }  // namespace
@@ -461,11 +490,10 @@ void PaperScheme::solve_level(long long m) {
       loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);
   // fused: the half step (m - 1, m)'s energy sums in node order, inside the
   // sweeps (a history row's, which begin_energies left to this step).
-  double wm = 0.0, wk = 0.0, mk = 0.0;
-  UnitStrideSums sums(zo, scale(m - 1), zc, scale(m), 1.0 / dt_);
+  LaneSums sums(LevelPair{zo, zc, scale(m - 1), scale(m)}, 1);
   const auto visit = [&] {
     if constexpr (fused)
-      return HalfStepVisit{sums, wm, wk, mk};
+      return HalfStepVisit{sums};
     else
       return detail::NoVisit{};
   }();
@@ -479,7 +507,7 @@ void PaperScheme::solve_level(long long m) {
   if (sigma != 0.0) add_dashpot(sigma, zn);
   if constexpr (fused) {
     cached_.n = m - 1;
-    half_step_of(HalfStepSums{0.0, wm, wk, mk}, energy_constants(), cached_.kinetic, cached_.strain);
+    half_step_of(sums.totals(), energy_constants(), cached_.kinetic, cached_.strain);
   }
 }
 
@@ -648,32 +676,23 @@ void PaperScheme::velocity(std::span<double> out) const {
 
 void PaperScheme::half_step_energies(const double* za, double sa, const double* zb, double sb, const double* zc,
                                      double sc, double (&kinetic)[2], double (&strain)[2]) const {
-  const std::size_t st = stride_, n = line_.nodes();
-  const double inv_dt = 1.0 / dt_;
-  HalfStepSums ab{inv_dt}, bc{inv_dt};
-  auto pass = [&](auto both) {
-    ab.first(sa * za[0], sb * zb[0]);
-    if constexpr (decltype(both)::value) bc.first(sb * zb[0], sc * zc[0]);
-    for (std::size_t j = 1; j < n; ++j) {
-      const double b = sb * zb[j * st];
-      ab.next(sa * za[j * st], b);
-      if constexpr (decltype(both)::value) bc.next(b, sc * zc[j * st]);
-    }
-  };
-  if (st == 1) {  // vectorised terms, each half step's sums in node order: the same bits
-    unit_stride_sums(za, sa, zb, sb, zc, sc, n, ab, bc);
-  } else if (zc != nullptr) {
-    pass(std::true_type{});
-  } else {
-    pass(std::false_type{});
+  const std::size_t n = line_.nodes();
+  LaneSums first(LevelPair{za, zb, sa, sb}, stride_), second(LevelPair{zb, zc, sb, sc}, stride_);
+  for (std::size_t j0 = 1; j0 < n; j0 += LaneSums::block) {
+    const std::size_t j1 = std::min(n, j0 + LaneSums::block);
+    first.add(j0, j1);
+    if (zc != nullptr) second.add(j0, j1);
   }
+  const HalfStepSums ab = first.totals(), bc = second.totals();
   half_step_of(ab, energy_constants(), kinetic[0], strain[0]);
   half_step_of(bc, energy_constants(), kinetic[1], strain[1]);
 }
 
-// Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]].
+// Element by element: mass rho h/6 [[2,1],[1,2]], stiffness a/h [[1,-1],[-1,1]]:
+// (1/2)|w|_M^2 = (rho h/6) sum (w0^2 + w0 w1 + w1^2) with w = d / dt, and
+// (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 with m = s / 2 (HalfStepSums).
 std::array<double, 3> PaperScheme::energy_constants() const {
-  return {density_ * h_ / 6.0, a_ / h_, (alpha_ - 0.25) * dt_ * dt_};
+  return {density_ * h_ / 6.0 / (dt_ * dt_), a_ / h_, alpha_ - 0.25};
 }
 
 // Row n's terms but E_kin and E_strain, whose half step n + 1/2 the next
