@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <utility>
 
 #include "barimpact/schemes/penalty_links.hpp"
@@ -671,42 +672,44 @@ struct BondRunTerms {
 };
 
 // The run's kinetic and bond terms into the two sums, a block of nodes at a
-// time: the terms vectorised (half_step_terms.hpp), then summed node by node
-// (the same operations in the same order as the node loop: the same bits).
-// Without point masses (a bar's inner nodes) their stream is not read: a
-// node's +0 was never added.
+// time: the terms vectorised (half_step_terms.hpp), then summed in four
+// lanes by node - first mod 4, each in node order, folded at the run's end.
+// Without point masses (a bar's inner nodes) their stream is not read.
 template <bool point_masses>
 BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum,
                                      double& bond_sum) {
   constexpr std::size_t block = detail::energy_block;
-  double kinetic = kinetic_sum, sum = bond_sum;  // in registers: the references may alias
-  double w[block + 1], m[block + 1], tp[block], tk[block], ts[block];
+  detail::Lanes kinetic{}, sum{};
+  double w[block + 1], m[block + 1], tk[block], ts[block];
   for (; first < last; first += block) {
     const std::size_t count = std::min(block, last - first);
     detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
     for (std::size_t i = 0; i < count; ++i) {
-      if constexpr (point_masses) tp[i] = r.mass[first + i] * w[i] * w[i];
       tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
+      if constexpr (point_masses) tk[i] += r.mass[first + i] * w[i] * w[i];
       const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
       ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
     }
-    for (std::size_t i = 0; i < count; ++i) {
-      if constexpr (point_masses)
-        if (tp[i] != 0.0) kinetic += tp[i];  // adding +0 (a node without a point mass) keeps the sum's bits
-      kinetic += tk[i];
-      if (!r.open) sum += ts[i];
+    std::size_t i = 0;
+    for (; i + 4 <= count; i += 4) {  // blocks are whole groups of four: the lanes stay node - first mod 4
+      detail::Lanes k, s;
+      std::memcpy(&k, tk + i, sizeof k);
+      std::memcpy(&s, ts + i, sizeof s);
+      kinetic += k;
+      sum += s;
     }
+    for (; i < count; ++i) kinetic[i & 3] += tk[i], sum[i & 3] += ts[i];
   }
-  kinetic_sum = kinetic;
-  bond_sum = sum;
+  kinetic_sum += detail::fold(kinetic);
+  if (!r.open) bond_sum += detail::fold(sum);
 }
 
 }  // namespace
 
 // (1/2)|w|_M^2, and (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 over the bar
 // elements and over the springs, w = (u^b - u^a)/dt, m = (u^b + u^a)/2: the
-// identity (7.1) makes their sum telescope (lambda = 0). Node by node as one
-// sum; a run of equal bonds takes its constants once.
+// identity (7.1) makes their sum telescope (lambda = 0). Run by run of
+// equal bonds (add_run), each taking its constants once.
 void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
   const std::size_t n = line_.nodes();
   const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;

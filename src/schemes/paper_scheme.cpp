@@ -112,9 +112,7 @@ struct LevelPair {
   double sa, sb;
 };
 
-// Four doubles, one lane per (j - 1) mod 4 (GCC's vector extension: one
-// AVX2 register, or two SSE2 ones).
-using Lanes = double __attribute__((vector_size(32)));
+using detail::Lanes;
 
 // The three terms of elements j - 1 for four nodes j (or one, in every
 // lane) from the levels' values at nodes j - 1 (za0, zb0) and j (za1, zb1):
