@@ -663,45 +663,47 @@ double LinePaper::velocity_at(std::size_t j) const {
 
 namespace {
 
-// A run of equal bonds, nodes first..last: the levels (a, b) scaled by sa, sb,
-// the nodes' point masses, the bonds' mass / 3 and stiffness.
+// A run of equal bonds, nodes first..last: the levels (a, b) with their
+// scales, the nodes' point masses, the bonds' mass / 3, stiffness and
+// 4 (alpha - 1/4) (the rate term's weight beside the mean's).
 struct BondRunTerms {
-  const double *za, *zb, *mass;
-  double sa, sb, inv_dt, extra, third, stiffness;
+  detail::LevelPair levels;
+  const double* mass;
+  double third, stiffness, extra;
   bool open;
 };
 
-// The run's kinetic and bond terms into the two sums, a block of nodes at a
-// time: the terms vectorised (half_step_terms.hpp), then summed in four
-// lanes by node - first mod 4, each in node order, folded at the run's end.
+// The run's kinetic and bond sums (half_step_terms.hpp's terms, times dt^2
+// and 4) into the two sums: four elements at a time in four lanes by
+// element - first mod 4, each in node order, folded at the run's end.
 // Without point masses (a bar's inner nodes) their stream is not read.
 template <bool point_masses>
 BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, std::size_t last, double& kinetic_sum,
                                      double& bond_sum) {
-  constexpr std::size_t block = detail::energy_block;
-  detail::Lanes kinetic{}, sum{};
-  double w[block + 1], m[block + 1], tk[block], ts[block];
-  for (; first < last; first += block) {
-    const std::size_t count = std::min(block, last - first);
-    detail::rates_and_means(r.za + first, r.sa, r.zb + first, r.sb, r.inv_dt, count, w, m);
-    for (std::size_t i = 0; i < count; ++i) {
-      tk[i] = r.third * (w[i] * w[i] + w[i] * w[i + 1] + w[i + 1] * w[i + 1]);
-      if constexpr (point_masses) tk[i] += r.mass[first + i] * w[i] * w[i];
-      const double dm = m[i + 1] - m[i], dw = w[i + 1] - w[i];
-      ts[i] = r.stiffness * (dm * dm + r.extra * dw * dw);
+  using detail::Lanes;
+  Lanes kinetic{}, rate{}, mean{}, nodes{};
+  std::size_t e = first;
+  for (; e + 4 <= last; e += 4) {
+    detail::ElementTerms<Lanes> t;
+    detail::element_terms(r.levels, e, t);
+    kinetic += t.kinetic, rate += t.rate, mean += t.mean;
+    if constexpr (point_masses) {
+      Lanes m;
+      detail::load(m, r.mass + e);
+      nodes += m * t.d0 * t.d0;
     }
-    std::size_t i = 0;
-    for (; i + 4 <= count; i += 4) {  // blocks are whole groups of four: the lanes stay node - first mod 4
-      detail::Lanes k, s;
-      std::memcpy(&k, tk + i, sizeof k);
-      std::memcpy(&s, ts + i, sizeof s);
-      kinetic += k;
-      sum += s;
-    }
-    for (; i < count; ++i) kinetic[i & 3] += tk[i], sum[i & 3] += ts[i];
   }
-  kinetic_sum += detail::fold(kinetic);
-  if (!r.open) bond_sum += detail::fold(sum);
+  for (; e < last; ++e) {
+    const detail::LevelPair& p = r.levels;
+    detail::ElementTerms<double> t;
+    detail::element_terms(p, p.za[e], p.zb[e], p.za[e + 1], p.zb[e + 1], t);
+    const std::size_t l = (e - first) & 3;
+    kinetic[l] += t.kinetic, rate[l] += t.rate, mean[l] += t.mean;
+    if constexpr (point_masses) nodes[l] += r.mass[e] * t.d0 * t.d0;
+  }
+  kinetic_sum += r.third * detail::fold(kinetic);
+  if constexpr (point_masses) kinetic_sum += detail::fold(nodes);
+  if (!r.open) bond_sum += r.stiffness * (detail::fold(mean) + r.extra * detail::fold(rate));
 }
 
 }  // namespace
@@ -709,24 +711,25 @@ BARIMPACT_ENERGY_CLONES void add_run(const BondRunTerms& r, std::size_t first, s
 // (1/2)|w|_M^2, and (1/2)|m|_K^2 + (alpha - 1/4)(dt^2/2)|w|_K^2 over the bar
 // elements and over the springs, w = (u^b - u^a)/dt, m = (u^b + u^a)/2: the
 // identity (7.1) makes their sum telescope (lambda = 0). Run by run of
-// equal bonds (add_run), each taking its constants once.
+// equal bonds (add_run), each taking its constants once; the factors 1/dt^2
+// and 1/4 the terms share applied at the end.
 void LinePaper::half_step(const double* za, double sa, const double* zb, double sb, double (&e)[3]) const {
   const std::size_t n = line_.nodes();
-  const double inv_dt = 1.0 / dt_, extra = (alpha_ - 0.25) * dt_ * dt_;
+  const double extra = 4.0 * (alpha_ - 0.25);
   const double* mass = line_.point_mass.data();
   double kinetic = 0.0, strain = 0.0, springs = 0.0;
   for (const BondRun& run : bond_runs_) {
     const Bond& b = line_.bonds[run.first];
-    const BondRunTerms terms{za, zb, mass, sa, sb, inv_dt, extra, b.mass / 3.0, b.stiffness, b.kind == BondKind::open};
+    const BondRunTerms terms{{za, zb, sa, sb}, mass, b.mass / 3.0, b.stiffness, extra, b.kind == BondKind::open};
     double& bond_sum = b.kind == BondKind::element ? strain : springs;
     run.point_masses ? add_run<true>(terms, run.first, run.last, kinetic, bond_sum)
                      : add_run<false>(terms, run.first, run.last, kinetic, bond_sum);
   }
-  const double wl = (sb * zb[n - 1] - sa * za[n - 1]) * inv_dt;
-  kinetic += mass[n - 1] * wl * wl;
-  e[0] = 0.5 * kinetic;
-  e[1] = 0.5 * strain;
-  e[2] = 0.5 * springs;
+  const double dl = sb * zb[n - 1] - sa * za[n - 1];
+  kinetic += mass[n - 1] * dl * dl;
+  e[0] = 0.5 * kinetic / (dt_ * dt_);
+  e[1] = 0.125 * strain;
+  e[2] = 0.125 * springs;
 }
 
 Energies LinePaper::energies() const {

@@ -99,38 +99,16 @@ bool at_rest_inside(const Expression& initial, const std::vector<double>& values
 // each in node order, a block's lanes folded as (0 + 1) + (2 + 3) into the
 // totals block by block. Four lanes are one vector register's adds: the sums
 // cost a few instructions per four elements, where three adds chained node
-// by node held a history row's step back by a fifth. With d = b - a and
-// s = b + a at each node (the levels scaled), element by element:
-//   wm = sum d0 (d0 + d1) + d1^2,  wk = sum (d1 - d0)^2,  mk = sum (s1 - s0)^2,
-// the factors dt and 1/2 of w = d / dt and m = s / 2 left to half_step_of.
+// by node held a history row's step back by a fifth. The sums of the terms
+// of half_step_terms.hpp (wm kinetic, wk rate, mk mean), their factors left
+// to half_step_of.
 struct HalfStepSums {
   double wm = 0.0, wk = 0.0, mk = 0.0;
 };
 
-struct LevelPair {
-  const double *za, *zb;
-  double sa, sb;
-};
-
+using detail::ElementTerms;
 using detail::Lanes;
-
-// The three terms of elements j - 1 for four nodes j (or one, in every
-// lane) from the levels' values at nodes j - 1 (za0, zb0) and j (za1, zb1):
-// T is Lanes or double. By reference: a vector passed by value would change
-// the calling convention between the AVX2 and the default builds.
-template <class T>
-struct ElementTerms {
-  T w, k, m;
-};
-template <class T>
-[[gnu::always_inline]] inline void element_terms(const LevelPair& p, const T& za0, const T& zb0, const T& za1,
-                                                 const T& zb1, ElementTerms<T>& t) {
-  const T a0 = p.sa * za0, b0 = p.sb * zb0, a1 = p.sa * za1, b1 = p.sb * zb1;
-  const T d0 = b0 - a0, d1 = b1 - a1, s0 = b0 + a0, s1 = b1 + a1;
-  t.w = d0 * (d0 + d1) + d1 * d1;
-  t.k = (d1 - d0) * (d1 - d0);
-  t.m = (s1 - s0) * (s1 - s0);
-}
+using detail::LevelPair;
 
 // Elements j - 1 of nodes j0..j1-1 into lanes[sum][(j - 1) mod 4]; j0..j1-1
 // inside one block. Four at a time on unit stride (compiled for AVX2 too),
@@ -139,29 +117,23 @@ BARIMPACT_ENERGY_CLONES void add_elements(const LevelPair& p, std::size_t st, st
                                           double (&lanes)[3][4]) {
   auto one = [&](std::size_t j) {
     ElementTerms<double> t;
-    element_terms(p, p.za[(j - 1) * st], p.zb[(j - 1) * st], p.za[j * st], p.zb[j * st], t);
+    detail::element_terms(p, p.za[(j - 1) * st], p.zb[(j - 1) * st], p.za[j * st], p.zb[j * st], t);
     const std::size_t l = (j - 1) & 3;
-    lanes[0][l] += t.w, lanes[1][l] += t.k, lanes[2][l] += t.m;
+    lanes[0][l] += t.kinetic, lanes[1][l] += t.rate, lanes[2][l] += t.mean;
   };
   std::size_t j = j0;
   if (st == 1) {
     for (; j < j1 && ((j - 1) & 3) != 0; ++j) one(j);
-    ElementTerms<Lanes> sum, t;
-    std::memcpy(&sum.w, lanes[0], sizeof(Lanes));
-    std::memcpy(&sum.k, lanes[1], sizeof(Lanes));
-    std::memcpy(&sum.m, lanes[2], sizeof(Lanes));
+    Lanes kinetic, rate, mean;
+    detail::load(kinetic, lanes[0]), detail::load(rate, lanes[1]), detail::load(mean, lanes[2]);
     for (; j + 4 <= j1; j += 4) {
-      Lanes za0, zb0, za1, zb1;
-      std::memcpy(&za0, p.za + j - 1, sizeof(Lanes));
-      std::memcpy(&zb0, p.zb + j - 1, sizeof(Lanes));
-      std::memcpy(&za1, p.za + j, sizeof(Lanes));
-      std::memcpy(&zb1, p.zb + j, sizeof(Lanes));
-      element_terms(p, za0, zb0, za1, zb1, t);
-      sum.w += t.w, sum.k += t.k, sum.m += t.m;
+      ElementTerms<Lanes> t;
+      detail::element_terms(p, j - 1, t);
+      kinetic += t.kinetic, rate += t.rate, mean += t.mean;
     }
-    std::memcpy(lanes[0], &sum.w, sizeof(Lanes));
-    std::memcpy(lanes[1], &sum.k, sizeof(Lanes));
-    std::memcpy(lanes[2], &sum.m, sizeof(Lanes));
+    std::memcpy(lanes[0], &kinetic, sizeof kinetic);
+    std::memcpy(lanes[1], &rate, sizeof rate);
+    std::memcpy(lanes[2], &mean, sizeof mean);
   }
   for (; j < j1; ++j) one(j);
 }
