@@ -16,8 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "barimpact/case/case.hpp"
 #include "barimpact/model/partitioned_tridiagonal.hpp"
 #include "barimpact/model/tridiagonal.hpp"
+#include "barimpact/schemes/line_newmark.hpp"
+#include "barimpact/schemes/registry.hpp"
 
 namespace {
 
@@ -84,6 +87,26 @@ void BM_Triad(benchmark::State& state) {
   per_node(state, n);
 }
 
+// Newmark's step on BM_Scheme/newmark/elastic's case (a bar of M elements
+// at -1 against an elastic obstacle, dt = h/2), its solve sequential or in
+// `partitions` chunks: where the partitioned step starts to pay.
+void BM_NewmarkStep(benchmark::State& state, std::size_t partitions) {
+  const long long m = state.range(0);
+  const auto c = barimpact::Case::from_string(
+      fmt::format("[bar]\nelements = {}\n[initial]\nvelocity = \"-1\"\n[obstacle]\nkind = \"elastic\"\n[time]\n"
+                  "scheme = \"newmark\"\nstep = {}\nend = 1\n",
+                  m, 0.5 / static_cast<double>(m)));
+  auto s = barimpact::make_scheme(c);
+  auto& newmark = dynamic_cast<barimpact::LineNewmark&>(*s);
+  if (newmark.use_partitions(partitions) != partitions) state.SkipWithError("the line cannot take the chunks asked");
+  s->start();
+  for (auto _ : state) {
+    s->advance();
+    benchmark::DoNotOptimize(s->end_displacement());
+  }
+  per_node(state, s->nodes());
+}
+
 // The partitions the partitioned solve takes by default in this benchmark
 // (the fastest of the sweep below on the machine measured).
 constexpr std::size_t best_partitions = 8;
@@ -98,6 +121,11 @@ const bool registered = [] {
   for (std::size_t p : {4, 16, 32, 64, 256}) {
     const std::string name = fmt::format("BM_TridiagonalSolve/partitioned/P{}", p);
     benchmark::RegisterBenchmark(name.c_str(), BM_PartitionedSolve, p)->RangeMultiplier(10)->Range(10'000, 1'000'000);
+  }
+  for (std::size_t p : {std::size_t{0}, best_partitions}) {
+    const std::string name = p == 0 ? "BM_NewmarkStep/sequential" : "BM_NewmarkStep/partitioned";
+    auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_NewmarkStep, p);
+    for (long long m : {500, 1000, 2000, 5000, 10'000, 100'000, 1'000'000}) b->Arg(m);
   }
   // 10^7 elements: three arrays of 80 MB, beyond the last-level cache.
   benchmark::RegisterBenchmark("BM_Triad", BM_Triad)->RangeMultiplier(10)->Range(10'000, 10'000'000);
