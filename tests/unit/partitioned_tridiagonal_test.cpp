@@ -10,6 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "../support/line_parts.hpp"
+#include "../support/line_runs.hpp"
+#include "barimpact/case/line_builder.hpp"
+#include "barimpact/model/line.hpp"
 #include "barimpact/model/tridiagonal.hpp"
 
 namespace barimpact {
@@ -126,6 +130,51 @@ TEST(PartitionedTridiagonal, MatchesTheSequentialSolveOnDiagonallyDominantSystem
 
 TEST(PartitionedTridiagonal, MatchesTheSequentialSolveOnMassPlusStiffness) {
   against_sequential(mass_plus_stiffness, 2);
+}
+
+// The implicit schemes' own matrices on a line of welded bars of different
+// materials and meshes with a point mass: newmark's M + gamma dt C + beta
+// dt^2 K, moreau-jean's M + theta dt C + theta^2 dt^2 K, paper's A =
+// M / dt^2 + alpha S + D / (2 dt) (lambda = 0.05, alpha = 1/4),
+// mass-redistribution's 2 M / dt^2 + K / 2 and paoli-schatzman's M, at a
+// step near and one far beyond the line's stable explicit step. Tolerance
+// as above.
+TEST(PartitionedTridiagonal, MatchesTheSequentialSolveOnTheSchemesMatrices) {
+  BodyData soft = testing::bar("soft", 0.5, 70), stiff = testing::bar("stiff", 0.3, 130);
+  soft.viscosity = 0.02;
+  stiff.modulus = 50.0;
+  stiff.density = 0.2;
+  Case c = testing::line_case(
+      {soft, stiff, testing::mass("ram", 3.0, 0.0), testing::bar("tail", 1.0, 41)},
+      {testing::joint("soft", "stiff", JointLaw::welded), testing::joint("stiff", "ram", JointLaw::welded),
+       testing::joint("ram", "tail", JointLaw::welded)},
+      1e-3, 1.0);
+  const Line line = build_line(c);
+  const Tridiagonal m = line.mass(true), k = line.stiffness(), visc = line.viscosity();
+  std::mt19937 rng(6);
+  for (double dt : {1e-3, 1e-1}) {
+    const double lambda = 0.05, alpha = 0.25, theta = 0.6;
+    const Tridiagonal s = Tridiagonal::combine(1.0, Tridiagonal::combine(lambda * lambda, m, 1.0, k), lambda, visc);
+    const Tridiagonal d = Tridiagonal::combine(2.0 * lambda, m, 1.0, visc);
+    const std::vector<Tridiagonal> matrices = {
+        Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, m, 0.5 * dt, visc), 0.25 * dt * dt, k),
+        Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, m, theta * dt, visc), theta * theta * dt * dt, k),
+        Tridiagonal::combine(1.0, Tridiagonal::combine(1.0 / (dt * dt), m, alpha, s), 0.5 / dt, d),
+        Tridiagonal::combine(2.0 / (dt * dt), m, 0.5, k), m};
+    for (const Tridiagonal& a : matrices)
+      for (bool fix_last : {false, true})
+        for (std::size_t p : partition_counts) {
+          const std::vector<double> b = random_rhs(a.size(), rng);
+          std::vector<double> expected = b, x = b;
+          FactoredTridiagonal(a, fix_last).solve(expected);
+          PartitionedTridiagonal solver(a, fix_last, p);
+          ASSERT_EQ(solver.partitions(), p);
+          solver.solve(x);
+          const double tolerance = 4.0 * condition(a, fix_last) * eps * max_abs(expected);
+          for (std::size_t i = 0; i < a.size(); ++i)
+            ASSERT_NEAR(x[i], expected[i], tolerance) << "dt " << dt << ", P " << p << ", row " << i;
+        }
+  }
 }
 
 // One chunk is the sequential solve, operation for operation: the same bits.
