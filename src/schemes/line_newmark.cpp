@@ -92,6 +92,20 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   soil_ = SoilIteration(line_, a, held_, beta_ * dt_ * dt_, gamma_ / (beta_ * dt_));  // and v^{n+1} by gamma dt A^{-1}
   if (soil_.active()) soil_load_.assign(n, 0.0);  // the misfit refuses elastic-plastic bodies with it
   if (soil_.active() || plastic_iteration_.active()) kept_.keep(state());  // primed: keeping never allocates
+  if (n >= partition_threshold) use_partitions(default_partitions);
+}
+
+std::size_t LineNewmark::use_partitions(std::size_t p) {
+  partitioned_ = PartitionedTridiagonal();
+  // One block with no far link: A is the whole line's, and every link acts
+  // at node 0, a force at row 0 that the reduced system takes.
+  const bool can = blocks_.size() == 1 && blocks_.front().far_link == none && held_.empty() && !soil_.active() &&
+                   !plastic_iteration_.active();
+  if (!can || p == 0) return 0;
+  partitioned_ = PartitionedTridiagonal(
+      Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, mass_, gamma_ * dt_, visc_), beta_ * dt_ * dt_, stiff_),
+      false, p);
+  return partitioned_.partitions();
 }
 
 // A's blocks: rows joined by element or spring bonds (a link's bond is
@@ -226,7 +240,7 @@ void LineNewmark::solve_links() {
   for (std::size_t i = 0; i < links; ++i) {
     const Link& l = line_.links[i];
     double free = 0.0;  // h_i . a_free
-    if (l.b != Link::ground && !line_.fixed(l.b)) free += y[l.b] * inv_pivot_[l.b];
+    if (l.b != Link::ground && !line_.fixed(l.b)) free += partitioned() ? near_free_ : y[l.b] * inv_pivot_[l.b];
     if (l.a != Link::ground && !line_.fixed(l.a)) free -= a_free_last_[i];
     c_free_[i] = -(line_.opening(i, u_.data()) + bdt2 * free);
     rate_free_[i] = -(line_.opening(i, v_.data()) - l.gap + gdt * free);
@@ -234,7 +248,11 @@ void LineNewmark::solve_links() {
   penalty_.solve(c_free_.data(), rate_free_.data(), c_max_.data(), force_.data());
   for (std::size_t i = 0; i < links; ++i) {
     const Link& l = line_.links[i];
-    if (l.b != Link::ground && !line_.fixed(l.b)) rhs_[l.b] += force_[i];
+    if (l.b == Link::ground || line_.fixed(l.b)) continue;
+    if (partitioned())  // l.b is node 0
+      near_free_ = partitioned_.add_end_force(rhs_, force_[i]);
+    else
+      rhs_[l.b] += force_[i];
   }
 }
 
@@ -263,17 +281,93 @@ void LineNewmark::advance_elastic() {
     soil_.add_load(soil_load_.data());
     sweep_load_ = soil_load_.data();
   }
-  if (loaded || soil_.active())
-    viscous_ ? forward<true, true>(t) : forward<true, false>(t);
-  else
-    viscous_ ? forward<false, true>(t) : forward<false, false>(t);
-  solve_links();
-  if (loaded)
-    viscous_ ? backward<true, true>() : backward<true, false>();
-  else
-    viscous_ ? backward<false, true>() : backward<false, false>();
+  if (partitioned()) {
+    step_partitioned(loaded);
+  } else {
+    if (loaded || soil_.active())
+      viscous_ ? forward<true, true>(t) : forward<true, false>(t);
+    else
+      viscous_ ? forward<false, true>(t) : forward<false, false>(t);
+    solve_links();
+    if (loaded)
+      viscous_ ? backward<true, true>() : backward<true, false>();
+    else
+      viscous_ ? backward<false, true>() : backward<false, false>();
+  }
   ++n_;
   book_links(t);
+}
+
+// The partitioned step: r alone, the chunks' eliminations (x_0 free), the
+// links at node 0, the back substitution, then a, u, v and the budget.
+void LineNewmark::step_partitioned(bool loaded) {
+  const double t = static_cast<double>(n_ + 1) * dt_;
+  if (!viscous_) {
+    loaded ? step_elastic<true>(t) : step_elastic<false>(t);
+    return;
+  }
+  if (loaded)
+    viscous_ ? forward<true, true, false>(t) : forward<true, false, false>(t);
+  else
+    viscous_ ? forward<false, true, false>(t) : forward<false, false, false>(t);
+  near_free_ = partitioned_.eliminate(rhs_);
+  solve_links();
+  partitioned_.substitute(rhs_);
+  if (loaded)
+    viscous_ ? backward<true, true, true>() : backward<true, false, true>();
+  else
+    viscous_ ? backward<false, true, true>() : backward<false, false, true>();
+}
+
+// The partitioned step without viscosity, its passes as loops a compiler
+// vectorises: the predictors, r (each bond's tension formed for both its
+// rows), the solve, then a, u, v; the operations of forward() and
+// backward_block() row by row, hence the same bits as the viscous form.
+template <bool loaded>
+void LineNewmark::step_elastic(double t) {
+  const std::size_t n = line_.nodes(), last = n - 1;
+  const double dt = dt_, c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
+  const double bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
+  double* __restrict u = u_.data();
+  double* __restrict v = v_.data();
+  double* __restrict a = acc_.data();
+  double* __restrict y = rhs_.data();
+  const double* __restrict k = stiff_bond_.data();
+  const double* __restrict f = sweep_load_;
+  const double* __restrict f_old = load_old_.data();
+  for (int e = 0; e < 2; ++e) {
+    const std::size_t j = e == 0 ? 0 : last;
+    end_old_[e][0] = v[j];
+    end_old_[e][1] = a[j];
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    u[j] += dt * v[j] + c1 * a[j];
+    v[j] += c2 * a[j];
+  }
+  for (std::size_t j = 1; j < last; ++j)
+    y[j] = (loaded ? f[j] : 0.0) + k[j] * (u[j + 1] - u[j]) - k[j - 1] * (u[j] - u[j - 1]);
+  y[0] = end_row(0, (loaded ? f[0] : 0.0) + k[0] * (u[1] - u[0]), t);
+  y[last] = end_row(last, (loaded ? f[last] : 0.0) - k[last - 1] * (u[last] - u[last - 1]), t);
+  near_free_ = partitioned_.eliminate(rhs_);
+  solve_links();
+  partitioned_.substitute(rhs_);
+  double work = 0.0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const double anew = y[j];
+    if constexpr (loaded) {
+      const double vold = v[j] - c2 * a[j];
+      work += (dt * vold + c1 * a[j] + bdt2 * anew) * 0.5 * (f_old[j] + f[j]);
+    }
+    u[j] += bdt2 * anew;
+    v[j] += gdt * anew;
+    a[j] = anew;
+  }
+  step_work_ = work;
+  step_dissipation_ = 0.0;
+  for (int e = 0; e < 2; ++e) {
+    const std::size_t j = e == 0 ? 0 : last;
+    du_end_[e] = dt * end_old_[e][0] + c1 * end_old_[e][1] + bdt2 * a[j];
+  }
 }
 
 void LineNewmark::advance_soil() {
@@ -291,7 +385,8 @@ void LineNewmark::advance_soil() {
 // bond below), r_j = F_j + T_j - T_{j-1} with T_j = k_j (u^*_{j+1} - u^*_j)
 // + c_j (v^*_{j+1} - v^*_j), y_j = r_j - coupling_j y_{j+1}. The end rows
 // take their end forces or their held accelerations.
-template <bool loaded, bool viscous>
+// Without `eliminated`, y is r itself (the partitioned solve eliminates).
+template <bool loaded, bool viscous, bool eliminated>
 void LineNewmark::forward(double t) {
   const std::size_t n = line_.nodes(), last = n - 1;
   const double dt = dt_, c1 = (0.5 - beta_) * dt * dt, c2 = (1.0 - gamma_) * dt;
@@ -335,10 +430,13 @@ void LineNewmark::forward(double t) {
     const double above = below;
     predict(j - 1);
     below = tension(j - 1);
-    carry = load(j) + above - below - cp[j] * carry;
+    if constexpr (eliminated)
+      carry = load(j) + above - below - cp[j] * carry;
+    else
+      carry = load(j) + above - below;
     y[j] = carry;
   }
-  y[0] = end_row(0, load(0) + below, t) - cp[0] * carry;
+  y[0] = end_row(0, load(0) + below, t) - (eliminated ? cp[0] * carry : 0.0);
 }
 
 // An end node's row: its right-hand side with its end force, or a held
@@ -361,15 +459,15 @@ double LineNewmark::end_row(std::size_t j, double r, double t) const {
 // step's load work and viscous dissipation from the levels at t_n,
 // recovered: v^n = v^* - (1 - gamma) dt a^n, u^{n+1} - u^n = dt v^n +
 // (1/2 - beta) dt^2 a^n + beta dt^2 a^{n+1}.
-template <bool loaded, bool viscous>
+template <bool loaded, bool viscous, bool solved>
 void LineNewmark::backward() {
   double x = 0.0, dw = 0.0, dd = 0.0, vbar_below = 0.0;
   for (const Block& b : blocks_) {
     const double p = b.far_link == none ? 0.0 : force_[b.far_link];
     if (p != 0.0)
-      backward_block<loaded, viscous, true>(b.first, b.last, p, x, dw, dd, vbar_below);
+      backward_block<loaded, viscous, true, solved>(b.first, b.last, p, x, dw, dd, vbar_below);
     else
-      backward_block<loaded, viscous, false>(b.first, b.last, 0.0, x, dw, dd, vbar_below);
+      backward_block<loaded, viscous, false, solved>(b.first, b.last, 0.0, x, dw, dd, vbar_below);
   }
   step_work_ = dw;
   step_dissipation_ = dd;
@@ -382,7 +480,7 @@ void LineNewmark::backward() {
   }
 }
 
-template <bool loaded, bool viscous, bool pushed>
+template <bool loaded, bool viscous, bool pushed, bool solved>
 void LineNewmark::backward_block(std::size_t first, std::size_t last, double p, double& x, double& dw, double& dd,
                                  double& vbar_below) {
   const double dt = dt_, bdt2 = beta_ * dt * dt, gdt = gamma_ * dt;
@@ -399,7 +497,10 @@ void LineNewmark::backward_block(std::size_t first, std::size_t last, double p, 
   const double* __restrict f = load_.data();
   double work = 0.0, loss = 0.0, vb = vbar_below;
   for (std::size_t j = first; j <= last; ++j) {
-    x = y[j] * inv[j] - lo[j] * x;
+    if constexpr (solved)
+      x = y[j];
+    else
+      x = y[j] * inv[j] - lo[j] * x;
     double anew = x;
     if constexpr (pushed) anew -= p * g[j];
     const double vold = v[j] - c2 * a[j];

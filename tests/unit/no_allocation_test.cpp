@@ -15,6 +15,7 @@
 #include "../support/line_parts.hpp"
 #include "../support/run_case.hpp"
 #include "barimpact/case/line_builder.hpp"
+#include "barimpact/model/partitioned_tridiagonal.hpp"
 #include "barimpact/run/blow.hpp"
 #include "barimpact/run/observer.hpp"
 #include "barimpact/schemes/registry.hpp"
@@ -320,6 +321,24 @@ TEST(TimeLoop, DieselBlowNeverAllocates) {
   const Counted r = count_loop(c, nullptr, &blow);
   EXPECT_EQ(r.allocations, 0);
   EXPECT_GT(blow.summary().next_stroke, 0.0);
+}
+
+// The partitioned tridiagonal solve's workspace is sized when it is
+// factored: its phases allocate nothing (a scheme calls them every step).
+TEST(TimeLoop, PartitionedTridiagonalSolveNeverAllocates) {
+  const std::size_t n = 1000;
+  const Tridiagonal a{std::vector<double>(n, 3.0), std::vector<double>(n - 1, -1.0)};
+  PartitionedTridiagonal solver(a, true, 16);
+  std::vector<double> x(n, 1.0);
+  allocations = 0;
+  counting = true;
+  solver.solve(x);
+  solver.eliminate(x);
+  solver.add_end_force(x, 2.0);
+  solver.substitute(x);
+  counting = false;
+  EXPECT_EQ(allocations.load(), 0);
+  EXPECT_EQ(solver.partitions(), 16u);  // the chunks' sweeps ran, not one sequential sweep
 }
 
 }  // namespace

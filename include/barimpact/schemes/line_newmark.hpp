@@ -32,10 +32,17 @@
 // Smith's soil likewise: its forces at t_{n+1} a load found by the Newton
 // iteration of soil_iteration.hpp (the toe's link then has no law in the
 // active set), booked apart from W_ext.
+// A large line of one block, free of held rows and links but at x = 0,
+// solves A in P chunks side by side (model/partitioned_tridiagonal.hpp):
+// the predictors and r are passes of their own (vectorised loops without
+// viscosity), the chunks' eliminations give the free acceleration at node
+// 0, the near link's force enters through the reduced system, and a, u, v
+// follow the back substitution in a pass of their own.
 #pragma once
 
 #include <vector>
 
+#include "barimpact/model/partitioned_tridiagonal.hpp"
 #include "barimpact/schemes/line_scheme.hpp"
 #include "barimpact/schemes/penalty_links.hpp"
 #include "barimpact/schemes/soil_iteration.hpp"
@@ -53,9 +60,25 @@ class LineNewmark final : public LineScheme {
   [[nodiscard]] Energies energies() const override;
   [[nodiscard]] bool finite() const override;
   [[nodiscard]] double soil_slip_work() const override;
+  /// The nodes from which a line that can (one block, no held rows, no
+  /// soil or plasticity, links only at node 0) takes the partitioned solve.
+  /// It is faster from 100 nodes (BM_NewmarkStep: 2.9 against 3.6 ns per
+  /// node-step); below 2000 the sequential solve stays, so that the pinned
+  /// examples keep their bits.
+  static constexpr std::size_t partition_threshold = 2000;
+  /// The chunks the solve takes by default (bench/tridiagonal_benchmark.cpp).
+  static constexpr std::size_t default_partitions = 8;
+  /// Solve A in `p` chunks from now on (0: the sequential solve), where the
+  /// line can; returns the chunks used. For tests and benchmarks: the
+  /// constructor chooses by the line's size.
+  std::size_t use_partitions(std::size_t p);
 
  private:
   void advance_elastic();
+  void step_partitioned(bool loaded);
+  template <bool loaded>
+  void step_elastic(double t);
+  [[nodiscard]] bool partitioned() const { return partitioned_.size() > 0; }
   /// A step with Smith's soil: taken again from level n until the soil's
   /// forces at t_{n+1} hold (soil_iteration.hpp).
   void advance_soil();
@@ -64,13 +87,13 @@ class LineNewmark final : public LineScheme {
   void build_blocks();
   /// The free accelerations at the links' nodes, then their forces at t_{n+1}.
   void solve_links();
-  template <bool loaded, bool viscous>
+  template <bool loaded, bool viscous, bool eliminated = true>
   void forward(double t);
   /// An end node's right-hand side r, or a held end's prescribed acceleration.
   [[nodiscard]] double end_row(std::size_t j, double r, double t) const;
-  template <bool loaded, bool viscous>
+  template <bool loaded, bool viscous, bool solved = false>
   void backward();
-  template <bool loaded, bool viscous, bool pushed>
+  template <bool loaded, bool viscous, bool pushed, bool solved>
   void backward_block(std::size_t first, std::size_t last, double p, double& x, double& dw, double& dd,
                       double& vbar_below);
   void book_links(double t);
@@ -91,10 +114,12 @@ class LineNewmark final : public LineScheme {
   std::vector<double> last_weight_;    // x_last = sum_j last_weight_j y_j on a block ending in a link
   std::vector<double> last_response_;  // A^{-1} e_last on that block
   std::vector<Block> blocks_;
-  std::vector<std::size_t> held_;  // nodes held by their ends
-  PenaltyLinks penalty_;           // the links' laws and Delassus matrix W_ij = h_i . A^{-1} h_j
-  SoilIteration soil_;             // Smith's toe and shaft, out of penalty_
-  std::vector<double> soil_load_;  // F^{n+1} + g^k, what the first sweep reads while the soil acts
+  std::vector<std::size_t> held_;       // nodes held by their ends
+  PartitionedTridiagonal partitioned_;  // A in chunks, when partitioned_.size() > 0
+  double near_free_ = 0.0;              // its x_0 after the chunks' eliminations
+  PenaltyLinks penalty_;                // the links' laws and Delassus matrix W_ij = h_i . A^{-1} h_j
+  SoilIteration soil_;                  // Smith's toe and shaft, out of penalty_
+  std::vector<double> soil_load_;       // F^{n+1} + g^k, what the first sweep reads while the soil acts
   const double* sweep_load_ = nullptr;
   std::vector<double> u_, v_, acc_, rhs_, work_;
   std::vector<double> load_old_, p_old_, c_old_, c_free_, rate_free_, a_free_last_;
