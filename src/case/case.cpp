@@ -236,6 +236,23 @@ void read_bar(const Reader& r, OneBar& c) {
     r.fail("obstacle", "viscosity", fmt::format("must be >= 0 (got {})", c.obstacle.viscosity));
 }
 
+// time.partitions: "auto" (the scheme's choice) or a count of chunks.
+void read_partitions(const Reader& r, TimeData& time) {
+  constexpr long long most = 4096;  // far past any gain: the reduced system is solved in sequence
+  const auto* node = r.node("time", "partitions");
+  if (node == nullptr) return;
+  if (node->is_string()) {
+    if (node->as_string()->get() != "auto")
+      r.fail("time", "partitions",
+             fmt::format("must be \"auto\" or a whole number of chunks (got \"{}\")", node->as_string()->get()));
+    time.partitions = 0;
+    return;
+  }
+  const long long p = r.integer("time", "partitions", 0);
+  if (p < 1 || p > most) r.fail("time", "partitions", fmt::format("must be \"auto\" or in [1, {}] (got {})", most, p));
+  time.partitions = static_cast<int>(p);
+}
+
 void read_time(const Reader& r, Case& c) {
   TimeData& time = c.time;
   time.end = r.number("time", "end", time.end);
@@ -266,6 +283,7 @@ void read_time(const Reader& r, Case& c) {
     r.fail("time", "theta", fmt::format("must be in [1/2, 1] (got {})", time.theta));
   if (time.restitution < 0 || time.restitution > 1)
     r.fail("time", "restitution", fmt::format("must be in [0, 1] (got {})", time.restitution));
+  read_partitions(r, time);
   const auto& names = scheme_names;
   if (std::find(names.begin(), names.end(), time.scheme) == names.end())
     r.fail("time", "scheme", fmt::format("must be one of {} (got \"{}\")", fmt::join(names, ", "), time.scheme));
@@ -1284,9 +1302,10 @@ std::string Case::to_toml() const {
                                              : std::string();
   out += fmt::format(
       "[time]\nend = {}\n{}scheme = {}\nalpha = {}\nlambda = {}\nbeta = {}\ngamma = {}\ntheta = {}\n"
-      "restitution = {}\n\n",
+      "restitution = {}\n{}\n",
       toml_float(time.end), step, toml_string(time.scheme), toml_float(time.alpha), toml_float(time.lambda),
-      toml_float(time.beta), toml_float(time.gamma), toml_float(time.theta), toml_float(time.restitution));
+      toml_float(time.beta), toml_float(time.gamma), toml_float(time.theta), toml_float(time.restitution),
+      time.partitions > 0 ? fmt::format("partitions = {}\n", time.partitions) : std::string());
   std::string times;
   for (double t : output.fields_at) times += (times.empty() ? "" : ", ") + toml_float(t);
   out += fmt::format("[output]\nevery = {}\nfields_at = [{}]\nformat = {}\ncompression = {}\n\n", output.every, times,

@@ -45,7 +45,7 @@ inline const std::array<SectionKeys, 12>& contract() {
         "cylinder_area", "compression_length", "chamber_length", "combustion_pressure", "max_stroke",
         "impact_stiffness", "impact_restitution"}},
       {"drive", {"pile", "perimeter", "toe_area", "depths", "refusal", "blow_rate", "blows", "depth"}},
-      {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution"}},
+      {"time", {"end", "step", "scheme", "alpha", "lambda", "beta", "gamma", "theta", "restitution", "partitions"}},
       {"output", {"every", "fields_at", "format", "compression"}},
       {"units", {"system"}},
   }};

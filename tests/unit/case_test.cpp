@@ -241,6 +241,10 @@ TEST(Case, RefusesValuesOutsideTheirRange) {
   EXPECT_REFUSED("[time]\ngamma = 0.4", "time.gamma", "[1/2, 1]");
   EXPECT_REFUSED("[time]\ntheta = 0.3", "time.theta", "[1/2, 1]");
   EXPECT_REFUSED("[time]\nrestitution = 1.5", "time.restitution", "[0, 1]");
+  EXPECT_REFUSED("[time]\npartitions = 0", "time.partitions", "[1, 4096]");
+  EXPECT_REFUSED("[time]\npartitions = 5000", "time.partitions", "[1, 4096]");
+  EXPECT_REFUSED("[time]\npartitions = \"many\"", "time.partitions", "\"auto\"");
+  EXPECT_REFUSED("[time]\npartitions = 2.5", "time.partitions", "integer");
   EXPECT_REFUSED("[bar]\nfar_end = \"clamped\"\n[initial]\nvelocity = \"-1\"", "initial.velocity", "clamped end");
 }
 

@@ -168,6 +168,10 @@ struct TimeData {
   double gamma = 0.5;        ///< Newmark gamma
   double theta = 0.5;        ///< Moreau-Jean theta
   double restitution = 0.0;  ///< e: Paoli-Schatzman, Moreau-Jean
+  /// time.partitions: the chunks an implicit scheme's partitioned solve
+  /// takes on a large line (model/partitioned_tridiagonal.hpp); 1 the
+  /// sequential solve, 0 ("auto") chosen by the scheme from the line's size.
+  int partitions = 0;
 };
 
 /// The names time.scheme takes, in the order the table of schemes lists them

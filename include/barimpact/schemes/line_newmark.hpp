@@ -70,8 +70,10 @@ class LineNewmark final : public LineScheme {
   static constexpr std::size_t default_partitions = 8;
   /// Solve A in `p` chunks from now on (0: the sequential solve), where the
   /// line can; returns the chunks used. For tests and benchmarks: the
-  /// constructor chooses by the line's size.
+  /// constructor takes time.partitions, else chooses by the line's size.
   std::size_t use_partitions(std::size_t p);
+  /// The chunks the solve takes (0: the sequential solve).
+  [[nodiscard]] std::size_t partitions() const { return partitioned_.partitions(); }
 
  private:
   void advance_elastic();
