@@ -209,6 +209,89 @@ return map's pass over every element.
     return text
 
 
+# The schemes with a partitioned step (issue 30): (label, sequential and
+# partitioned benchmarks, bytes a node-step moves through memory in the
+# partitioned step, counted from its loops: 8 per double read or written).
+#   the solve alone: elimination reads x, coupling, writes x (24); back
+#     substitution reads x, 1/pivot, coupling, writes x (32): 56;
+#   newmark (unloaded): the predictor reads u, v, a, writes u, v (40); r
+#     reads u and the bond's stiffness, writes r (24); the solve (56); the
+#     update reads r, u, v, writes u, v, a (48): 168.
+PARTITIONED = [
+    ("the solve alone", "BM_TridiagonalSolve/sequential", "BM_TridiagonalSolve/partitioned", 56),
+    ("newmark's step", "BM_NewmarkStep/sequential", "BM_NewmarkStep/partitioned", 168),
+]
+
+
+def partitioned_section(samples):
+    med = {k: statistics.median(v) for k, v in samples.items()}
+    sizes = sorted({m for (n, m) in med if n == "BM_TridiagonalSolve/sequential"})
+    if not sizes:
+        return ""
+    triad = {m: 24.0 / med[("BM_Triad", m)] for (n, m) in med if n == "BM_Triad"}  # GB/s: 24 bytes per element
+    memory = triad[max(triad)]  # the largest triad, past the last-level cache
+    rows = []
+    for label, seq, part, moved in PARTITIONED:
+        for m in sorted({m for (n, m) in med if n == part}):
+            if m < 10_000:
+                continue
+            s, p = med[(seq, m)], med[(part, m)]
+            bandwidth = triad.get(m, memory)
+            floor = moved / bandwidth
+            rows.append(f"| {label} | {m:>9,} | {s:.2f} | {p:.2f} | {s / p:.2f}x | {moved} | {bandwidth:.0f} | "
+                        f"{floor:.2f} | {p / floor:.1f} |")
+    newmark_small = [f"{m:,}: {med[('BM_NewmarkStep/sequential', m)]:.2f} against "
+                     f"{med[('BM_NewmarkStep/partitioned', m)]:.2f}"
+                     for m in sorted({m for (n, m) in med if n == "BM_NewmarkStep/partitioned"}) if m < 10_000]
+    sweep = []
+    for m in sizes:
+        cells = sorted((int(n.rsplit("/P", 1)[1]), v) for (n, mm), v in med.items()
+                       if mm == m and n.startswith("BM_TridiagonalSolve/partitioned/P"))
+        cells.append((8, med[("BM_TridiagonalSolve/partitioned", m)]))
+        sweep.append(f"| {m:>9,} | " + " | ".join(f"{v:.2f}" for _, v in sorted(cells)) + " |")
+    widths = sorted({int(n.rsplit("/P", 1)[1]) for (n, _) in med if n.startswith("BM_TridiagonalSolve/partitioned/P")}
+                    | {8})
+    return f"""## The partitioned solve: past the recurrence's latency
+
+The implicit schemes' prefactored tridiagonal solve runs one chain of
+multiply-subtracts from node to node: its latency, not the machine's
+arithmetic or memory, sets their speed. Wang's partition method
+(model/partitioned_tridiagonal.hpp) cuts the line into P chunks whose
+chains run side by side (eight at a time, in registers), joined by a
+reduced system of the P - 1 separators. Nanoseconds per node-step, same
+run; the limit is the bytes a node-step moves through memory (counted from
+the loops, bench/report.py) over the triad's bandwidth at the same M
+(bench/tridiagonal_benchmark.cpp's BM_Triad; {memory:.0f} GB/s at
+{max(triad):,} elements, past the last-level cache):
+
+| step | M | sequential (ns) | partitioned (ns) | gain | bytes | triad (GB/s) | limit (ns) | partitioned / limit |
+|---|---:|---:|---:|---:|---:|---:|---:|---:|
+{chr(10).join(rows)}
+
+Newmark takes the partitioned step on a line of one block without held
+rows, soil or plasticity from 2000 nodes (8 chunks; `time.partitions`
+sets them, 1 the sequential solve); it pays from a hundred nodes (ns per
+node-step, sequential against partitioned, M = {"; ".join(newmark_small)}), and
+the threshold keeps the pinned examples on the sequential solve, bit for
+bit. Its results are the sequential step's within 3e-15 of U (measured,
+tests/unit/line_newmark_test.cpp). Target (issue 30): 2.5x the sequential
+step at M = 10^4..10^6 for every implicit scheme: the solve alone passes it;
+Newmark's step, whose predictor, right-hand side and update are passes of
+their own beside the solve's two, does not (the last column: how far each
+is from moving its bytes at the triad's rate; below 1 where its arrays stay
+in a cache level the triad's three overflow, or the triad's written array is
+read before it is written). The other implicit schemes still take the
+sequential solve.
+
+The solve alone against P, ns per node (P = 8 is the default):
+
+| M | {" | ".join(f"P = {w}" for w in widths)} |
+|---:|{"---:|" * len(widths)}
+{chr(10).join(sweep)}
+
+"""
+
+
 def pile_section(samples, bearing):
     sizes = sorted({m for n, m in samples if n == "BM_Pile/smith-soil"})
     if not sizes:
@@ -582,7 +665,7 @@ solves from both ends at once (two independent chains). Interior rows use
 the uniform mesh's constant stencils, so a step streams only its state and
 two factor arrays.
 
-{line_section(samples)}{plastic_section(samples)}{pile_section(samples, bearing)}{large}{whole}## Sweeps: SIMD batches, threads, MPI
+{line_section(samples)}{plastic_section(samples)}{partitioned_section(samples)}{pile_section(samples, bearing)}{large}{whole}## Sweeps: SIMD batches, threads, MPI
 
 {sweep}
 
