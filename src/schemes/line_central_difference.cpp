@@ -203,7 +203,7 @@ void LineCentralDifference::hold_ends(const double* u, double* up, double t) con
   }
 }
 
-void LineCentralDifference::project(double* up, double force_scale) {
+inline void LineCentralDifference::project(double* up, double force_scale) {
   if (!has_rigid_) return;
   for (std::size_t i : rigid_links_) rigid_[i] = 0.0;  // the others' stay 0 (not std::fill: a call to memset)
   const double scale = inv_dt2_;
