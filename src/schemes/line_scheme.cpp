@@ -45,11 +45,6 @@ LineScheme::LineScheme(const Case& c, Line line) : line_(std::move(line)), dt_(c
   if (line_.far.kind == EndKind::velocity) v0_[line_.far.node] = far_value(0.0);
 }
 
-void LineScheme::load_at(double t) {
-  if (load_zero_ || (load_steady_ && t > 0.0)) return;  // zero, or computed at t = 0
-  load_into(t, load_);
-}
-
 void LineScheme::load_into(double t, std::vector<double>& f) {
   if (body_zero_)
     std::fill(f.begin(), f.end(), 0.0);
@@ -134,53 +129,10 @@ double LineScheme::link_opening(std::size_t i) const {
          l.gap;
 }
 
-void LineScheme::add_link_force(std::size_t i, double p, double* r) const {
-  const Link& l = line_.links[i];
-  if (l.a != Link::ground) r[l.a] -= p;
-  if (l.b != Link::ground) r[l.b] += p;
-}
-
-void LineScheme::penalty_forces(const double* u, const double* u_old, double* r) {
-  const double inv_dt = inv_dt_;
-  for (std::size_t i = 0; i < line_.links.size(); ++i) {
-    const Link& l = line_.links[i];
-    if (l.law.rigid()) {
-      force_[i] = 0.0;
-      continue;
-    }
-    const double c = -line_.opening(i, u);
-    const double rate = (line_.opening(i, u_old) - line_.opening(i, u)) * inv_dt;  // dc/dt, backward
-    if (c > c_max_[i]) c_max_[i] = c;
-    force_[i] = l.law.force(c, rate, c_max_[i]);
-    if (force_[i] != 0.0) add_link_force(i, force_[i], r);
-  }
-}
-
 double LineScheme::link_energy(const double* u) const {
   double e = 0.0;
   for (std::size_t i = 0; i < line_.links.size(); ++i) e += line_.links[i].law.energy(-line_.opening(i, u), c_max_[i]);
   return e;
-}
-
-void LineScheme::book_link_work(const double* um, const double* u, const double* up, double& work, double& viscous,
-                                double& contact) const {
-  for (std::size_t i = 0; i < line_.links.size(); ++i) {
-    const Link& l = line_.links[i];
-    const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
-    if (l.law.rigid()) contact += force_[i] * dcomp;
-    book_link_damping(i, -line_.opening(i, u), dcomp, work, viscous, contact);
-  }
-}
-
-void LineScheme::book_link_damping(std::size_t i, double c, double motion, double& work, double& viscous,
-                                   double& contact) const {
-  const ContactLaw& law = line_.links[i].law;
-  if (law.kind == LawKind::diesel) {  // the gas pushes the faces apart: its work is -p dc
-    work -= law.gas_force(c, c_max_[i]) * motion;
-    return;
-  }
-  const double damping = law.damping_part(force_[i], c, c_max_[i]) * motion;
-  (law.kind == LawKind::smith ? contact : viscous) += damping;  // Smith's damping is the soil's
 }
 
 double LineScheme::link_hysteresis() const {

@@ -51,6 +51,8 @@ class LineCentralDifference final : public LineScheme {
   void start() override;
   void advance() override;
   [[nodiscard]] double displacement_at(std::size_t j) const override { return cur_[j]; }
+  /// The near end's probe read directly (not through displacement_at's virtual call).
+  [[nodiscard]] double end_displacement() const override { return cur_[0]; }
   [[nodiscard]] double velocity_at(std::size_t j) const override {
     return n_ == 0 ? v0_[j] : (next_[j] - prev_[j]) / (2.0 * dt_);
   }
@@ -73,12 +75,15 @@ class LineCentralDifference final : public LineScheme {
   void predict(const double* um, const double* u, double* up, double t, bool taylor);
   /// The held ends' rows of `up`.
   void hold_ends(const double* u, double* up, double t) const;
-  bool held_ends_ = false;  // an end clamped or driven at a velocity
+  bool held_ends_ = false;                     // an end clamped or driven at a velocity
+  bool near_held_ = false, far_held_ = false;  // which (read once: the step's fixed work is a few ns)
+  double inv_dt2_ = 1.0 / (dt_ * dt_);         // no division in a step (1 / dt: inv_dt_)
   /// Makes every rigid link's opening at `up` >= 0; returns the impulses' forces in rigid_.
   void project(double* up, double force_scale);
   /// The support forces of held ends, the near and far forces at t_n.
   void end_forces(const double* um, const double* u, const double* up, double t, double scale);
-  void book_budget(const double* um, const double* u, const double* up, double& dw, double& dd, double& dc) const;
+  /// Level m's increments of the budget, booked.
+  void book_budget(const double* um, const double* u, const double* up);
   [[nodiscard]] double half_step(const double* a, const double* b, BondKind kind, double& kinetic) const;
 
   /// The fast step: each uniform stretch of bar nodes in one vectorised pass
@@ -112,6 +117,7 @@ class LineCentralDifference final : public LineScheme {
   std::vector<std::size_t> special_;       // the nodes outside every stretch
   std::vector<double> k_, c_, inv_m_, m_;  // per bond; per node
   std::vector<double> r_, rigid_;          // forces at the level; rigid links' impulse forces
+  std::vector<std::size_t> rigid_links_;   // the rigid links, in line order
   PlasticBonds plastic_;                   // the elastic-plastic elements' state (none: every body elastic)
   // Smith's shaft: per node its slip s^n and damping force at t_n; the
   // special nodes in the soil; the slip's work so far, the damping's this level.

@@ -265,6 +265,56 @@ class LineScheme : public Scheme {
   std::vector<double> steady_body_;  // a steady body force and gravity on a plastic line (else empty)
 };
 
+// Once per step each: inline, since a short line's step is a few dozen ns
+// and a call into another unit costs a few of them.
+inline void LineScheme::load_at(double t) {
+  if (load_zero_ || (load_steady_ && t > 0.0)) return;  // zero, or computed at t = 0
+  load_into(t, load_);
+}
+
+inline void LineScheme::add_link_force(std::size_t i, double p, double* r) const {
+  const Link& l = line_.links[i];
+  if (l.a != Link::ground) r[l.a] -= p;
+  if (l.b != Link::ground) r[l.b] += p;
+}
+
+inline void LineScheme::penalty_forces(const double* u, const double* u_old, double* r) {
+  const double inv_dt = inv_dt_;
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const Link& l = line_.links[i];
+    if (l.law.rigid()) {
+      force_[i] = 0.0;
+      continue;
+    }
+    const double c = -line_.opening(i, u);
+    const double rate = (line_.opening(i, u_old) - line_.opening(i, u)) * inv_dt;  // dc/dt, backward
+    if (c > c_max_[i]) c_max_[i] = c;
+    force_[i] = l.law.force(c, rate, c_max_[i]);
+    if (force_[i] != 0.0) add_link_force(i, force_[i], r);
+  }
+}
+
+inline void LineScheme::book_link_work(const double* um, const double* u, const double* up, double& work,
+                                       double& viscous, double& contact) const {
+  for (std::size_t i = 0; i < line_.links.size(); ++i) {
+    const Link& l = line_.links[i];
+    const double dcomp = 0.5 * (line_.opening(i, um) - line_.opening(i, up));  // (c^{m+1} - c^{m-1}) / 2
+    if (l.law.rigid()) contact += force_[i] * dcomp;
+    book_link_damping(i, -line_.opening(i, u), dcomp, work, viscous, contact);
+  }
+}
+
+inline void LineScheme::book_link_damping(std::size_t i, double c, double motion, double& work, double& viscous,
+                                          double& contact) const {
+  const ContactLaw& law = line_.links[i].law;
+  if (law.kind == LawKind::diesel) {  // the gas pushes the faces apart: its work is -p dc
+    work -= law.gas_force(c, c_max_[i]) * motion;
+    return;
+  }
+  const double damping = law.damping_part(force_[i], c, c_max_[i]) * motion;
+  (law.kind == LawKind::smith ? contact : viscous) += damping;  // Smith's damping is the soil's
+}
+
 /// The largest stable step of central differences on `line` (lumped mass;
 /// `consistent_mass`: M_h, 3 times stiffer at the top of the spectrum), by
 /// Gershgorin's bound node by node with every penalty link's k and l.
