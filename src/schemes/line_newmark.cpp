@@ -103,8 +103,9 @@ std::size_t LineNewmark::use_partitions(std::size_t p) {
   partitioned_ = PartitionedTridiagonal();
   // One block with no far link: A is the whole line's, and every link acts
   // at node 0, a force at row 0 that the reduced system takes.
-  const bool can = blocks_.size() == 1 && blocks_.front().far_link == none && held_.empty() && !soil_.active() &&
-                   !plastic_iteration_.active();
+  // At least two nodes: the elastic step's bond stencil reads node 1.
+  const bool can = line_.nodes() >= 2 && blocks_.size() == 1 && blocks_.front().far_link == none && held_.empty() &&
+                   !soil_.active() && !plastic_iteration_.active();
   if (!can || p == 0) return 0;
   partitioned_ = PartitionedTridiagonal(
       Tridiagonal::combine(1.0, Tridiagonal::combine(1.0, mass_, gamma_ * dt_, visc_), beta_ * dt_ * dt_, stiff_),

@@ -159,6 +159,22 @@ TEST(LineNewmark, PartitionedSolveGivesTheSequentialResults) {
   }
 }
 
+// A lone mass (one node) takes no chunks, however many the case asks: its
+// step has no bond for the partitioned step's stencil (it read past node 0).
+TEST(LineNewmark, ALoneMassStaysSequential) {
+  Case c = Case::from_string(
+      "[[body]]\nname = \"m\"\nkind = \"mass\"\nmass = 1.0\nvelocity = \"-1\"\n"
+      "[near_end]\nlaw = \"elastic\"\nstiffness = 100.0\n"
+      "[time]\nscheme = \"newmark\"\nstep = 0.01\nend = 0.5\npartitions = 2\n",
+      {}, "mass");
+  LineNewmark s(c, build_line(c));
+  EXPECT_EQ(s.partitions(), 0u);
+  s.start();
+  for (int step = 0; step < 50; ++step) s.advance();
+  EXPECT_TRUE(s.finite());
+  EXPECT_GT(s.displacement_at(0), -0.2);  // pushed back by the spring (k = 100, m = 1: it turns within 0.16 s)
+}
+
 // time.partitions: a count of chunks is the scheme's, 1 the sequential solve
 // however large the line; the key is written back with the case.
 TEST(LineNewmark, TakesTheChunksTheCaseAsks) {
