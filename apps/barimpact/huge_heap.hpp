@@ -19,12 +19,15 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 #include <unistd.h>
+#if __GLIBC_PREREQ(2, 33) && defined(MADV_HUGEPAGE)
+#define BARIMPACT_HUGE_HEAP  // mallinfo2, the heap's free top, is glibc 2.33's
+#endif
 #endif
 
 namespace barimpact_cli {
 
 inline void prefer_huge_pages() {
-#if defined(__linux__) && defined(__GLIBC__) && defined(MADV_HUGEPAGE)
+#if defined(BARIMPACT_HUGE_HEAP)
   rlimit space{};
   if (getrlimit(RLIMIT_AS, &space) != 0 || space.rlim_cur != RLIM_INFINITY) return;
   constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
