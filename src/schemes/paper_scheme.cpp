@@ -501,9 +501,11 @@ namespace {
 
 // Inner rows j0..j1-1 of a level's right-hand side into out, in a loop of
 // their own that the compiler vectorises (out restricted, the rows' constants
-// in locals): the partitioned step's first pass.
+// in locals), for AVX2 too (half_step_terms.hpp's clones: the same
+// operations, no fused multiply-add, the same bits): the partitioned step's
+// first pass.
 template <class Rows>
-void stencil_rows(const Rows& level, double* __restrict out, std::size_t j0, std::size_t j1) {
+BARIMPACT_ENERGY_CLONES void stencil_rows(const Rows& level, double* __restrict out, std::size_t j0, std::size_t j1) {
   const Rows rows = level;
   for (std::size_t j = j0; j < j1; ++j) out[j] = rows(j);
 }
