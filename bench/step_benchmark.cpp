@@ -48,9 +48,12 @@ void per_node_step(benchmark::State& state, std::size_t nodes) {
       static_cast<double>(nodes), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-// Times the steps of case `c` through the library's scheme object.
-void time_steps(benchmark::State& state, const barimpact::Case& c) {
+// Times the steps of case `c` through the library's scheme object
+// (`sequential`: the paper's one-bar kernel held to its two-ended solve).
+void time_steps(benchmark::State& state, const barimpact::Case& c, bool sequential = false) {
   auto s = barimpact::make_scheme(c);
+  if (auto* paper = dynamic_cast<barimpact::PaperScheme*>(s.get()); paper != nullptr && sequential)
+    paper->use_partitions(0);
   s->start();
   for (auto _ : state) {
     s->advance();
@@ -75,14 +78,31 @@ barimpact::Case bars(long long M, std::initializer_list<std::pair<const char*, l
   return c;
 }
 
-void BM_PaperStep(benchmark::State& state) {
+// The one-bar kernel's step; BM_PaperStepSequential forces the two-ended
+// solve and BM_PaperStepPartitioned Wang's partitioned one (P = range(1)) at
+// every M, to measure paper_scheme.hpp's partition_threshold.
+// partitions < 0: the scheme's own choice.
+void paper_step(benchmark::State& state, long long partitions) {
   barimpact::PaperScheme scheme(bench_case(state.range(0)));
+  if (partitions >= 0) scheme.use_partitions(static_cast<std::size_t>(partitions));
   scheme.start();
   for (auto _ : state) {
     scheme.advance();
     benchmark::DoNotOptimize(scheme.next_level());
   }
   per_node_step(state, scheme.nodes());
+}
+
+void BM_PaperStep(benchmark::State& state) {
+  paper_step(state, -1);
+}
+
+void BM_PaperStepSequential(benchmark::State& state) {
+  paper_step(state, 0);
+}
+
+void BM_PaperStepPartitioned(benchmark::State& state) {
+  paper_step(state, state.range(1));
 }
 
 // PaperBatch::width cases in one batch (one SIMD register): time per
@@ -170,14 +190,14 @@ void BM_BareLoop(benchmark::State& state) {
 
 // Every scheme's step on Example 1 (rigid obstacle for the rigid schemes,
 // k = 100 for the penalty ones), dt = h/2 (h for characteristic).
-void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigid) {
+void BM_SchemeStep(benchmark::State& state, const std::string& scheme, bool rigid, bool sequential) {
   const long long M = state.range(0);
   const double h = 1.0 / static_cast<double>(M);
   auto c = barimpact::Case::from_string(fmt::format(
       "[bar]\nelements = {}\n[initial]\nvelocity = \"-1\"\n[obstacle]\nkind = \"{}\"\n[time]\n"
       "scheme = \"{}\"\n{}end = 1\n",
       M, rigid ? "rigid" : "elastic", scheme, scheme == "characteristic" ? "" : fmt::format("step = {}\n", h / 2)));
-  time_steps(state, c);
+  time_steps(state, c, sequential);
 }
 
 // A line of three bars of M elements in all (M/3, M/3, the rest; a rigid
@@ -497,6 +517,8 @@ void BM_BareMassRedistribution(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_PaperStep)->RangeMultiplier(10)->Range(100, 1'000'000);
+BENCHMARK(BM_PaperStepSequential)->RangeMultiplier(10)->Range(1000, 1'000'000);
+BENCHMARK(BM_PaperStepPartitioned)->ArgsProduct({{1000, 3000, 10'000, 100'000, 1'000'000}, {8, 16, 32}});
 BENCHMARK(BM_BareLoop)->RangeMultiplier(10)->Range(100, 1'000'000);
 BENCHMARK(BM_PaperBatch)->RangeMultiplier(10)->Range(100, 1'000'000);
 const bool simd_paths_registered = [] {
@@ -579,10 +601,14 @@ const bool registered = [] {
         std::pair{"central-difference", true}, std::pair{"characteristic", true}, std::pair{"paoli-schatzman", true},
         std::pair{"moreau-jean", true}, std::pair{"mass-redistribution", true}}) {
     const std::string name = fmt::format("BM_Scheme/{}/{}", scheme, rigid ? "rigid" : "elastic");
-    benchmark::RegisterBenchmark(name.c_str(), BM_SchemeStep, std::string(scheme), rigid)
+    benchmark::RegisterBenchmark(name.c_str(), BM_SchemeStep, std::string(scheme), rigid, false)
         ->RangeMultiplier(10)
         ->Range(100, 1'000'000);
   }
+  // The paper's step with its two-ended solve at every M (BM_Scheme/paper/elastic partitions large bars).
+  benchmark::RegisterBenchmark("BM_SchemeSequential/paper/elastic", BM_SchemeStep, std::string("paper"), false, true)
+      ->RangeMultiplier(10)
+      ->Range(100, 1'000'000);
   for (const char* scheme : {"central-difference", "newmark", "paper", "characteristic"}) {
     const std::string name = fmt::format("BM_Line/{}", scheme);
     benchmark::RegisterBenchmark(name.c_str(), BM_LineStep, std::string(scheme))

@@ -21,16 +21,19 @@ constexpr std::size_t group = 8;
 // it decays geometrically, within tens or hundreds of rows).
 constexpr double spike_floor = 1e-30;
 
+using detail::UniformRows;
+
 // Rows i_end - 1 down to i_begin of G chunks (row first_q + i), carries in
-// y and acc: y_j = r_j - coupling_{j+1} y_{j+1}, acc += g_j y_j while spiked.
-template <std::size_t G, bool spiked>
+// y and acc: y_j = r_j - coupling_{j+1} y_{j+1}, acc += g_j y_j while spiked;
+// `uniform`: coupling_{j+1} is cu on every row.
+template <std::size_t G, bool spiked, bool uniform = false>
 inline void eliminate_rows(double* __restrict x, const double* __restrict c, const double* __restrict g,
                            const std::array<std::size_t, G>& at, std::array<double, G>& y, std::array<double, G>& acc,
-                           std::size_t i_begin, std::size_t i_end) {
+                           std::size_t i_begin, std::size_t i_end, double cu = 0.0) {
   for (std::size_t i = i_end; i-- > i_begin;)
     for (std::size_t q = 0; q < G; ++q) {
       const std::size_t j = at[q] + i;
-      y[q] = x[j] - c[j + 1] * y[q];
+      y[q] = x[j] - (uniform ? cu : c[j + 1]) * y[q];
       x[j] = y[q];
       if constexpr (spiked) acc[q] += g[j] * y[q];
     }
@@ -41,7 +44,7 @@ inline void eliminate_rows(double* __restrict x, const double* __restrict c, con
 // sum_j g_j y_j, beside it on the rows i >= cut where some g_j is not zero.
 template <std::size_t G>
 void eliminate_group(double* x, const double* c, const double* g, const std::size_t* first, std::size_t common,
-                     std::size_t longer, std::size_t cut, double* bottom) {
+                     std::size_t longer, std::size_t cut, const UniformRows& u, double* bottom) {
   std::array<double, G> y{}, acc{};
   std::array<std::size_t, G> at{};
   for (std::size_t q = 0; q < G; ++q) {
@@ -54,21 +57,26 @@ void eliminate_group(double* x, const double* c, const double* g, const std::siz
     }
   }
   eliminate_rows<G, true>(x, c, g, at, y, acc, cut, common);
-  eliminate_rows<G, false>(x, c, g, at, y, acc, 0, cut);
+  const std::size_t hi = std::min(u.end, cut), lo = std::min(u.begin, hi);
+  eliminate_rows<G, false>(x, c, g, at, y, acc, hi, cut);
+  eliminate_rows<G, false, true>(x, c, g, at, y, acc, lo, hi, u.coupling);
+  eliminate_rows<G, false>(x, c, g, at, y, acc, 0, lo);
   for (std::size_t q = 0; q < G; ++q) bottom[q] = acc[q];
 }
 
 // Rows i_begin..i_end - 1 of G chunks' back substitution: x_j = (y_j inv_j
 // - t g_j) - coupling_j x_{j-1}, the chain the last multiply-subtract alone.
-template <std::size_t G, bool spiked>
+template <std::size_t G, bool spiked, bool uniform = false>
 inline void substitute_rows(double* __restrict x, const double* __restrict inv, const double* __restrict c,
                             const double* __restrict g, const std::array<std::size_t, G>& at, std::array<double, G>& xv,
-                            const double* t, std::size_t i_begin, std::size_t i_end) {
+                            const double* t, std::size_t i_begin, std::size_t i_end, const UniformRows& u = {}) {
   for (std::size_t i = i_begin; i < i_end; ++i)
     for (std::size_t q = 0; q < G; ++q) {
       const std::size_t j = at[q] + i;
       if constexpr (spiked)
         xv[q] = (x[j] * inv[j] - t[q] * g[j]) - c[j] * xv[q];
+      else if constexpr (uniform)
+        xv[q] = x[j] * u.inv - u.coupling * xv[q];
       else
         xv[q] = x[j] * inv[j] - c[j] * xv[q];
       x[j] = xv[q];
@@ -79,14 +87,18 @@ inline void substitute_rows(double* __restrict x, const double* __restrict inv, 
 // (x_{a-1}, `above`), t = off_b x_{b+1} the separator below's term.
 template <std::size_t G>
 void substitute_group(double* x, const double* inv, const double* c, const double* g, const std::size_t* first,
-                      std::size_t common, std::size_t longer, std::size_t cut, const double* above, const double* t) {
+                      std::size_t common, std::size_t longer, std::size_t cut, const UniformRows& u,
+                      const double* above, const double* t) {
   std::array<double, G> xv{};
   std::array<std::size_t, G> at{};
   for (std::size_t q = 0; q < G; ++q) {
     at[q] = first[q];
     xv[q] = above[q];
   }
-  substitute_rows<G, false>(x, inv, c, g, at, xv, t, 0, cut);
+  const std::size_t hi = std::min(u.end, cut), lo = std::min(u.begin, hi);
+  substitute_rows<G, false>(x, inv, c, g, at, xv, t, 0, lo);
+  substitute_rows<G, false, true>(x, inv, c, g, at, xv, t, lo, hi, u);
+  substitute_rows<G, false>(x, inv, c, g, at, xv, t, hi, cut);
   substitute_rows<G, true>(x, inv, c, g, at, xv, t, cut, common);
   for (std::size_t q = 0; q < std::min(G, longer); ++q) {
     const std::size_t j = at[q] + common;
@@ -149,6 +161,35 @@ PartitionedTridiagonal::PartitionedTridiagonal(const Tridiagonal& a, bool fix_la
   bottom_.assign(p, 0.0);
   for (std::size_t k = 0; k < p; ++k) factor_chunk(a, k);
   factor_separators(a);
+  find_uniform_rows();
+}
+
+// Each group's rows where every chunk's factors equal those at its first
+// chunk's middle row: from the middle out, in each chunk, while inv_j,
+// coupling_j and coupling_{j+1} (the sweeps' reads) repeat them exactly.
+void PartitionedTridiagonal::find_uniform_rows() {
+  uniform_.assign((first_.size() + group - 1) / group, {});
+  if (rows_ == 0 || common_ < 2) return;
+  const std::size_t mid = common_ / 2;
+  for (std::size_t k0 = 0; k0 < first_.size(); k0 += group) {
+    UniformRows u{0, common_, coupling_[first_[k0] + mid], inv_[first_[k0] + mid]};
+    const auto alike = [&](std::size_t j) {
+      return inv_[j] == u.inv && coupling_[j] == u.coupling && coupling_[j + 1] == u.coupling;
+    };
+    for (std::size_t k = k0; k < std::min(k0 + group, first_.size()); ++k) {
+      const std::size_t f = first_[k];
+      if (!alike(f + mid)) {
+        u.begin = u.end = 0;
+        break;
+      }
+      std::size_t lo = mid, hi = mid + 1;
+      while (lo > 0 && alike(f + lo - 1)) --lo;
+      while (hi < common_ && alike(f + hi)) ++hi;
+      u.begin = std::max(u.begin, lo);
+      u.end = std::min(u.end, hi);
+    }
+    uniform_[k0 / group] = u;
+  }
 }
 
 // Chunk k's local pivots from its last row b up (FactoredTridiagonal's
@@ -229,7 +270,7 @@ double PartitionedTridiagonal::eliminate(std::span<double> x) {
   double* xs = x.data();
   for_groups(p, [&]<std::size_t G>(std::size_t k) {
     eliminate_group<G>(xs, coupling_.data(), spike_.data(), first_.data() + k, common_, longer_ > k ? longer_ - k : 0,
-                       spike_cut(k, G), bottom_.data() + k);
+                       spike_cut(k, G), uniform_[k / group], bottom_.data() + k);
   });
   if (p > 1) {
     // The separators' right-hand sides, S's forward sweep, then its back
@@ -268,7 +309,7 @@ void PartitionedTridiagonal::substitute(std::span<double> x) const {
       t[q] = k + q + 1 < p ? below_[k + q] * xs[first_[k + q + 1] - 1] : 0.0;
     }
     substitute_group<G>(xs, inv_.data(), coupling_.data(), spike_.data(), first_.data() + k, common_,
-                        longer_ > k ? longer_ - k : 0, spike_cut(k, G), above.data(), t.data());
+                        longer_ > k ? longer_ - k : 0, spike_cut(k, G), uniform_[k / group], above.data(), t.data());
   });
 }
 

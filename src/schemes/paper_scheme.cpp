@@ -244,11 +244,13 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
     k_ = law_->stiffness;
     l_ = law_->kind == LawKind::viscoelastic ? law_->viscosity : 0.0;
   }
-  factor(form_matrices());
+  a_diag_ = form_matrices();
+  factor(a_diag_);
   poll_setup();  // each phase is line-sized: a study's case polls its interrupt between them
   if (l_ > 0.0) respond_to_dashpot();
   poll_setup();
   allocate(c, one);
+  if (line_.nodes() >= partition_threshold) use_partitions(default_partitions);
 }
 
 std::array<double, 3> PaperScheme::form_matrices() {
@@ -442,43 +444,42 @@ std::vector<double> PaperScheme::initial_acceleration() const {
   return a;
 }
 
-// One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}
-// (cur_), written over z^{m-2} (prev_). The right-hand side
-// B1 z^m + B0 z^{m-1} + F^{m,alpha} + contact is formed row by row inside
-// the first sweep of the prefactored two-ended solve, then one sweep back:
-// two passes over memory, two chains per pass, no allocation.
-template <PaperScheme::LoadMode mode, bool fused>
-void PaperScheme::solve_level(long long m) {
-  const std::size_t n = line_.nodes();
-  const double* __restrict zc = next_;
-  const double* __restrict zo = cur_;
-  double* __restrict zn = prev_;
-  const double* __restrict inv = inv_.data();
-  const double* __restrict up = upper_.data();
-
+template <PaperScheme::LoadMode mode>
+PaperScheme::LevelRows<mode> PaperScheme::level_rows(long long m) {
+  const std::size_t last = line_.nodes() - 1;
+  const double* zc = next_;
+  const double* zo = cur_;
   // exp(-lambda t) at t_{m-1}, t_m, t_{m+1}, and its alpha-mean.
   const double em1 = 1.0 / scale(m - 1), e0 = 1.0 / scale(m), ep1 = 1.0 / scale(m + 1);
   const double ebar = alpha_ * ep1 + (1.0 - 2.0 * alpha_) * e0 + alpha_ * em1;
-
   const AlphaLoad f = alpha_load<mode>(m, em1, e0, ep1, ebar);
-  const LoadedRow<mode> loaded{f.fp, f.f0, f.fm, f.cp, f.c0, f.cm};
+  const double b1o = b1_off_, b0o = b0_off_;
+  LevelRows<mode> rows{zc, zo, {f.fp, f.f0, f.fm, f.cp, f.c0, f.cm}, b1_diag_[1], b1o, b0_diag_[1], b0o};
 
   // The explicit half of the penalty, (k/2)|z_0 + g e^{-lambda t_m}|, and the
   // gap's share of the implicit half, -(k/2) g e^{-lambda t}^{m,alpha}.
   const double k = k_, g = gap_;
   double contact = 0.5 * k * (std::abs(zc[0] + g * e0) - g * ebar);
-  const double sigma = dashpot_sigma_ > 0.0 ? viscoelastic_row(zc, zo, e0, em1, contact) : 0.0;
+  rows.sigma = dashpot_sigma_ > 0.0 ? viscoelastic_row(zc, zo, e0, em1, contact) : 0.0;
+  rows.r0 = rows.loaded(b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1], 0) + contact;
+  rows.r_last =
+      rows.loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);
+  return rows;
+}
 
-  const double b1o = b1_off_, b0o = b0_off_;
-  const double b1d = b1_diag_[1], b0d = b0_diag_[1];
-  const std::size_t last = n - 1;
-
-  const double r0 = loaded(b1_diag_[0] * zc[0] + b1o * zc[1] + b0_diag_[0] * zo[0] + b0o * zo[1], 0) + contact;
-  const double r_last =
-      loaded(b1_diag_[2] * zc[last] + b1o * zc[last - 1] + b0_diag_[2] * zo[last] + b0o * zo[last - 1], last);
+// One step of (6.3)(iv) at level m: z^{m+1} from z^m (next_) and z^{m-1}
+// (cur_), written over z^{m-2} (prev_). The right-hand side is formed row
+// by row inside the first sweep of the prefactored two-ended solve, then
+// one sweep back: two passes over memory, two chains per pass, no allocation.
+template <PaperScheme::LoadMode mode, bool fused>
+void PaperScheme::solve_level(long long m) {
+  const LevelRows<mode> rows = level_rows<mode>(m);
+  double* __restrict zn = prev_;
+  const double* __restrict inv = inv_.data();
+  const double* __restrict up = upper_.data();
   // fused: the half step (m - 1, m)'s energy sums in node order, inside the
   // sweeps (a history row's, which begin_energies left to this step).
-  LaneSums sums(LevelPair{zo, zc, scale(m - 1), scale(m)}, 1);
+  LaneSums sums(LevelPair{cur_, next_, scale(m - 1), scale(m)}, 1);
   const auto visit = [&] {
     if constexpr (fused)
       return HalfStepVisit{sums};
@@ -486,17 +487,73 @@ void PaperScheme::solve_level(long long m) {
       return detail::NoVisit{};
   }();
   twisted_solve(
-      last, a_off_, r0, r_last,
-      [&](std::size_t j) {
-        return loaded(b1d * zc[j] + b1o * (zc[j - 1] + zc[j + 1]) + b0d * zo[j] + b0o * (zo[j - 1] + zo[j + 1]), j);
-      },
+      line_.nodes() - 1, a_off_, rows.r0, rows.r_last, [&](std::size_t j) { return rows(j); },
       [&](std::size_t j) { return inv[j]; }, [&](std::size_t j) { return up[j]; }, [&](std::size_t j) { return zn[j]; },
       [&](std::size_t j, double v) { zn[j] = v; }, visit);
-  if (sigma != 0.0) add_dashpot(sigma, zn);
+  if (rows.sigma != 0.0) add_dashpot(rows.sigma, zn);
   if constexpr (fused) {
     cached_.n = m - 1;
     half_step_of(sums.totals(), energy_constants(), cached_.kinetic, cached_.strain);
   }
+}
+
+namespace {
+
+// Inner rows j0..j1-1 of a level's right-hand side into out, in a loop of
+// their own that the compiler vectorises (out restricted, the rows' constants
+// in locals), for AVX2 too (half_step_terms.hpp's clones: the same
+// operations, no fused multiply-add, the same bits): the partitioned step's
+// first pass.
+template <class Rows>
+BARIMPACT_ENERGY_CLONES void stencil_rows(const Rows& level, double* __restrict out, std::size_t j0, std::size_t j1) {
+  const Rows rows = level;
+  for (std::size_t j = j0; j < j1; ++j) out[j] = rows(j);
+}
+
+}  // namespace
+
+// The partitioned step (Wang's method, model/partitioned_tridiagonal.hpp):
+// the right-hand side in a pass of its own, a history row's energy sums
+// beside it block by block while the levels are in L1 (LaneSums: any split
+// of the nodes gives the same bits), then the chunks' eliminations, the
+// dashpot's Sherman-Morrison term as a force f = -sigma x_0 / (1 + sigma
+// (A^{-1})_00) at row 0, and the back substitution.
+template <PaperScheme::LoadMode mode, bool fused>
+void PaperScheme::solve_level_partitioned(long long m) {
+  const std::size_t n = line_.nodes(), last = n - 1;
+  const LevelRows<mode> rows = level_rows<mode>(m);
+  double* zn = prev_;
+  LaneSums sums(LevelPair{cur_, next_, scale(m - 1), scale(m)}, 1);
+  for (std::size_t j0 = 1; j0 < last; j0 += LaneSums::block) {
+    const std::size_t j1 = std::min(last, j0 + LaneSums::block);
+    stencil_rows(rows, zn, j0, j1);
+    if constexpr (fused) sums.add(j0, j1);
+  }
+  zn[0] = rows.r0;
+  zn[last] = rows.r_last;
+  const std::span<double> x(zn, n);
+  const double x0 = partitioned_.eliminate(x);
+  if (rows.sigma != 0.0)
+    partitioned_.add_end_force(x, -rows.sigma * x0 / (1.0 + rows.sigma * partitioned_.end_response()));
+  partitioned_.substitute(x);
+  if constexpr (fused) {
+    sums.add(last, n);
+    cached_.n = m - 1;
+    half_step_of(sums.totals(), energy_constants(), cached_.kinetic, cached_.strain);
+  }
+}
+
+std::size_t PaperScheme::use_partitions(std::size_t p) {
+  partitioned_ = PartitionedTridiagonal();
+  const std::size_t n = line_.nodes();
+  if (p == 0 || batched_ || n < 3) return 0;
+  Tridiagonal a;
+  a.diag.assign(n, a_diag_[1]);
+  a.diag.front() = a_diag_[0];
+  a.diag.back() = a_diag_[2];
+  a.off.assign(n - 1, a_off_);
+  partitioned_ = PartitionedTridiagonal(a, clamped_, p);
+  return partitioned_.partitions();
 }
 
 // Sherman-Morrison: (A + sigma e0 e0^T)^{-1} r = y - sigma y_0 / (1 + sigma w_0) w.
@@ -555,15 +612,21 @@ void PaperScheme::advance() {
   const long long m = n_ + 1;
   const bool fused = fuse_;
   fuse_ = false;
+  const auto run = [&]<LoadMode mode>() {
+    if (partitioned())
+      fused ? solve_level_partitioned<mode, true>(m) : solve_level_partitioned<mode, false>(m);
+    else
+      fused ? solve_level<mode, true>(m) : solve_level<mode, false>(m);
+  };
   switch (load_mode_) {
     case LoadMode::zero:
-      fused ? solve_level<LoadMode::zero, true>(m) : solve_level<LoadMode::zero, false>(m);
+      run.template operator()<LoadMode::zero>();
       break;
     case LoadMode::steady:
-      fused ? solve_level<LoadMode::steady, true>(m) : solve_level<LoadMode::steady, false>(m);
+      run.template operator()<LoadMode::steady>();
       break;
     case LoadMode::unsteady:
-      fused ? solve_level<LoadMode::unsteady, true>(m) : solve_level<LoadMode::unsteady, false>(m);
+      run.template operator()<LoadMode::unsteady>();
       break;
   }
   finish_level(m);

@@ -47,6 +47,7 @@ PaperBatch::PaperBatch(const std::vector<const Case*>& cases) {
   }
   for (std::size_t l = 0; l < lanes_.size(); ++l) {
     PaperScheme& s = *lanes_[l];
+    s.use_partitions(0);  // the batch's kernel is the two-ended solve; its lanes' chunks would be unused
     s.batched_ = true;
     s.stride_ = width;
     s.prev_ = levels_[2].data() + l;

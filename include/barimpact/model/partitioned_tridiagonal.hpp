@@ -26,6 +26,18 @@
 
 namespace barimpact {
 
+namespace detail {
+/// Rows begin..end - 1 of every chunk of a group where the factors are at
+/// their fixed point: a chunk's pivots, factored from its last row up with
+/// a matrix's inner rows all alike, repeat exactly within tens of rows (as
+/// PaperScheme::factor exploits), so the sweeps there take them from
+/// registers instead of two streams of memory: the same values, the same bits.
+struct UniformRows {
+  std::size_t begin = 0, end = 0;
+  double coupling = 0.0, inv = 0.0;
+};
+}  // namespace detail
+
 class PartitionedTridiagonal {
  public:
   PartitionedTridiagonal() = default;
@@ -60,6 +72,7 @@ class PartitionedTridiagonal {
   /// The first row (from its chunk's first) where some spike of chunks
   /// k..k+width-1 is not zero.
   [[nodiscard]] std::size_t spike_cut(std::size_t k, std::size_t width) const;
+  void find_uniform_rows();
 
   std::size_t n_ = 0;
   std::size_t rows_ = 0;    // rows solved: n, or n - 1 with the last fixed
@@ -74,8 +87,9 @@ class PartitionedTridiagonal {
   // The separators' Schur complement S (rows 1..P-1), factored from row 1:
   // pivots' inverses and S_{i,i-1}.
   std::vector<double> s_inv_, s_lower_;
-  std::vector<double> s_end_;   // S^{-1} applied to a unit force at row 0's effect
-  std::vector<double> bottom_;  // workspace: each chunk's last-row local solution
+  std::vector<double> s_end_;                 // S^{-1} applied to a unit force at row 0's effect
+  std::vector<double> bottom_;                // workspace: each chunk's last-row local solution
+  std::vector<detail::UniformRows> uniform_;  // per group of chunks swept together
   double end_response_ = 0.0;
 };
 
