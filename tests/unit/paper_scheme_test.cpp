@@ -306,6 +306,11 @@ TEST(PaperScheme, LargeBarsTakeThePartitionedSolve) {
   };
   EXPECT_FALSE(bar_of(PaperScheme::partition_threshold - 2).partitioned());
   EXPECT_TRUE(bar_of(PaperScheme::partition_threshold - 1).partitioned());
+  // time.partitions: 1 keeps a large bar's two-ended solve; a count asks for chunks at any size.
+  EXPECT_FALSE(
+      PaperScheme(case_from("[bar]\nelements = 5000\n[time]\nstep = 0.001\nend = 1\npartitions = 1\n")).partitioned());
+  EXPECT_TRUE(
+      PaperScheme(case_from("[bar]\nelements = 100\n[time]\nstep = 0.001\nend = 1\npartitions = 4\n")).partitioned());
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
-// A partitioned solve of a symmetric positive definite tridiagonal system:
+// A partitioned solve of a symmetric positive definite tridiagonal system
+// (weakly diagonally dominant, as every matrix of a line is: see spike_ below):
 // the rows split into P chunks with one separator row between neighbours, so
 // that the chunks' recurrences are independent chains a processor runs side
 // by side instead of one chain of multiply-subtracts from end to end.
@@ -78,10 +79,12 @@ class PartitionedTridiagonal {
   std::size_t rows_ = 0;    // rows solved: n, or n - 1 with the last fixed
   std::size_t common_ = 0;  // rows every chunk has; the first `longer_` have one more
   std::size_t longer_ = 0;
-  std::vector<std::size_t> first_;        // chunk k's first row; separator k (k >= 1) is first_[k] - 1
-  std::vector<double> inv_;               // 1 / chunk-local pivot (0 on separators and a fixed row)
-  std::vector<double> coupling_;          // off_{j-1} inv_j, n + 1 entries, 0 past a chunk's last row
-  std::vector<double> spike_;             // g_j = inv_j prod_{i=j+1..b} (-coupling_i), b the chunk's last row
+  std::vector<std::size_t> first_;  // chunk k's first row; separator k (k >= 1) is first_[k] - 1
+  std::vector<double> inv_;         // 1 / chunk-local pivot (0 on separators and a fixed row)
+  std::vector<double> coupling_;    // off_{j-1} inv_j, n + 1 entries, 0 past a chunk's last row
+  // g_j = inv_j prod_{i=j+1..b} (-coupling_i), b the chunk's last row; 0 from where the product
+  // falls below 1e-30: with |coupling| <= 1 (weak diagonal dominance) it only falls further.
+  std::vector<double> spike_;
   std::vector<double> below_;             // off_b, chunk k's coupling to the separator after it (0 for the last)
   std::vector<std::size_t> spiked_from_;  // chunk k's first row (from first_[k]) with g not zero
   // The separators' Schur complement S (rows 1..P-1), factored from row 1:
