@@ -288,8 +288,8 @@ run; {bandwidth}
 Target (issue 30): {TARGET_GAIN}x the sequential step at M = 10^4..10^6 for every
 implicit scheme. In this run: {", ".join(met) if met else "none"} met it;
 {", ".join(missed) if missed else "none"} did not. The paper scheme's one-bar kernel
-and Newmark take the partitioned solve from 2000 nodes (8 chunks;
-`time.partitions` sets them, 1 the sequential solve); the line engine's
+and Newmark take the partitioned solve from 2000 nodes on runs of 32 steps
+or more (8 chunks; `time.partitions` sets them, 1 the sequential solve); the line engine's
 paper and the rigid-contact schemes keep the sequential one. The
 threshold keeps the pinned examples on the sequential solve, bit for bit;
 Newmark's partitioned step is faster from M = {f"{pays[0]:,}" if pays else "(none measured)"} (ns per

@@ -92,11 +92,8 @@ LineNewmark::LineNewmark(const Case& c, Line line)
   soil_ = SoilIteration(line_, a, held_, beta_ * dt_ * dt_, gamma_ / (beta_ * dt_));  // and v^{n+1} by gamma dt A^{-1}
   if (soil_.active()) soil_load_.assign(n, 0.0);  // the misfit refuses elastic-plastic bodies with it
   if (soil_.active() || plastic_iteration_.active()) kept_.keep(state());  // primed: keeping never allocates
-  // time.partitions, or by the line's size; one chunk is the sequential solve.
-  const std::size_t chunks = c.time.partitions > 0      ? static_cast<std::size_t>(c.time.partitions)
-                             : n >= partition_threshold ? default_partitions
-                                                        : 1;
-  if (chunks > 1) use_partitions(chunks);
+  // time.partitions, or by the line's size and the run's length; one chunk is the sequential solve.
+  if (const std::size_t chunks = chunks_for(c.time.partitions, n, c.step_count()); chunks > 1) use_partitions(chunks);
 }
 
 std::size_t LineNewmark::use_partitions(std::size_t p) {

@@ -250,11 +250,9 @@ PaperScheme::PaperScheme(const Case& c, const OneBar& one, Line line)
   if (l_ > 0.0) respond_to_dashpot();
   poll_setup();
   allocate(c, one);
-  // time.partitions, or by the bar's size; one chunk is the two-ended solve.
-  const std::size_t chunks = c.time.partitions > 0                  ? static_cast<std::size_t>(c.time.partitions)
-                             : line_.nodes() >= partition_threshold ? default_partitions
-                                                                    : 1;
-  if (chunks > 1) use_partitions(chunks);
+  // time.partitions, or by the bar's size and the run's length; one chunk is the two-ended solve.
+  if (const std::size_t chunks = chunks_for(c.time.partitions, line_.nodes(), c.step_count()); chunks > 1)
+    use_partitions(chunks);
 }
 
 std::array<double, 3> PaperScheme::form_matrices() {

@@ -179,17 +179,21 @@ TEST(LineNewmark, ALoneMassStaysSequential) {
 // however large the line; the key is written back with the case.
 TEST(LineNewmark, TakesTheChunksTheCaseAsks) {
   BodyData b = bar("bar", 1.0, 3000, "-1");
-  Case c = line_case({b}, {}, 0.001, 0.01, "newmark");
+  Case c = line_case({b}, {}, 0.001, 0.1, "newmark");  // 100 steps: long enough for "auto" to take chunks
   c.near_end.law = JointLaw::elastic;
   c.near_end.stiffness = 1000.0;
   c.time.partitions = 1;
   LineNewmark one(c, build_line(c));
   c.time.partitions = 0;  // "auto": 3001 nodes are past the threshold
   LineNewmark chosen(c, build_line(c));
+  c.time.end = 0.01;  // 10 steps: "auto" keeps the sequential solve, whose set-up costs less
+  LineNewmark brief(c, build_line(c));
+  c.time.end = 0.1;
   c.time.partitions = 16;
   LineNewmark asked(c, build_line(c));
   EXPECT_EQ(one.partitions(), 0u);
   EXPECT_EQ(chosen.partitions(), LineNewmark::default_partitions);
+  EXPECT_EQ(brief.partitions(), 0u);
   EXPECT_EQ(asked.partitions(), 16u);
   const Case again = Case::from_string(c.to_toml(), {}, "again");
   EXPECT_EQ(again.time.partitions, 16);

@@ -39,6 +39,21 @@ struct UniformRows {
 };
 }  // namespace detail
 
+/// time.partitions = "auto": the chunks (8: the fastest of 4..256 measured,
+/// docs/benchmarks.md) on a line of at least 2000 nodes (which keeps the
+/// pinned examples on the sequential solve) whose run is long enough to
+/// repay the chunks' factors: at least 32 steps (a run of the paper scheme
+/// at 10^5 nodes, whole processes: 0.8 ms more set-up, 0.08 ms less a step).
+inline constexpr std::size_t default_partitions = 8, partition_threshold = 2000;
+inline constexpr long long partition_min_steps = 32;
+
+/// The chunks a scheme's solve takes: `asked` (time.partitions) when given,
+/// else by the rule above; 1 is the sequential solve.
+[[nodiscard]] inline std::size_t chunks_for(int asked, std::size_t nodes, long long steps) {
+  if (asked > 0) return static_cast<std::size_t>(asked);
+  return nodes >= partition_threshold && steps >= partition_min_steps ? default_partitions : 1;
+}
+
 class PartitionedTridiagonal {
  public:
   PartitionedTridiagonal() = default;

@@ -65,9 +65,9 @@ class LineNewmark final : public LineScheme {
   /// It is faster from 100 nodes (BM_NewmarkStep: 2.9 against 3.6 ns per
   /// node-step); below 2000 the sequential solve stays, so that the pinned
   /// examples keep their bits.
-  static constexpr std::size_t partition_threshold = 2000;
+  static constexpr std::size_t partition_threshold = barimpact::partition_threshold;
   /// The chunks the solve takes by default (bench/tridiagonal_benchmark.cpp).
-  static constexpr std::size_t default_partitions = 8;
+  static constexpr std::size_t default_partitions = barimpact::default_partitions;
   /// Solve A in `p` chunks from now on (0: the sequential solve), where the
   /// line can; returns the chunks used. For tests and benchmarks: the
   /// constructor takes time.partitions, else chooses by the line's size.

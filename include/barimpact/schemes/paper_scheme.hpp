@@ -83,8 +83,8 @@ class PaperScheme final : public Scheme {
   /// already 1.5 times faster at 1001 nodes; the threshold stays above the
   /// pinned examples, which keep the two-ended solve's bits. 8 chunks: 16 and
   /// 32 are no faster at 10^4..10^6 nodes.
-  static constexpr std::size_t partition_threshold = 2000;
-  static constexpr std::size_t default_partitions = 8;
+  static constexpr std::size_t partition_threshold = barimpact::partition_threshold;
+  static constexpr std::size_t default_partitions = barimpact::default_partitions;
   /// Solves A in p chunks from the next step on (0: the sequential two-ended
   /// solve); returns the chunks used.
   std::size_t use_partitions(std::size_t p);
