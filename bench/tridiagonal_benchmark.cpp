@@ -47,9 +47,11 @@ std::vector<double> start_vector(std::size_t n) {
   return x;
 }
 
-void BM_SequentialSolve(benchmark::State& state) {
+// One solve of the bar's matrix per iteration, factored by `factor(A)`.
+template <class Factor>
+void time_solves(benchmark::State& state, Factor factor) {
   const auto n = static_cast<std::size_t>(state.range(0));
-  const barimpact::FactoredTridiagonal a(bar_matrix(n), false);
+  auto a = factor(bar_matrix(n));
   std::vector<double> x = start_vector(n);
   for (auto _ : state) {
     a.solve(x);
@@ -59,16 +61,13 @@ void BM_SequentialSolve(benchmark::State& state) {
   per_node(state, n);
 }
 
+void BM_SequentialSolve(benchmark::State& state) {
+  time_solves(state, [](const Tridiagonal& a) { return barimpact::FactoredTridiagonal(a, false); });
+}
+
 void BM_PartitionedSolve(benchmark::State& state, std::size_t partitions) {
-  const auto n = static_cast<std::size_t>(state.range(0));
-  barimpact::PartitionedTridiagonal a(bar_matrix(n), false, partitions);
-  std::vector<double> x = start_vector(n);
-  for (auto _ : state) {
-    a.solve(x);
-    benchmark::DoNotOptimize(x.data());
-    benchmark::ClobberMemory();
-  }
-  per_node(state, n);
+  time_solves(state,
+              [partitions](const Tridiagonal& a) { return barimpact::PartitionedTridiagonal(a, false, partitions); });
 }
 
 void BM_Triad(benchmark::State& state) {
